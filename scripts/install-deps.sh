@@ -1,0 +1,25 @@
+#!/usr/bin/env bash
+# Installs the Debian packages chute needs, only those that are missing.
+# Safe to run repeatedly; needs root (or sudo) when something is missing.
+set -euo pipefail
+PKGS=(
+  build-essential cmake ninja-build pkg-config
+  libeigen3-dev libsuitesparse-dev
+  libvtk9-dev libgmsh-dev gmsh
+  libtoml11-dev libfmt-dev nlohmann-json3-dev libcli11-dev
+  libgtest-dev libgmock-dev xvfb xauth
+)
+missing=()
+for p in "${PKGS[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#PKGS[@]} packages present"
+  exit 0
+fi
+echo "install-deps: installing ${missing[*]}"
+SUDO=""
+[ "$(id -u)" -eq 0 ] || SUDO="sudo"
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"

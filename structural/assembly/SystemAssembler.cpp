@@ -1,0 +1,29 @@
+#include "assembly/SystemAssembler.hpp"
+
+namespace chute {
+
+void SystemAssembler::buildPattern(const std::vector<std::vector<int>>& nodeCliques) {
+  const int n = dofs_->numEquations();
+  std::vector<Eigen::Triplet<double, int>> trip;
+  for (int e = 0; e < n; ++e) trip.emplace_back(e, e, 0.0);  // diagonal always present
+  for (const auto& clique : nodeCliques)
+    for (int a : clique)
+      for (int b : clique)
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) {
+            const int ei = dofs_->eq(a, i), ej = dofs_->eq(b, j);
+            if (ei >= 0 && ej >= 0) trip.emplace_back(ei, ej, 0.0);
+          }
+  matrix_.resize(n, n);
+  matrix_.setFromTriplets(trip.begin(), trip.end());
+  matrix_.makeCompressed();
+  residual_.setZero(n);
+}
+
+void SystemAssembler::begin(bool wantMatrix) {
+  wantMatrix_ = wantMatrix;
+  residual_.setZero();
+  if (wantMatrix) std::fill(matrix_.valuePtr(), matrix_.valuePtr() + matrix_.nonZeros(), 0.0);
+}
+
+}  // namespace chute

@@ -1,0 +1,53 @@
+#pragma once
+// The one local -> global assembly path: every term scatters its element residual and element
+// matrix through add(), with one dof ordering (node by node, xyz), into a sparsity pattern that
+// is built once and covers every coupling any term can ever create.
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <array>
+#include <vector>
+
+#include "model/Model.hpp"
+
+namespace chute {
+
+using SparseMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
+
+class SystemAssembler {
+ public:
+  explicit SystemAssembler(const DofMap& dofs) : dofs_(&dofs) {}
+
+  // Node cliques: every pair of nodes inside one clique may couple.
+  void buildPattern(const std::vector<std::vector<int>>& nodeCliques);
+
+  void begin(bool wantMatrix);
+
+  template <int N>
+  void add(const std::array<int, N>& nodes, const Eigen::Matrix<double, 3 * N, 1>& r,
+           const Eigen::Matrix<double, 3 * N, 3 * N>* J) {
+    std::array<int, 3 * N> eq;
+    for (int i = 0; i < N; ++i)
+      for (int k = 0; k < 3; ++k) eq[3 * i + k] = dofs_->eq(nodes[i], k);
+    for (int i = 0; i < 3 * N; ++i)
+      if (eq[i] >= 0) residual_[eq[i]] += r[i];
+    if (!J || !wantMatrix_) return;
+    for (int j = 0; j < 3 * N; ++j) {
+      if (eq[j] < 0) continue;
+      for (int i = 0; i < 3 * N; ++i)
+        if (eq[i] >= 0 && (*J)(i, j) != 0.0) matrix_.coeffRef(eq[i], eq[j]) += (*J)(i, j);
+    }
+  }
+
+  const Eigen::VectorXd& residual() const { return residual_; }
+  const SparseMatrix& matrix() const { return matrix_; }
+  bool wantMatrix() const { return wantMatrix_; }
+  long nonZeros() const { return matrix_.nonZeros(); }
+
+ private:
+  const DofMap* dofs_;
+  SparseMatrix matrix_;
+  Eigen::VectorXd residual_;
+  bool wantMatrix_ = true;
+};
+
+}  // namespace chute

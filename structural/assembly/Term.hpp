@@ -1,0 +1,53 @@
+#pragma once
+// A time step is a sum of terms. Each term adds its residual r(x, v, a, t) and its Jacobian
+//   J = cx dr/dx + cv dr/dv + ca dr/da
+// where (cx, cv, ca) are the integrator's derivatives of the evaluation-point quantities with
+// respect to the unknown positions. The integrator knows nothing of what a term models.
+#include <Eigen/Core>
+#include <vector>
+
+#include "assembly/SystemAssembler.hpp"
+
+namespace chute {
+
+struct EvalPoint {
+  const Eigen::VectorXd& x;  // positions of all dofs at the evaluation point
+  const Eigen::VectorXd& v;  // velocities
+  const Eigen::VectorXd& a;  // accelerations entering the inertia forces
+  double t = 0.0;
+  double cx = 1.0, cv = 0.0, ca = 0.0;
+  bool inertia = true;  // false in static mode
+  double loadFactor = 1.0;  // scales external loads (static load stepping)
+};
+
+struct EnergyBreakdown {
+  double kinetic = 0.0;
+  double strain = 0.0;
+  double gravity = 0.0;  // potential of gravity, -sum f_g . x
+  double total() const { return kinetic + strain + gravity; }
+};
+
+class Term {
+ public:
+  virtual ~Term() = default;
+  virtual const char* name() const = 0;
+  // Node cliques this term may ever couple (for the sparsity pattern built once).
+  virtual void addCouplings(std::vector<std::vector<int>>& cliques) const = 0;
+  // Updates configuration-dependent state (e.g. the active sliding elements) for trial positions
+  // x; returns how many discrete changes were made.
+  virtual int updateState(const Eigen::VectorXd& /*x*/) { return 0; }
+  virtual void assemble(const EvalPoint& p, SystemAssembler& out) = 0;
+  virtual void addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
+                         EnergyBreakdown& e) const = 0;
+  // Whether the Jacobian this term adds is symmetric (CHOLMOD may be used when all are).
+  virtual bool symmetricJacobian() const { return true; }
+  // Largest fraction of a Newton update dx this term accepts from positions x (1 = all). Lets a
+  // term keep iterates from jumping across a kink of its energy; converged states are unchanged.
+  virtual double maxStepFraction(const Eigen::VectorXd& /*x*/, const Eigen::VectorXd& /*dx*/) const {
+    return 1.0;
+  }
+  virtual void commit() {}
+  virtual void revert() {}
+};
+
+}  // namespace chute

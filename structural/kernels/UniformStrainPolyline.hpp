@@ -1,0 +1,59 @@
+#pragma once
+// Energy, internal force and tangent of a cable whose strain is uniform along a polyline path.
+//
+// Both line elements of formulation.md are this kernel with a different path:
+//   two-node cable (F1-F3):         path (a, b)
+//   active sliding element (F6-F9): path (1, 3, 2), i.e. end 1 -> slider -> end 2
+// The current length is l = sum_k |x_{k+1} - x_k|, the Green-Lagrange strain
+// eps = (l^2 - L^2) / (2 L^2) (F1, F6), the strain energy W = (E A0 L / 2) eps^2, whose gradient
+// is the internal force f = (E A0 / L) eps l D with D = dl/dx (F2, F8), and whose Hessian is
+// K = (E A0 / L) [ (eps + l^2/L^2) D (x) D + eps l G ] with G = d^2 l / dx^2 (F3, F9).
+//
+// Cables are tension-only: for eps <= 0 the element carries nothing unless a compression
+// stiffness ratio is given (formulation.md section 1).
+#include <Eigen/Core>
+#include <array>
+
+namespace chute::kernels {
+
+using Vec3 = Eigen::Vector3d;
+using Mat3 = Eigen::Matrix3d;
+
+struct LineMaterial {
+  double E = 0.0;           // Young's modulus
+  double area = 0.0;        // reference cross-section A0
+  double density = 0.0;     // mass per reference volume
+  bool tensionOnly = true;  // cable (true) or truss (false)
+  double compressionStiffnessRatio = 0.0;  // E_c / E used when eps < 0 for a cable
+};
+
+// Segments shorter than this fraction of the reference length are treated as the analytic limit
+// l_k -> 0 (the slider sits on an end node): the direction of the vanishing segment is taken from
+// the neighbouring segment and its lateral stiffness N / l_k is capped at N / (kMinSegment L).
+inline constexpr double kMinSegmentFraction = 1e-12;
+
+template <int NumNodes>
+struct PolylineResult {
+  static constexpr int kDofs = 3 * NumNodes;
+  double length = 0.0;  // current length l
+  double strain = 0.0;  // Green-Lagrange strain eps
+  double axialForce = 0.0;  // N = E A0 eps l / L (second Piola-Kirchhoff force times stretch)
+  double energy = 0.0;  // W = E A0 L eps^2 / 2
+  std::array<double, NumNodes - 1> segmentLength{};
+  std::array<Vec3, NumNodes - 1> segmentDirection{};  // unit x_{k+1} - x_k (limit-safe)
+  Eigen::Matrix<double, kDofs, 1> dLength;  // D = dl/dx
+  Eigen::Matrix<double, kDofs, 1> force;  // internal force f = dW/dx
+  Eigen::Matrix<double, kDofs, kDofs> stiffness;  // K = d^2W/dx^2
+};
+
+// x: node coordinates in path order. L: reference length. withTangent: compute stiffness.
+template <int NumNodes>
+PolylineResult<NumNodes> uniformStrainPolyline(const std::array<Vec3, NumNodes>& x, double L,
+                                               const LineMaterial& mat, bool withTangent);
+
+extern template PolylineResult<2> uniformStrainPolyline<2>(const std::array<Vec3, 2>&, double,
+                                                           const LineMaterial&, bool);
+extern template PolylineResult<3> uniformStrainPolyline<3>(const std::array<Vec3, 3>&, double,
+                                                           const LineMaterial&, bool);
+
+}  // namespace chute::kernels

@@ -1,0 +1,37 @@
+#include "model/Model.hpp"
+
+#include <stdexcept>
+
+namespace chute {
+
+int Model::addNode(const Vec3& x, const std::string& name) {
+  const int id = numNodes();
+  X.push_back(x);
+  nodeName.push_back(name);
+  constraint.emplace_back();
+  pointMass.push_back(0.0);
+  if (!name.empty()) nodeByName[name] = id;
+  return id;
+}
+
+int Model::nodeId(const std::string& name) const {
+  auto it = nodeByName.find(name);
+  if (it == nodeByName.end()) throw std::out_of_range("unknown node '" + name + "'");
+  return it->second;
+}
+
+double Model::totalLineMass() const {
+  double m = 0.0;
+  for (const auto& c : cables) m += materials[c.material].density * materials[c.material].area * c.L;
+  for (const auto& g : groups)
+    for (double L : g.refLength) m += materials[g.material].density * materials[g.material].area * L;
+  return m;
+}
+
+DofMap::DofMap(const Model& m) : eq_(3 * m.numNodes(), -1) {
+  for (int n = 0; n < m.numNodes(); ++n)
+    for (int k = 0; k < 3; ++k)
+      if (!m.constraint[n].fixed[k]) eq_[3 * n + k] = numEq_++;
+}
+
+}  // namespace chute

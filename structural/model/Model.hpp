@@ -1,0 +1,83 @@
+#pragma once
+// The structural model: nodes, constraints, point masses, materials and line elements.
+// Knows nothing of parachutes or of time integration.
+#include <Eigen/Core>
+#include <array>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "kernels/LineKernels.hpp"
+
+namespace chute {
+
+using Vec3 = Eigen::Vector3d;
+
+struct CableElement {
+  int a = -1, b = -1;  // node ids
+  double L = 0.0;      // reference length
+  int material = -1;   // index into Model::materials
+  int set = -1;        // index into Model::lineSets
+};
+
+// A named set of line elements (a `[[cables]]` or `[[sliding_groups]]` entry), for output.
+struct LineSet {
+  std::string name;
+  bool sliding = false;
+};
+
+// A chain of sliding elements and the slider points allowed to pass along it (formulation.md 4).
+struct SlidingGroupDef {
+  std::string name;
+  int material = -1;
+  int set = -1;
+  std::vector<int> chain;         // node ids along the chain, chain.size() - 1 elements
+  std::vector<double> refLength;  // reference length of each element
+  std::vector<int> sliders;       // slider node ids
+  std::vector<int> initialActive; // initially active element per slider
+  int numElements() const { return static_cast<int>(refLength.size()); }
+};
+
+// How a node's three dofs are constrained: free or fixed at the reference position.
+struct NodeConstraint {
+  std::array<bool, 3> fixed{false, false, false};
+};
+
+struct Model {
+  std::vector<Vec3> X;  // reference (initial) coordinates
+  std::vector<std::string> nodeName;
+  std::map<std::string, int> nodeByName;
+  std::vector<NodeConstraint> constraint;
+  std::vector<double> pointMass;
+
+  std::vector<std::string> materialName;
+  std::vector<kernels::LineMaterial> materials;
+  std::vector<LineSet> lineSets;
+  std::vector<CableElement> cables;
+  std::vector<SlidingGroupDef> groups;
+
+  Vec3 gravity = Vec3::Zero();
+  kernels::MassKind massKind = kernels::MassKind::Lumped;
+
+  int numNodes() const { return static_cast<int>(X.size()); }
+  int addNode(const Vec3& x, const std::string& name = {});
+  int nodeId(const std::string& name) const;  // throws std::out_of_range if unknown
+  bool hasGravity() const { return gravity.squaredNorm() > 0.0; }
+  double totalLineMass() const;  // sum of rho A0 L over all line elements
+};
+
+// Equation numbering of the free dofs; constrained dofs map to -1.
+class DofMap {
+ public:
+  explicit DofMap(const Model& m);
+  int eq(int node, int k) const { return eq_[3 * node + k]; }
+  int eqOfDof(int dof) const { return eq_[dof]; }
+  int numEquations() const { return numEq_; }
+  int numDofs() const { return static_cast<int>(eq_.size()); }
+
+ private:
+  std::vector<int> eq_;
+  int numEq_ = 0;
+};
+
+}  // namespace chute

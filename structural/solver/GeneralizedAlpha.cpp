@@ -1,0 +1,189 @@
+#include "solver/GeneralizedAlpha.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+namespace chute {
+
+GeneralizedAlphaParams GeneralizedAlphaParams::fromRhoInf(double rho) {
+  // Chung & Hulbert (1993): second-order accurate, unconditionally stable for linear problems,
+  // high-frequency spectral radius rho_inf.
+  GeneralizedAlphaParams p;
+  p.alphaM = (2.0 * rho - 1.0) / (rho + 1.0);
+  p.alphaF = rho / (rho + 1.0);
+  p.gamma = 0.5 - p.alphaM + p.alphaF;
+  p.beta = 0.25 * (1.0 - p.alphaM + p.alphaF) * (1.0 - p.alphaM + p.alphaF);
+  return p;
+}
+
+GeneralizedAlpha::GeneralizedAlpha(StructuralSystem& sys, double rhoInf, NewtonSettings newton)
+    : sys_(&sys),
+      p_(GeneralizedAlphaParams::fromRhoInf(rhoInf)),
+      newton_(newton),
+      linear_(sys.symmetric(), sys.timings()) {}
+
+DynamicState GeneralizedAlpha::initialState() const {
+  const Model& m = sys_->model();
+  DynamicState s;
+  const int n = 3 * m.numNodes();
+  s.x.resize(n);
+  for (int i = 0; i < m.numNodes(); ++i) s.x.segment<3>(3 * i) = m.X[i];
+  s.v.setZero(n);
+  s.a.setZero(n);
+  return s;
+}
+
+void GeneralizedAlpha::computeInitialAcceleration(DynamicState& s) {
+  if (sys_->numEquations() == 0) return;
+  sys_->updateState(s.x);
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(s.x.size());
+  EvalPoint pt{s.x, s.v, zero, s.t, 0.0, 0.0, 1.0, true};
+  sys_->assemble(pt, true);  // residual f_int - f_ext, matrix M
+  SparseMatrix M = sys_->matrix();
+  Eigen::VectorXd rhs = -sys_->residual();
+  // Massless dofs have no inertia row: pin their initial acceleration to zero.
+  for (int e = 0; e < M.cols(); ++e) {
+    bool empty = true;
+    for (SparseMatrix::InnerIterator it(M, e); it; ++it)
+      if (it.value() != 0.0) empty = false;
+    if (empty) {
+      M.coeffRef(e, e) = 1.0;
+      rhs[e] = 0.0;
+    }
+  }
+  Eigen::UmfPackLU<SparseMatrix> lu;
+  lu.compute(M);
+  Eigen::VectorXd a0 = lu.solve(rhs);
+  if (lu.info() == Eigen::Success && a0.allFinite()) sys_->addToDofs(a0, s.a);
+}
+
+template <class MakePoint, class Update>
+NewtonReport GeneralizedAlpha::newton(Eigen::VectorXd& x, MakePoint&& makePoint,
+                                      Update&& onUpdate) {
+  NewtonReport rep;
+  const int neq = sys_->numEquations();
+  Eigen::VectorXd dxEq(neq), dx(x.size());
+  int lastChanges = 0;
+  for (int it = 0; it < newton_.maxIterations; ++it) {
+    lastChanges = sys_->updateState(x);
+    rep.stateChanges += lastChanges;
+    auto pt = makePoint();
+    sys_->assemble(pt.point(), true);
+    const Eigen::VectorXd& R = sys_->residual();
+    const double rn = R.norm();
+    rep.residualNorms.push_back(rn);
+    if (!std::isfinite(rn)) {
+      rep.failure = "non-finite residual";
+      return rep;
+    }
+    if (!linear_.factorize(sys_->matrix())) {
+      rep.failure = "singular tangent";
+      return rep;
+    }
+    if (!linear_.solve(-R, dxEq)) {
+      rep.failure = "linear solve failed";
+      return rep;
+    }
+    dx.setZero();
+    sys_->addToDofs(dxEq, dx);
+    const double alpha = sys_->maxStepFraction(x, dx);
+    x += alpha * dx;
+    onUpdate();
+    const double un = alpha * dxEq.lpNorm<Eigen::Infinity>();
+    rep.updateNorms.push_back(un);
+    rep.iterations = it + 1;
+    if (newton_.verbose)
+      std::fprintf(stderr, "    newton %2d  |R| = %.3e  |dx| = %.3e  step %.3f  changes %d\n", it,
+                   rn, un, alpha, lastChanges);
+    if (!std::isfinite(un)) {
+      rep.failure = "non-finite update";
+      return rep;
+    }
+    if (alpha == 1.0 && lastChanges == 0 && un <= newton_.tolDisplacement) {
+      rep.converged = true;
+      return rep;
+    }
+  }
+  rep.failure = "no convergence in " + std::to_string(newton_.maxIterations) + " iterations";
+  return rep;
+}
+
+namespace {
+// An evaluation point owning the blended vectors it refers to.
+struct OwnedPoint {
+  Eigen::VectorXd x, v, a;
+  double t, cx, cv, ca;
+  bool inertia;
+  double loadFactor;
+  EvalPoint point() const { return EvalPoint{x, v, a, t, cx, cv, ca, inertia, loadFactor}; }
+};
+}  // namespace
+
+NewtonReport GeneralizedAlpha::step(DynamicState& s, double dt) {
+  const auto& p = p_;
+  const DynamicState old = s;
+  DynamicState n = s;
+  // Predictor: constant acceleration.
+  n.a = old.a;
+  n.x = old.x + dt * old.v + dt * dt * ((0.5 - p.beta) * old.a + p.beta * n.a);
+  n.v = old.v + dt * ((1.0 - p.gamma) * old.a + p.gamma * n.a);
+  n.t = old.t + dt;
+  // Constrained dofs stay where they are (fixed supports).
+  for (int d = 0; d < sys_->dofs().numDofs(); ++d)
+    if (sys_->dofs().eqOfDof(d) < 0) n.x[d] = old.x[d], n.v[d] = 0.0, n.a[d] = 0.0;
+
+  auto newmark = [&] {
+    n.a = (n.x - old.x - dt * old.v - dt * dt * (0.5 - p.beta) * old.a) / (p.beta * dt * dt);
+    n.v = old.v + dt * ((1.0 - p.gamma) * old.a + p.gamma * n.a);
+    for (int d = 0; d < sys_->dofs().numDofs(); ++d)
+      if (sys_->dofs().eqOfDof(d) < 0) n.v[d] = 0.0, n.a[d] = 0.0;
+  };
+  auto makePoint = [&] {
+    return OwnedPoint{(1.0 - p.alphaF) * n.x + p.alphaF * old.x,
+                      (1.0 - p.alphaF) * n.v + p.alphaF * old.v,
+                      (1.0 - p.alphaM) * n.a + p.alphaM * old.a,
+                      old.t + (1.0 - p.alphaF) * dt,
+                      1.0 - p.alphaF,
+                      (1.0 - p.alphaF) * p.gamma / (p.beta * dt),
+                      (1.0 - p.alphaM) / (p.beta * dt * dt),
+                      true,
+                      1.0};
+  };
+  NewtonReport rep = newton(n.x, makePoint, newmark);
+  if (rep.converged) {
+    sys_->commit();
+    s = n;
+  } else {
+    sys_->revert();
+  }
+  return rep;
+}
+
+NewtonReport GeneralizedAlpha::solveStatic(DynamicState& s, int nSteps) {
+  NewtonReport total;
+  Eigen::VectorXd x = s.x;
+  for (int k = 1; k <= nSteps; ++k) {
+    const double lambda = static_cast<double>(k) / nSteps;
+    auto makePoint = [&] {
+      return OwnedPoint{x, Eigen::VectorXd::Zero(x.size()), Eigen::VectorXd::Zero(x.size()),
+                        s.t, 1.0, 0.0, 0.0, false, lambda};
+    };
+    NewtonReport rep = newton(x, makePoint, [] {});
+    total.iterations += rep.iterations;
+    total.residualNorms.insert(total.residualNorms.end(), rep.residualNorms.begin(),
+                               rep.residualNorms.end());
+    if (!rep.converged) {
+      sys_->revert();
+      total.failure = rep.failure + " at load factor " + std::to_string(lambda);
+      return total;
+    }
+    sys_->commit();
+  }
+  total.converged = true;
+  s.x = x;
+  s.v.setZero();
+  s.a.setZero();
+  return total;
+}
+
+}  // namespace chute

@@ -1,0 +1,85 @@
+#include "solver/StructuralSystem.hpp"
+
+#include <algorithm>
+
+#include "terms/LineTerms.hpp"
+
+namespace chute {
+
+StructuralSystem::StructuralSystem(const Model& model, SliderSearch search)
+    : model_(&model), dofs_(model), assembler_(dofs_) {
+  // Only what the scene uses: a term exists only if the model has something for it.
+  if (!model.cables.empty()) terms_.push_back(std::make_unique<CableTerm>(model));
+  for (size_t g = 0; g < model.groups.size(); ++g) {
+    auto t = std::make_unique<SlidingGroupTerm>(model, static_cast<int>(g), search);
+    groups_.push_back(t.get());
+    terms_.push_back(std::move(t));
+  }
+  if (std::any_of(model.pointMass.begin(), model.pointMass.end(), [](double m) { return m > 0; }))
+    terms_.push_back(std::make_unique<PointMassTerm>(model));
+
+  std::vector<std::vector<int>> cliques;
+  for (const auto& t : terms_) t->addCouplings(cliques);
+  assembler_.buildPattern(cliques);
+}
+
+int StructuralSystem::updateState(const Eigen::VectorXd& x) {
+  if (groups_.empty()) return 0;  // no sliding search without sliding groups
+  ScopedTimer timer(timings_.search);
+  ++timings_.searches;
+  int changes = 0;
+  for (const auto& t : terms_) changes += t->updateState(x);
+  return changes;
+}
+
+void StructuralSystem::assemble(const EvalPoint& p, bool wantMatrix) {
+  ScopedTimer timer(timings_.assembly);
+  ++timings_.assemblies;
+  assembler_.begin(wantMatrix);
+  for (const auto& t : terms_) t->assemble(p, assembler_);
+}
+
+bool StructuralSystem::symmetric() const {
+  return std::all_of(terms_.begin(), terms_.end(),
+                     [](const auto& t) { return t->symmetricJacobian(); });
+}
+
+double StructuralSystem::maxStepFraction(const Eigen::VectorXd& x,
+                                         const Eigen::VectorXd& dx) const {
+  double a = 1.0;
+  for (const auto& t : terms_) a = std::min(a, t->maxStepFraction(x, dx));
+  return a;
+}
+
+EnergyBreakdown StructuralSystem::energy(const Eigen::VectorXd& x,
+                                         const Eigen::VectorXd& v) const {
+  EnergyBreakdown e;
+  for (const auto& t : terms_) t->addEnergy(x, v, e);
+  return e;
+}
+
+void StructuralSystem::commit() {
+  for (const auto& t : terms_) t->commit();
+}
+void StructuralSystem::revert() {
+  for (const auto& t : terms_) t->revert();
+}
+
+void StructuralSystem::addToDofs(const Eigen::VectorXd& eqVec, Eigen::VectorXd& dofVec,
+                                 double scale) const {
+  for (int d = 0; d < dofs_.numDofs(); ++d) {
+    const int e = dofs_.eqOfDof(d);
+    if (e >= 0) dofVec[d] += scale * eqVec[e];
+  }
+}
+
+Eigen::VectorXd StructuralSystem::gatherEquations(const Eigen::VectorXd& dofVec) const {
+  Eigen::VectorXd out(dofs_.numEquations());
+  for (int d = 0; d < dofs_.numDofs(); ++d) {
+    const int e = dofs_.eqOfDof(d);
+    if (e >= 0) out[e] = dofVec[d];
+  }
+  return out;
+}
+
+}  // namespace chute

@@ -1,0 +1,57 @@
+#pragma once
+// The discrete system of one scene: its dof map, the terms the scene needs (and only those),
+// the sparsity pattern built once, and timing of assembly and search.
+#include <memory>
+#include <vector>
+
+#include "assembly/SystemAssembler.hpp"
+#include "assembly/Term.hpp"
+#include "model/Model.hpp"
+#include "model/SlidingGroupState.hpp"
+#include "solver/Timings.hpp"
+
+namespace chute {
+
+class SlidingGroupTerm;
+
+class StructuralSystem {
+ public:
+  StructuralSystem(const Model& model, SliderSearch search);
+
+  const Model& model() const { return *model_; }
+  const DofMap& dofs() const { return dofs_; }
+  int numEquations() const { return dofs_.numEquations(); }
+
+  // Discrete state updates (sliding search) for trial positions; returns the number of changes.
+  int updateState(const Eigen::VectorXd& x);
+  void assemble(const EvalPoint& p, bool wantMatrix);
+  const Eigen::VectorXd& residual() const { return assembler_.residual(); }
+  const SparseMatrix& matrix() const { return assembler_.matrix(); }
+  bool symmetric() const;
+  double maxStepFraction(const Eigen::VectorXd& x, const Eigen::VectorXd& dx) const;
+
+  EnergyBreakdown energy(const Eigen::VectorXd& x, const Eigen::VectorXd& v) const;
+  void commit();
+  void revert();
+
+  // Scatter equation-space vectors to / from full dof vectors.
+  void addToDofs(const Eigen::VectorXd& eqVec, Eigen::VectorXd& dofVec, double scale = 1.0) const;
+  Eigen::VectorXd gatherEquations(const Eigen::VectorXd& dofVec) const;
+
+  const std::vector<std::unique_ptr<Term>>& terms() const { return terms_; }
+  // The sliding group terms, in the model's group order (empty without sliding groups).
+  const std::vector<SlidingGroupTerm*>& slidingGroups() const { return groups_; }
+
+  Timings& timings() { return timings_; }
+  const Timings& timings() const { return timings_; }
+
+ private:
+  const Model* model_;
+  DofMap dofs_;
+  std::vector<std::unique_ptr<Term>> terms_;
+  std::vector<SlidingGroupTerm*> groups_;
+  SystemAssembler assembler_;
+  Timings timings_;
+};
+
+}  // namespace chute

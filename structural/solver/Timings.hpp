@@ -1,0 +1,31 @@
+#pragma once
+// Wall-time accounting of a run, split as summary.json reports it.
+#include <chrono>
+
+namespace chute {
+
+struct Timings {
+  double assembly = 0.0;
+  double search = 0.0;
+  double factorisation = 0.0;
+  double solve = 0.0;
+  double output = 0.0;
+  long assemblies = 0, searches = 0, factorisations = 0, solves = 0;
+};
+
+// Adds the lifetime of the guard to one Timings field.
+class ScopedTimer {
+ public:
+  explicit ScopedTimer(double& acc) : acc_(acc), t0_(std::chrono::steady_clock::now()) {}
+  ~ScopedTimer() {
+    acc_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count();
+  }
+  ScopedTimer(const ScopedTimer&) = delete;
+  ScopedTimer& operator=(const ScopedTimer&) = delete;
+
+ private:
+  double& acc_;
+  std::chrono::steady_clock::time_point t0_;
+};
+
+}  // namespace chute

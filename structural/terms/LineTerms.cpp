@@ -1,0 +1,194 @@
+#include "terms/LineTerms.hpp"
+
+#include <algorithm>
+
+namespace chute {
+
+using kernels::Mat6;
+using kernels::Mat9;
+using kernels::Vec6;
+using kernels::Vec9;
+
+namespace {
+Vec3 pos(const Eigen::VectorXd& x, int n) { return x.segment<3>(3 * n); }
+
+Vec6 gather2(const Eigen::VectorXd& v, int a, int b) {
+  Vec6 r;
+  r << v.segment<3>(3 * a), v.segment<3>(3 * b);
+  return r;
+}
+Vec9 gather3(const Eigen::VectorXd& v, int a, int b, int c) {
+  Vec9 r;
+  r << v.segment<3>(3 * a), v.segment<3>(3 * b), v.segment<3>(3 * c);
+  return r;
+}
+
+// Internal force, inertia and gravity of one two-node cable, scattered through the assembler.
+void assembleCable(const Model& m, int a, int b, double L, int material, const EvalPoint& p,
+                   SystemAssembler& out) {
+  const auto& mat = m.materials[material];
+  const bool wantJ = out.wantMatrix();
+  const auto res = kernels::cableForce(pos(p.x, a), pos(p.x, b), L, mat, wantJ);
+  Vec6 r = res.force;
+  Mat6 J = p.cx * res.stiffness;
+  if (mat.density > 0.0) {
+    if (p.inertia) {
+      const Mat6 M = kernels::cableMass(L, mat, m.massKind);
+      r += M * gather2(p.a, a, b);
+      J += p.ca * M;
+    }
+    if (m.hasGravity()) r -= p.loadFactor * kernels::cableGravity(L, mat, m.gravity);
+  }
+  out.add<2>({a, b}, r, wantJ ? &J : nullptr);
+}
+
+void cableEnergy(const Model& m, int a, int b, double L, int material, const Eigen::VectorXd& x,
+                 const Eigen::VectorXd& v, EnergyBreakdown& e) {
+  const auto& mat = m.materials[material];
+  e.strain += kernels::cableForce(pos(x, a), pos(x, b), L, mat, false).energy;
+  if (mat.density > 0.0) {
+    const Vec6 vv = gather2(v, a, b);
+    e.kinetic += 0.5 * vv.dot(kernels::cableMass(L, mat, m.massKind) * vv);
+    e.gravity -= kernels::cableGravity(L, mat, m.gravity).dot(gather2(x, a, b));
+  }
+}
+}  // namespace
+
+// ---- CableTerm -------------------------------------------------------------------------------
+void CableTerm::addCouplings(std::vector<std::vector<int>>& cliques) const {
+  for (const auto& c : m_->cables) cliques.push_back({c.a, c.b});
+}
+
+void CableTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
+  for (const auto& c : m_->cables) assembleCable(*m_, c.a, c.b, c.L, c.material, p, out);
+}
+
+void CableTerm::addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
+                          EnergyBreakdown& e) const {
+  for (const auto& c : m_->cables) cableEnergy(*m_, c.a, c.b, c.L, c.material, x, v, e);
+}
+
+// ---- SlidingGroupTerm ------------------------------------------------------------------------
+void SlidingGroupTerm::addCouplings(std::vector<std::vector<int>>& cliques) const {
+  const auto& g = state_.def();
+  // Any element may become active for any slider: cover slider x every chain node up front so a
+  // change of active element never needs a new symbolic analysis.
+  for (int k = 0; k < g.numElements(); ++k) cliques.push_back({g.chain[k], g.chain[k + 1]});
+  for (int s : g.sliders)
+    for (int k = 0; k < g.numElements(); ++k) cliques.push_back({g.chain[k], g.chain[k + 1], s});
+}
+
+bool SlidingGroupTerm::symmetricJacobian() const {
+  const auto& mat = m_->materials[state_.def().material];
+  return mat.density == 0.0;
+}
+
+double SlidingGroupTerm::maxStepFraction(const Eigen::VectorXd& x,
+                                         const Eigen::VectorXd& dx) const {
+  const auto& g = state_.def();
+  double alpha = 1.0;
+  for (size_t s = 0; s < g.sliders.size(); ++s) {
+    const int k = state_.activeElement(static_cast<int>(s));
+    const int n3 = g.sliders[s];
+    const double tiny = 1e-6 * g.refLength[k];
+    for (int ni : {g.chain[k], g.chain[k + 1]}) {
+      const Vec3 d = pos(x, n3) - pos(x, ni);
+      const Vec3 delta = pos(dx, n3) - pos(dx, ni);
+      const double dd = d.squaredNorm(), dDelta = d.dot(delta);
+      // The segment flips direction (passes near the apex) when (d + delta) . d < 0.
+      if (dd > tiny * tiny && dd + dDelta < 0.0)
+        alpha = std::min(alpha, -dDelta / delta.squaredNorm());
+    }
+  }
+  return alpha;
+}
+
+void SlidingGroupTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
+  const auto& g = state_.def();
+  const auto& mat = m_->materials[g.material];
+  const bool wantJ = out.wantMatrix();
+  for (int k = 0; k < g.numElements(); ++k) {
+    const int n1 = g.chain[k], n2 = g.chain[k + 1];
+    const int s = state_.sliderOfElement(k);
+    if (s < 0) {  // inactive: a plain two-node cable (formulation.md section 3)
+      assembleCable(*m_, n1, n2, g.refLength[k], g.material, p, out);
+      continue;
+    }
+    const int n3 = g.sliders[s];
+    const double L = g.refLength[k];
+    const Vec3 x1 = pos(p.x, n1), x2 = pos(p.x, n2), x3 = pos(p.x, n3);
+    const auto res = kernels::slidingForce(x1, x2, x3, L, mat, wantJ);
+    Vec9 r = res.force;
+    Mat9 J = p.cx * res.stiffness;
+    if (mat.density > 0.0) {
+      if (p.inertia) {
+        const auto in =
+            kernels::slidingInertia(x1, x2, x3, gather3(p.a, n1, n2, n3), L, mat, m_->massKind);
+        r += in.force;
+        J += p.ca * in.mass + p.cx * in.dForce;
+      }
+      if (m_->hasGravity()) {
+        const auto gr = kernels::slidingGravity(x1, x2, x3, L, mat, m_->gravity);
+        r -= p.loadFactor * gr.force;
+        J -= p.loadFactor * p.cx * gr.dForce;
+      }
+    }
+    out.add<3>({n1, n2, n3}, r, wantJ ? &J : nullptr);
+  }
+}
+
+void SlidingGroupTerm::addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
+                                 EnergyBreakdown& e) const {
+  const auto& g = state_.def();
+  const auto& mat = m_->materials[g.material];
+  for (int k = 0; k < g.numElements(); ++k) {
+    const int n1 = g.chain[k], n2 = g.chain[k + 1];
+    const int s = state_.sliderOfElement(k);
+    if (s < 0) {
+      cableEnergy(*m_, n1, n2, g.refLength[k], g.material, x, v, e);
+      continue;
+    }
+    const int n3 = g.sliders[s];
+    const double L = g.refLength[k];
+    const Vec3 x1 = pos(x, n1), x2 = pos(x, n2), x3 = pos(x, n3);
+    e.strain += kernels::slidingForce(x1, x2, x3, L, mat, false).energy;
+    if (mat.density > 0.0) {
+      const Vec9 vv = gather3(v, n1, n2, n3);
+      e.kinetic +=
+          0.5 * vv.dot(kernels::slidingInertia(x1, x2, x3, vv, L, mat, m_->massKind).force);
+      // The F11 nodal loads are exactly the weights of the two straight parts placed at their
+      // ends, so -f.x is the parts' true potential energy.
+      e.gravity -= kernels::slidingGravity(x1, x2, x3, L, mat, m_->gravity)
+                       .force.dot(gather3(x, n1, n2, n3));
+    }
+  }
+}
+
+// ---- PointMassTerm ---------------------------------------------------------------------------
+void PointMassTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
+  const bool wantJ = out.wantMatrix();
+  for (int n = 0; n < m_->numNodes(); ++n) {
+    const double mass = m_->pointMass[n];
+    if (mass == 0.0) continue;
+    Eigen::Matrix<double, 3, 1> r = Eigen::Matrix<double, 3, 1>::Zero();
+    Eigen::Matrix3d J = Eigen::Matrix3d::Zero();
+    if (p.inertia) {
+      r += mass * p.a.segment<3>(3 * n);
+      J += p.ca * mass * Eigen::Matrix3d::Identity();
+    }
+    r -= p.loadFactor * mass * m_->gravity;
+    out.add<1>({n}, r, wantJ ? &J : nullptr);
+  }
+}
+
+void PointMassTerm::addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
+                              EnergyBreakdown& e) const {
+  for (int n = 0; n < m_->numNodes(); ++n) {
+    const double mass = m_->pointMass[n];
+    if (mass == 0.0) continue;
+    e.kinetic += 0.5 * mass * v.segment<3>(3 * n).squaredNorm();
+    e.gravity -= mass * m_->gravity.dot(x.segment<3>(3 * n));
+  }
+}
+
+}  // namespace chute

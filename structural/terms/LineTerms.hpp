@@ -1,0 +1,68 @@
+#pragma once
+// Terms for line elements and point masses: internal force, inertia and gravity of
+//  - CableTerm: every two-node cable / truss element (F1-F5),
+//  - SlidingGroupTerm: one sliding group, active three-node elements (F6-F11) and its inactive
+//    elements as cables; runs the active-element search (F12) in updateState(),
+//  - PointMassTerm: lumped point masses and their weight.
+#include <memory>
+
+#include "assembly/Term.hpp"
+#include "model/Model.hpp"
+#include "model/SlidingGroupState.hpp"
+
+namespace chute {
+
+class CableTerm final : public Term {
+ public:
+  explicit CableTerm(const Model& m) : m_(&m) {}
+  const char* name() const override { return "cables"; }
+  void addCouplings(std::vector<std::vector<int>>& cliques) const override;
+  void assemble(const EvalPoint& p, SystemAssembler& out) override;
+  void addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
+                 EnergyBreakdown& e) const override;
+
+ private:
+  const Model* m_;
+};
+
+class SlidingGroupTerm final : public Term {
+ public:
+  SlidingGroupTerm(const Model& m, int group, SliderSearch search)
+      : m_(&m), state_(m.groups[group]), search_(search) {}
+  const char* name() const override { return "sliding_group"; }
+  void addCouplings(std::vector<std::vector<int>>& cliques) const override;
+  int updateState(const Eigen::VectorXd& x) override { return state_.search(x, search_); }
+  void assemble(const EvalPoint& p, SystemAssembler& out) override;
+  void addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
+                 EnergyBreakdown& e) const override;
+  // Configuration-dependent mass and gravity make the consistent Jacobian non-symmetric.
+  bool symmetricJacobian() const override;
+  // A Newton update must not carry a slider straight through an end node of its active element
+  // (the apex of the |x3 - xi| cone, F9's 1/l_i): stop at the closest approach instead; the
+  // search then hands the slider to the neighbouring element.
+  double maxStepFraction(const Eigen::VectorXd& x, const Eigen::VectorXd& dx) const override;
+  void commit() override { state_.commit(); }
+  void revert() override { state_.revert(); }
+  const SlidingGroupState& state() const { return state_; }
+  SlidingGroupState& state() { return state_; }
+
+ private:
+  const Model* m_;
+  SlidingGroupState state_;
+  SliderSearch search_;
+};
+
+class PointMassTerm final : public Term {
+ public:
+  explicit PointMassTerm(const Model& m) : m_(&m) {}
+  const char* name() const override { return "point_masses"; }
+  void addCouplings(std::vector<std::vector<int>>&) const override {}
+  void assemble(const EvalPoint& p, SystemAssembler& out) override;
+  void addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
+                 EnergyBreakdown& e) const override;
+
+ private:
+  const Model* m_;
+};
+
+}  // namespace chute

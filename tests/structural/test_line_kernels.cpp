@@ -1,0 +1,254 @@
+// Finite-difference and invariant checks of the cable (F1-F5) and sliding-element (F6-F11)
+// kernels at many random configurations: taut, near-slack, slider near an end.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <random>
+
+#include "kernels/LineKernels.hpp"
+#include "support/FiniteDifference.hpp"
+
+using namespace chute;
+using namespace chute::kernels;
+using chute::testing::fdGradient;
+using chute::testing::fdJacobian;
+using chute::testing::relativeError;
+
+namespace {
+
+LineMaterial rope(bool tensionOnly = true) {
+  LineMaterial m;
+  m.E = 2.5e5;
+  m.area = 3e-3;
+  m.density = 1.7;
+  m.tensionOnly = tensionOnly;
+  return m;
+}
+
+Vec3 randomUnit(std::mt19937& rng) {
+  std::normal_distribution<double> n(0, 1);
+  return Vec3(n(rng), n(rng), n(rng)).normalized();
+}
+
+// A sliding configuration: ends x1, x2 and slider x3 such that l1 / l = split and l = L (1 + s).
+struct SlidingConfig {
+  Vec3 x1, x2, x3;
+  double L;
+};
+
+SlidingConfig makeSliding(std::mt19937& rng, double split, double strain) {
+  std::uniform_real_distribution<double> u(0.2, 3.0);
+  SlidingConfig c;
+  c.L = u(rng);
+  const double l = c.L * std::sqrt(1 + 2 * strain);  // eps = (l^2 - L^2) / 2L^2
+  c.x3 = Vec3(u(rng), -u(rng), u(rng));
+  c.x1 = c.x3 - split * l * randomUnit(rng);
+  c.x2 = c.x3 - (1 - split) * l * randomUnit(rng);
+  return c;
+}
+
+Eigen::VectorXd stack(const SlidingConfig& c) {
+  Eigen::VectorXd x(9);
+  x << c.x1, c.x2, c.x3;
+  return x;
+}
+
+struct Case {
+  const char* name;
+  double split;   // l1 / l
+  double strain;  // Green-Lagrange strain of the configuration
+};
+
+class SlidingKernelFD : public ::testing::TestWithParam<Case> {};
+
+}  // namespace
+
+TEST(CableKernel, TangentMatchesFiniteDifferenceOfForceAndForceOfEnergy) {
+  std::mt19937 rng(1);
+  double worstK = 0, worstF = 0;
+  for (bool tensionOnly : {true, false})
+    for (double strain : {0.03, 1e-4, -0.02}) {
+      if (tensionOnly && strain < 0) continue;
+      for (int trial = 0; trial < 50; ++trial) {
+        const double L = 0.5 + trial * 0.05;
+        const Vec3 xa(0.3, -0.2, 1.1);
+        const Vec3 xb = xa + L * std::sqrt(1 + 2 * strain) * randomUnit(rng);
+        Eigen::VectorXd x(6);
+        x << xa, xb;
+        const auto mat = rope(tensionOnly);
+        const auto r = cableForce(xa, xb, L, mat, true);
+        auto force = [&](const Eigen::VectorXd& y) -> Eigen::VectorXd {
+          return cableForce(y.head<3>(), y.tail<3>(), L, mat, false).force;
+        };
+        auto energy = [&](const Eigen::VectorXd& y) {
+          return cableForce(y.head<3>(), y.tail<3>(), L, mat, false).energy;
+        };
+        const double h = 1e-6 * L;
+        worstK = std::max(worstK, relativeError(r.stiffness, fdJacobian(force, x, h)));
+        worstF = std::max(worstF, relativeError(r.force, fdGradient(energy, x, h)));
+      }
+    }
+  std::printf("cable: worst relative error  K vs FD(f) %.2e   f vs FD(W) %.2e\n", worstK, worstF);
+  EXPECT_LE(worstK, 1e-6);
+  EXPECT_LE(worstF, 1e-6);
+}
+
+TEST(CableKernel, SlackCableCarriesNothingTrussCarriesCompression) {
+  const Vec3 xa(0, 0, 0), xb(0.9, 0, 0);
+  const auto slack = cableForce(xa, xb, 1.0, rope(true), true);
+  EXPECT_EQ(slack.force.norm(), 0.0);
+  EXPECT_EQ(slack.stiffness.norm(), 0.0);
+  EXPECT_EQ(slack.energy, 0.0);
+  const auto truss = cableForce(xa, xb, 1.0, rope(false), true);
+  EXPECT_LT(truss.axialForce, 0.0);
+  // f = dW/dx; the element pushes its nodes apart, so the force on node a, -f_a, points away
+  // from b (along -x) and the one on b along +x.
+  EXPECT_LT(-truss.force[0], 0.0);
+  EXPECT_GT(-truss.force[3], 0.0);
+}
+
+TEST(CableKernel, RigidMotionInvariants) {
+  std::mt19937 rng(7);
+  const Vec3 xa(1, 2, 3), xb = xa + 1.05 * randomUnit(rng);
+  const auto r = cableForce(xa, xb, 1.0, rope(), true);
+  // Translation is in the null space; an infinitesimal rotation W x maps to W f.
+  Eigen::VectorXd t(6), x(6), Wx(6), Wf(6);
+  t << 1, -2, 0.5, 1, -2, 0.5;
+  EXPECT_LE((r.stiffness * t).norm(), 1e-9 * r.stiffness.norm());
+  const Vec3 w(0.3, -0.4, 0.8);
+  x << xa, xb;
+  Wx << w.cross(xa), w.cross(xb);
+  Wf << w.cross(Vec3(r.force.head<3>())), w.cross(Vec3(r.force.tail<3>()));
+  EXPECT_LE((r.stiffness * Wx - Wf).norm(), 1e-9 * r.stiffness.norm());
+  EXPECT_LE((r.force.head<3>() + r.force.tail<3>()).norm(), 1e-12 * r.force.norm());
+}
+
+TEST(CableKernel, LumpedMassIsRowSumOfConsistentMass) {
+  const auto mat = rope();
+  const Mat6 Mc = cableMass(2.0, mat, MassKind::Consistent);
+  const Mat6 Ml = cableMass(2.0, mat, MassKind::Lumped);
+  EXPECT_LE((Mc.rowwise().sum() - Ml.diagonal()).norm(), 1e-14);
+  EXPECT_NEAR(Ml.trace() / 3, mat.density * mat.area * 2.0, 1e-14);
+}
+
+TEST_P(SlidingKernelFD, TangentInertiaAndGravityMatchFiniteDifferences) {
+  const Case cs = GetParam();
+  std::mt19937 rng(42);
+  const auto mat = rope();
+  const Vec3 g(0.3, -1.0, -9.81);
+  double worstK = 0, worstF = 0, worstM[2] = {0, 0}, worstG = 0;
+  for (int trial = 0; trial < 60; ++trial) {
+    const auto c = makeSliding(rng, cs.split, cs.strain);
+    const Eigen::VectorXd x = stack(c);
+    const double L = c.L;
+    // Step well below the shortest part (the stencil must not reach the slider apex) and below
+    // the strain (it must not cross the slack kink at eps = 0).
+    const double h = std::min(1e-5 * std::min(cs.split, 1 - cs.split), 1e-3 * cs.strain) * L;
+    auto split3 = [](const Eigen::VectorXd& y) {
+      return std::array<Vec3, 3>{y.segment<3>(0), y.segment<3>(3), y.segment<3>(6)};
+    };
+    const auto r = slidingForce(c.x1, c.x2, c.x3, L, mat, true);
+    auto force = [&](const Eigen::VectorXd& y) -> Eigen::VectorXd {
+      const auto p = split3(y);
+      return slidingForce(p[0], p[1], p[2], L, mat, false).force;
+    };
+    auto energy = [&](const Eigen::VectorXd& y) {
+      const auto p = split3(y);
+      return slidingForce(p[0], p[1], p[2], L, mat, false).energy;
+    };
+    worstK = std::max(worstK, relativeError(r.stiffness, fdJacobian(force, x, h)));
+    worstF = std::max(worstF, relativeError(r.force, fdGradient(energy, x, h)));
+
+    Vec9 a;
+    a << 1.0, -2.0, 0.5, 3.0, 0.1, -1.0, -0.7, 2.2, 0.4;
+    for (auto kind : {MassKind::Lumped, MassKind::Consistent}) {
+      const auto in = slidingInertia(c.x1, c.x2, c.x3, a, L, mat, kind);
+      auto inertia = [&](const Eigen::VectorXd& y) -> Eigen::VectorXd {
+        const auto p = split3(y);
+        return slidingInertia(p[0], p[1], p[2], a, L, mat, kind).force;
+      };
+      worstM[kind == MassKind::Consistent] =
+          std::max(worstM[kind == MassKind::Consistent],
+                   relativeError(in.dForce, fdJacobian(inertia, x, h), 1e-12 * in.force.norm()));
+    }
+    const auto gr = slidingGravity(c.x1, c.x2, c.x3, L, mat, g);
+    auto gravity = [&](const Eigen::VectorXd& y) -> Eigen::VectorXd {
+      const auto p = split3(y);
+      return slidingGravity(p[0], p[1], p[2], L, mat, g).force;
+    };
+    worstG = std::max(worstG, relativeError(gr.dForce, fdJacobian(gravity, x, h),
+                                            1e-12 * gr.force.norm()));
+  }
+  std::printf("%s: worst relative error  K vs FD(f) %.2e  f vs FD(W) %.2e  "
+              "dM/dx lumped %.2e consistent %.2e  dFg/dx %.2e\n",
+              cs.name, worstK, worstF, worstM[0], worstM[1], worstG);
+  EXPECT_LE(worstK, 1e-6);
+  EXPECT_LE(worstF, 1e-6);
+  EXPECT_LE(worstM[0], 1e-6);
+  EXPECT_LE(worstM[1], 1e-6);
+  EXPECT_LE(worstG, 1e-6);
+}
+
+INSTANTIATE_TEST_SUITE_P(Configurations, SlidingKernelFD,
+                         ::testing::Values(Case{"taut", 0.37, 0.02},
+                                           Case{"near_slack", 0.6, 1e-5},
+                                           Case{"slider_near_end_1", 1e-3, 0.01},
+                                           Case{"slider_near_end_2", 1 - 1e-3, 0.01},
+                                           Case{"strongly_stretched", 0.5, 0.4}),
+                         [](const auto& p) { return std::string(p.param.name); });
+
+TEST(SlidingKernel, SliderOnTheStraightLineEqualsTheCable) {
+  const auto mat = rope();
+  const Vec3 x1(0, 0, 0), x2(1.2, 0.3, -0.4);
+  for (double s : {0.1, 0.5, 0.93}) {
+    const Vec3 x3 = x1 + s * (x2 - x1);
+    const auto sl = slidingForce(x1, x2, x3, 1.1, mat, false);
+    const auto cb = cableForce(x1, x2, 1.1, mat, false);
+    EXPECT_NEAR(sl.energy, cb.energy, 1e-12 * cb.energy);
+    // No net force on a slider that sits on a straight cable.
+    EXPECT_LE(sl.force.segment<3>(6).norm(), 1e-9 * cb.force.norm());
+    EXPECT_LE((sl.force.head<3>() - cb.force.head<3>()).norm(), 1e-9 * cb.force.norm());
+  }
+}
+
+TEST(SlidingKernel, MassAndWeightAreInvariantAsTheSliderMoves) {
+  const auto mat = rope();
+  const Vec3 x1(0, 0, 0), x2(2, 0, 0), g(0, 0, -10);
+  const double L = 2.2;
+  const double mTotal = mat.density * mat.area * L;
+  Vec9 ones;
+  for (int k = 0; k < 9; ++k) ones[k] = (k % 3 == 2) ? 1.0 : 0.0;  // unit z acceleration
+  for (double s = 0.0; s <= 1.0; s += 0.05) {
+    const Vec3 x3(2 * s, 0, -0.3);
+    for (auto kind : {MassKind::Lumped, MassKind::Consistent}) {
+      const auto in = slidingInertia(x1, x2, x3, ones, L, mat, kind);
+      // Sum of z inertia forces under a uniform unit z acceleration is the total mass.
+      double mz = 0;
+      for (int n = 0; n < 3; ++n) mz += in.force[3 * n + 2];
+      EXPECT_NEAR(mz, mTotal, 1e-13 * mTotal) << "s=" << s;
+    }
+    const auto consistent = slidingInertia(x1, x2, x3, ones, L, mat, MassKind::Consistent);
+    const auto lumped = slidingInertia(x1, x2, x3, ones, L, mat, MassKind::Lumped);
+    EXPECT_LE((consistent.mass.rowwise().sum() - lumped.mass.diagonal()).norm(), 1e-13);
+    const auto gr = slidingGravity(x1, x2, x3, L, mat, g);
+    const double wz = gr.force[2] + gr.force[5] + gr.force[8];
+    EXPECT_NEAR(wz, -10 * mTotal, 1e-12 * mTotal) << "s=" << s;
+  }
+}
+
+TEST(SlidingKernel, SliderExactlyOnAnEndNodeIsFiniteAndExact) {
+  const auto mat = rope();
+  const Vec3 x1(0, 0, 0), x2(1.5, 0, 0);
+  for (const Vec3& x3 : {x1, x2}) {
+    const auto r = slidingForce(x1, x2, x3, 1.4, mat, true);
+    ASSERT_TRUE(r.force.allFinite());
+    ASSERT_TRUE(r.stiffness.allFinite());
+    const auto cb = cableForce(x1, x2, 1.4, mat, false);
+    // The coincident node pair together receives exactly the cable's end force.
+    const Vec3 end1 = r.force.head<3>() + (x3 == x1 ? Vec3(r.force.tail<3>()) : Vec3::Zero());
+    const Vec3 end2 = r.force.segment<3>(3) + (x3 == x2 ? Vec3(r.force.tail<3>()) : Vec3::Zero());
+    EXPECT_LE((end1 - cb.force.head<3>()).norm(), 1e-12 * cb.force.norm());
+    EXPECT_LE((end2 - cb.force.tail<3>()).norm(), 1e-12 * cb.force.norm());
+    EXPECT_NEAR(r.energy, cb.energy, 1e-12 * cb.energy);
+  }
+}

@@ -1,0 +1,158 @@
+// Sliding groups: the search picks the right active element along a slider sweep across every
+// node of a chain, in both directions, for both strategies; mass and weight of the group are
+// invariant as the slider moves; the assembled tangent matches finite differences of the
+// assembled residual.
+#include <gtest/gtest.h>
+
+#include "model/SlidingGroupState.hpp"
+#include "solver/StructuralSystem.hpp"
+#include "support/FiniteDifference.hpp"
+#include "terms/LineTerms.hpp"
+
+using namespace chute;
+
+namespace {
+
+// A rope of total length 2a with fixed ends at the foci (0,0,0), (4,0,0), n elements, and a slider
+// at ellipse angle theta. Chain nodes sit at equal arc length along the broken line
+// end 1 -> slider -> end 2, so the exact active element is known.
+struct EllipseScene {
+  Model model;
+  double a = 2.6, c = 2.0;
+  int n = 6;
+  Eigen::VectorXd positions(double theta, int* exactElement) const {
+    const double b = std::sqrt(a * a - c * c);
+    const Vec3 f1(0, 0, 0), f2(4, 0, 0), p(2 + a * std::cos(theta), 0, -b * std::sin(theta));
+    const double l1 = (p - f1).norm(), total = 2 * a;
+    Eigen::VectorXd x(3 * model.numNodes());
+    for (int k = 0; k <= n; ++k) {
+      const double s = total * k / n;
+      const Vec3 q = s <= l1 ? Vec3(f1 + s * (p - f1) / l1)
+                             : Vec3(p + (s - l1) * (f2 - p) / (total - l1));
+      x.segment<3>(3 * k) = q;
+    }
+    x.segment<3>(3 * (n + 1)) = p;
+    *exactElement = std::min(n - 1, static_cast<int>(l1 / (total / n)));
+    return x;
+  }
+  EllipseScene() {
+    model.materials.push_back({1e5, 1e-2, 0.5, true, 0.0});
+    model.materialName.push_back("rope");
+    SlidingGroupDef g;
+    g.name = "rope";
+    g.material = 0;
+    for (int k = 0; k <= n; ++k) g.chain.push_back(model.addNode(Vec3::Zero()));
+    g.refLength.assign(n, 2 * a / n);
+    g.sliders.push_back(model.addNode(Vec3::Zero(), "slider"));
+    g.initialActive.push_back(0);
+    model.groups.push_back(g);
+    model.gravity = Vec3(0, 0, -9.81);
+  }
+};
+
+}  // namespace
+
+TEST(SlidingGroupSearch, FollowsTheSliderAcrossEveryNodeInBothDirections) {
+  EllipseScene scene;
+  for (auto kind : {SliderSearch::NearestLength, SliderSearch::MaterialCoordinate}) {
+    SlidingGroupState st(scene.model.groups[0]);
+    int exact = 0, checked = 0, crossings = 0;
+    // theta from pi (slider near end 1) to 0 (near end 2) and back; 400 positions each way.
+    std::vector<double> sweep;
+    for (int i = 1; i < 400; ++i) sweep.push_back(M_PI * (1 - i / 400.0));
+    for (int i = 398; i >= 1; --i) sweep.push_back(M_PI * (1 - i / 400.0));
+    int last = st.activeElement(0);
+    for (double th : sweep) {
+      const Eigen::VectorXd x = scene.positions(th, &exact);
+      // A slider exactly on a node belongs to either element: not a test of the search.
+      const double l1 = (x.segment<3>(3 * (scene.n + 1)) - x.segment<3>(0)).norm();
+      const double h = 2 * scene.a / scene.n;
+      if (std::abs(l1 / h - std::round(l1 / h)) < 1e-9) continue;
+      // Start from the committed element of the previous position, as a time step would.
+      st.search(x, kind);
+      st.commit();
+      EXPECT_EQ(st.activeElement(0), exact) << "theta " << th;
+      crossings += std::abs(st.activeElement(0) - last);
+      last = st.activeElement(0);
+      ++checked;
+      // The material coordinate is the slider's arc length from end 1 (no stretch here).
+      EXPECT_NEAR(st.materialCoordinate(0, x), l1, 1e-12);
+    }
+    std::printf("%s: %d positions, %d node crossings, committed handovers %ld\n",
+                kind == SliderSearch::NearestLength ? "nearest-length (F12)" : "material-coordinate",
+                checked, crossings, st.committedHandovers());
+    EXPECT_EQ(crossings, 2 * (scene.n - 1));
+  }
+}
+
+TEST(SlidingGroupSearch, RevertRestoresTheCommittedActiveElement) {
+  EllipseScene scene;
+  SlidingGroupState st(scene.model.groups[0]);
+  int exact = 0;
+  st.search(scene.positions(2.0, &exact), SliderSearch::NearestLength);
+  st.commit();
+  const int committed = st.activeElement(0);
+  st.search(scene.positions(0.3, &exact), SliderSearch::NearestLength);
+  EXPECT_NE(st.activeElement(0), committed);
+  st.revert();
+  EXPECT_EQ(st.activeElement(0), committed);
+}
+
+TEST(SlidingGroupSystem, MassAndWeightInvariantAsTheSliderMoves) {
+  EllipseScene scene;
+  for (auto kind : {kernels::MassKind::Lumped, kernels::MassKind::Consistent}) {
+    scene.model.massKind = kind;
+    StructuralSystem sys(scene.model, SliderSearch::NearestLength);
+    const double mTotal = scene.model.totalLineMass();
+    int exact = 0;
+    for (double th = 0.05; th < M_PI; th += 0.1) {
+      const Eigen::VectorXd x = scene.positions(th, &exact);
+      sys.updateState(x);
+      Eigen::VectorXd v = Eigen::VectorXd::Zero(x.size());
+      for (int k = 2; k < v.size(); k += 3) v[k] = 1.0;
+      const auto e = sys.energy(x, v);
+      EXPECT_NEAR(2 * e.kinetic, mTotal, 1e-12 * mTotal);
+      Eigen::VectorXd shifted = x;
+      for (int k = 2; k < x.size(); k += 3) shifted[k] += 0.25;
+      const double weight = (sys.energy(shifted, v).gravity - e.gravity) / (0.25 * 9.81);
+      EXPECT_NEAR(weight, mTotal, 1e-10 * mTotal);
+    }
+  }
+}
+
+TEST(SlidingGroupSystem, AssembledJacobianMatchesFiniteDifferences) {
+  EllipseScene scene;
+  scene.model.constraint[0].fixed = {true, true, true};
+  scene.model.constraint[scene.n].fixed = {true, true, true};
+  StructuralSystem sys(scene.model, SliderSearch::NearestLength);
+  int exact = 0;
+  Eigen::VectorXd x = scene.positions(1.1, &exact);
+  for (int k = 0; k < x.size(); ++k) x[k] *= 1.01;  // stretch: every element taut
+  sys.updateState(x);
+  Eigen::VectorXd v = Eigen::VectorXd::Constant(x.size(), 0.3), a = Eigen::VectorXd::Zero(x.size());
+  for (int k = 0; k < a.size(); ++k) a[k] = std::sin(1.0 + k);
+  const double cx = 0.6, ca = 37.0;
+  auto residual = [&](const Eigen::VectorXd& xeq) -> Eigen::VectorXd {
+    Eigen::VectorXd y = x;
+    for (int d = 0, e = 0; d < y.size(); ++d)
+      if (sys.dofs().eqOfDof(d) >= 0) y[d] = xeq[e++];
+    // The accelerations move with x as the integrator's do: a = a0 + (ca/cx)(y - x).
+    Eigen::VectorXd ay = a + (ca / cx) * (y - x);
+    sys.assemble(EvalPoint{y, v, ay, 0.0, cx, 0.0, ca, true, 1.0}, false);
+    return sys.residual();  // dR/dy = dr/dx + (ca/cx) dr/da = J / cx
+  };
+  const Eigen::VectorXd xeq = sys.gatherEquations(x);
+  sys.assemble(EvalPoint{x, v, a, 0.0, cx, 0.0, ca, true, 1.0}, true);
+  const Eigen::MatrixXd J = Eigen::MatrixXd(sys.matrix()) / cx;
+  const Eigen::MatrixXd Jfd = chute::testing::fdJacobian(residual, xeq, 1e-7);
+  const double err = chute::testing::relativeError(J, Jfd);
+  if (err > 1e-6) {
+    Eigen::MatrixXd D = (J - Jfd).cwiseAbs();
+    Eigen::Index r, c;
+    D.maxCoeff(&r, &c);
+    std::printf("worst at (%ld,%ld): J %.6e FD %.6e\n", (long)r, (long)c, J(r, c), Jfd(r, c));
+  }
+  std::printf("assembled sliding system: relative error of J vs FD %.2e, symmetric=%d\n", err,
+              sys.symmetric());
+  EXPECT_LE(err, 1e-6);
+}
