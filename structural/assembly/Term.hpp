@@ -41,12 +41,19 @@ class Term {
                          EnergyBreakdown& e) const = 0;
   // Whether the Jacobian this term adds is symmetric (CHOLMOD may be used when all are).
   virtual bool symmetricJacobian() const { return true; }
-  // Largest fraction of a Newton update dx this term accepts from positions x (1 = all). Lets a
-  // term keep iterates from jumping across a kink of its energy; converged states are unchanged.
-  virtual double maxStepFraction(const Eigen::VectorXd& /*x*/, const Eigen::VectorXd& /*dx*/) const {
+  // Event location for kinks of the term's energy crossed by the motion (a slider passing a
+  // node). Given a Newton update dx from positions x, returns the fraction of dx at which the
+  // update would pass such a kink (1 if none); the step is then cut to end there. A term may also
+  // note discrete changes that cost nothing now (a slider exactly on a node leaving on the other
+  // side) for the next updateState.
+  virtual double passageFraction(const Eigen::VectorXd& /*x*/, const Eigen::VectorXd& /*dx*/) {
     return 1.0;
   }
-  virtual void commit() {}
+  // Called on a converged iterate; may move x by a negligible amount onto a kink reached at the
+  // end of the step, and schedule the discrete change there for commit(). Returns whether it
+  // moved x.
+  virtual bool onConverged(Eigen::VectorXd& /*x*/) { return false; }
+  virtual void commit(const Eigen::VectorXd& /*x*/) {}  // x: the converged positions
   virtual void revert() {}
 };
 

@@ -60,13 +60,12 @@ SplitRatios splitRatios(const Vec3& x1, const Vec3& x2, const Vec3& x3, double L
   // Reuse the kernel's limit-safe geometry; material is irrelevant for lengths.
   const auto p = slidingForce(x1, x2, x3, L, LineMaterial{}, false);
   const double l1 = p.segmentLength[0], l2 = p.segmentLength[1], l = p.length;
-  // dl1/dx: node 1 -> -e1, slider -> +e1, with e1 = (x3 - x1)/l1 = path direction of segment 0.
+  // Path segment 0 runs node 1 -> slider, segment 1 slider -> node 2 (element dofs 1, 2, 3).
   Vec9 dl1 = Vec9::Zero(), dl2 = Vec9::Zero();
-  dl1.segment<3>(0) = -p.segmentDirection[0];
-  dl1.segment<3>(6) = p.segmentDirection[0];
-  // Segment 1 runs slider -> node 2 with direction (x2 - x3)/l2.
-  dl2.segment<3>(3) = p.segmentDirection[1];
-  dl2.segment<3>(6) = -p.segmentDirection[1];
+  dl1.segment<3>(0) = -p.segmentGradient[0];
+  dl1.segment<3>(6) = p.segmentGradient[0];
+  dl2.segment<3>(3) = p.segmentGradient[1];
+  dl2.segment<3>(6) = -p.segmentGradient[1];
   SplitRatios s;
   s.r1 = l1 / l;
   s.r2 = l2 / l;

@@ -1,42 +1,43 @@
 #include "kernels/UniformStrainPolyline.hpp"
 
-#include <algorithm>
 #include <cmath>
 
 namespace chute::kernels {
+
+PartLength partLength(const Vec3& d, double r) {
+  PartLength p;
+  const double n = d.norm();
+  if (n >= r) {
+    const Vec3 e = d / n;
+    p.length = n;
+    p.gradient = e;
+    p.hessian = (Mat3::Identity() - e * e.transpose()) / n;
+  } else {
+    p.length = (n * n + r * r) / (2.0 * r);
+    p.gradient = d / r;
+    p.hessian = Mat3::Identity() / r;
+  }
+  return p;
+}
 
 template <int NumNodes>
 PolylineResult<NumNodes> uniformStrainPolyline(const std::array<Vec3, NumNodes>& x, double L,
                                                const LineMaterial& mat, bool withTangent) {
   constexpr int kSeg = NumNodes - 1;
   PolylineResult<NumNodes> r;
-  auto& e = r.segmentDirection;
-  const double lMin = kMinSegmentFraction * L;
+  std::array<Mat3, kSeg> hess;
+  const double apex = kApexFraction * L;
 
   r.length = 0.0;
-  for (int k = 0; k < kSeg; ++k) {
-    const Vec3 d = x[k + 1] - x[k];
-    r.segmentLength[k] = d.norm();
-    r.length += r.segmentLength[k];
-    e[k] = r.segmentLength[k] > lMin ? Vec3(d / r.segmentLength[k]) : Vec3::Zero();
-  }
-  // Analytic limit l_k -> 0 (slider on an end node): the vanishing segment continues the cable
-  // straight through, so it takes the direction of its longest neighbour. The combined force on
-  // the coincident node pair is then exact; only the split between the two is a convention.
-  for (int k = 0; k < kSeg; ++k) {
-    if (r.segmentLength[k] > lMin) continue;
-    int best = -1;
-    for (int j : {k - 1, k + 1})
-      if (j >= 0 && j < kSeg && r.segmentLength[j] > lMin &&
-          (best < 0 || r.segmentLength[j] > r.segmentLength[best]))
-        best = j;
-    if (best >= 0) e[k] = e[best];
-  }
-
   r.dLength.setZero();
   for (int k = 0; k < kSeg; ++k) {
-    r.dLength.template segment<3>(3 * k) -= e[k];
-    r.dLength.template segment<3>(3 * (k + 1)) += e[k];
+    const PartLength p = partLength(x[k + 1] - x[k], apex);
+    r.segmentLength[k] = p.length;
+    r.segmentGradient[k] = p.gradient;
+    hess[k] = p.hessian;
+    r.length += p.length;
+    r.dLength.template segment<3>(3 * k) -= p.gradient;
+    r.dLength.template segment<3>(3 * (k + 1)) += p.gradient;
   }
 
   const double L2 = L * L;
@@ -54,12 +55,11 @@ PolylineResult<NumNodes> uniformStrainPolyline(const std::array<Vec3, NumNodes>&
   r.stiffness.setZero();
   if (!withTangent || Eeff == 0.0) return r;
   // F3 / F9: K = (E A0/L) [(eps + l^2/L^2) D D^T + eps l G]; G = sum_k h_k [I -I; -I I],
-  // h_k = (I - e_k e_k^T) / l_k. eps l (E A0 / L) = N, so the geometric part is N G.
+  // h_k = (I - e_k e_k^T) / l_k (I / r at the apex). eps l (E A0 / L) = N: geometric part N G.
   r.stiffness.noalias() =
       EAoverL * (r.strain + r.length * r.length / L2) * (r.dLength * r.dLength.transpose());
   for (int k = 0; k < kSeg; ++k) {
-    const double lk = std::max(r.segmentLength[k], lMin);
-    const Mat3 h = r.axialForce * (Mat3::Identity() - e[k] * e[k].transpose()) / lk;
+    const Mat3 h = r.axialForce * hess[k];
     r.stiffness.template block<3, 3>(3 * k, 3 * k) += h;
     r.stiffness.template block<3, 3>(3 * (k + 1), 3 * (k + 1)) += h;
     r.stiffness.template block<3, 3>(3 * k, 3 * (k + 1)) -= h;

@@ -11,6 +11,13 @@
 //
 // Cables are tension-only: for eps <= 0 the element carries nothing unless a compression
 // stiffness ratio is given (formulation.md section 1).
+//
+// The slider on an end node (F8-F9 singular as l_i -> 0): a part's length |d| is a cone in the
+// relative position d, with no direction at its apex and lateral stiffness N / l_i -> infinity.
+// Within a radius r = kApexFraction L of the apex the part length is taken as the C1 quadratic
+// (|d|^2 + r^2) / (2 r): exact for |d| >= r, at most r/2 too long inside, with a bounded,
+// isotropic stiffness N / r at the apex. Force and tangent remain the exact derivatives of the
+// element's energy everywhere, so Newton keeps a consistent tangent through node crossings.
 #include <Eigen/Core>
 #include <array>
 
@@ -27,10 +34,19 @@ struct LineMaterial {
   double compressionStiffnessRatio = 0.0;  // E_c / E used when eps < 0 for a cable
 };
 
-// Segments shorter than this fraction of the reference length are treated as the analytic limit
-// l_k -> 0 (the slider sits on an end node): the direction of the vanishing segment is taken from
-// the neighbouring segment and its lateral stiffness N / l_k is capped at N / (kMinSegment L).
-inline constexpr double kMinSegmentFraction = 1e-12;
+// Apex radius of a part as a fraction of the element's reference length (see above). It must be
+// far below the strain times L of the stiffest cable (1e-6 for the paper's "very stiff" ropes):
+// inside r a length is off by up to r/2, i.e. a strain error of 5e-10. The apex stiffness N / r is
+// then eps 1e9 E A / L: 1e3 E A / L for eps = 1e-6, well within a direct solver's reach.
+inline constexpr double kApexFraction = 1e-9;
+
+// Length of a part with relative position d, its gradient and Hessian, regularised at the apex.
+struct PartLength {
+  double length;
+  Vec3 gradient;
+  Mat3 hessian;
+};
+PartLength partLength(const Vec3& d, double apexRadius);
 
 template <int NumNodes>
 struct PolylineResult {
@@ -39,8 +55,8 @@ struct PolylineResult {
   double strain = 0.0;  // Green-Lagrange strain eps
   double axialForce = 0.0;  // N = E A0 eps l / L (second Piola-Kirchhoff force times stretch)
   double energy = 0.0;  // W = E A0 L eps^2 / 2
-  std::array<double, NumNodes - 1> segmentLength{};
-  std::array<Vec3, NumNodes - 1> segmentDirection{};  // unit x_{k+1} - x_k (limit-safe)
+  std::array<double, NumNodes - 1> segmentLength{};   // (regularised) part lengths
+  std::array<Vec3, NumNodes - 1> segmentGradient{};   // d length_k / d x_{k+1}
   Eigen::Matrix<double, kDofs, 1> dLength;  // D = dl/dx
   Eigen::Matrix<double, kDofs, 1> force;  // internal force f = dW/dx
   Eigen::Matrix<double, kDofs, kDofs> stiffness;  // K = d^2W/dx^2

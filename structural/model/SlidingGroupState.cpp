@@ -1,5 +1,6 @@
 #include "model/SlidingGroupState.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -11,7 +12,11 @@ Vec3 nodePos(const Eigen::VectorXd& x, int n) { return x.segment<3>(3 * n); }
 }  // namespace
 
 SlidingGroupState::SlidingGroupState(const SlidingGroupDef& def)
-    : def_(&def), trial_(def.initialActive), committed_(def.initialActive) {
+    : def_(&def),
+      trial_(def.initialActive),
+      committed_(def.initialActive),
+      pendingHandover_(def.sliders.size(), 0),
+      handoverAtCommit_(def.sliders.size(), 0) {
   cumulativeRef_.assign(def.chain.size(), 0.0);
   for (int k = 0; k < def.numElements(); ++k)
     cumulativeRef_[k + 1] = cumulativeRef_[k] + def.refLength[k];
@@ -49,28 +54,20 @@ int SlidingGroupState::search(const Eigen::VectorXd& x, SliderSearch kind) {
       return false;
     };
     int best = trial_[s];
-    double bestScore = lengthMismatch(static_cast<int>(s), best, x);
+    if (pendingHandover_[s] != 0) {
+      const int k = best + pendingHandover_[s];
+      // At a chain end, or against another slider, the slider stays where it is.
+      if (k >= 0 && k < nEl && !takenByOther(k)) best = k;
+    }
     if (kind == SliderSearch::NearestLength) {
+      double bestScore = lengthMismatch(static_cast<int>(s), best, x);
       for (int k = 0; k < nEl; ++k) {
         if (k == best || takenByOther(k)) continue;
         const double score = lengthMismatch(static_cast<int>(s), k, x);
         if (score < bestScore) best = k, bestScore = score;
       }
-    } else {
-      // Walk to a neighbour while it fits better: the slider's material coordinate moves
-      // continuously, so it can only leave its element through an end node.
-      for (bool moved = true; moved;) {
-        moved = false;
-        for (int k : {best - 1, best + 1}) {
-          if (k < 0 || k >= nEl || takenByOther(k)) continue;
-          const double score = lengthMismatch(static_cast<int>(s), k, x);
-          if (score < bestScore) {
-            best = k, bestScore = score, moved = true;
-            break;
-          }
-        }
-      }
     }
+    pendingHandover_[s] = 0;
     if (best != trial_[s]) {
       handoversTrial_ += std::abs(best - trial_[s]);
       trial_[s] = best;
@@ -80,13 +77,86 @@ int SlidingGroupState::search(const Eigen::VectorXd& x, SliderSearch kind) {
   return changed;
 }
 
-void SlidingGroupState::commit() {
+double SlidingGroupState::passageFraction(const Eigen::VectorXd& x, const Eigen::VectorXd& dx) {
+  double fraction = 1.0;
+  for (size_t s = 0; s < trial_.size(); ++s) {
+    const int k = trial_[s];
+    const int n1 = def_->chain[k], n2 = def_->chain[k + 1], n3 = def_->sliders[s];
+    for (int end = 0; end < 2; ++end) {
+      const int ni = end == 0 ? n1 : n2, other = end == 0 ? n2 : n1;
+      const Vec3 d = nodePos(x, n3) - nodePos(x, ni);
+      const Vec3 delta = nodePos(dx, n3) - nodePos(dx, ni);
+      if (d.squaredNorm() == 0.0) {
+        // Exactly on the node: leaving away from the element's other node is leaving the element.
+        if (delta.dot(nodePos(x, other) - nodePos(x, ni)) < 0.0)
+          pendingHandover_[s] = end == 0 ? -1 : +1;
+        continue;
+      }
+      const double dDelta = d.dot(delta);
+      // The part flips direction, (d + delta) . d < 0: the update passes the node, closest at
+      // the fraction -d.delta / |delta|^2.
+      if (d.squaredNorm() + dDelta < 0.0)
+        fraction = std::min(fraction, std::clamp(-dDelta / delta.squaredNorm(), 0.0, 1.0));
+    }
+  }
+  return fraction;
+}
+
+bool SlidingGroupState::arriveAtNodes(const Model& model, Eigen::VectorXd& x,
+                                      double radiusFraction) {
+  bool changed = false;
+  for (size_t s = 0; s < trial_.size(); ++s) {
+    const int k = trial_[s];
+    // One hand-over per step: not after a free one at the step's start.
+    if (k != committed_[s] || pendingHandover_[s] != 0) continue;
+    handoverAtCommit_[s] = 0;
+    const int n3 = def_->sliders[s];
+    for (int end = 0; end < 2; ++end) {
+      const int ni = def_->chain[k + end];
+      const int next = k + (end == 0 ? -1 : +1);
+      const double dist = (nodePos(x, n3) - nodePos(x, ni)).norm();
+      if (dist > radiusFraction * def_->refLength[k]) continue;
+      if (dist >= committedDistance_[end][s]) continue;  // not approaching this node
+      if (next < 0 || next >= def_->numElements()) continue;  // the chain ends here
+      bool nodeFree = true;
+      for (int c = 0; c < 3; ++c) nodeFree &= !model.constraint[ni].fixed[c];
+      if (nodeFree)
+        x.segment<3>(3 * ni) = x.segment<3>(3 * n3);
+      else
+        for (int c = 0; c < 3; ++c)
+          if (!model.constraint[n3].fixed[c]) x[3 * n3 + c] = x[3 * ni + c];
+      handoverAtCommit_[s] = end == 0 ? -1 : +1;
+      changed = true;
+      break;
+    }
+  }
+  return changed;
+}
+
+void SlidingGroupState::commit(const Eigen::VectorXd& x) {
+  for (size_t s = 0; s < trial_.size(); ++s) {
+    const int k = trial_[s] + handoverAtCommit_[s];
+    if (handoverAtCommit_[s] != 0 && k >= 0 && k < def_->numElements()) {
+      handoversTrial_ += 1;
+      trial_[s] = k;
+    }
+    handoverAtCommit_[s] = 0;
+  }
   committed_ = trial_;
+  for (int end = 0; end < 2; ++end) {
+    committedDistance_[end].resize(trial_.size());
+    for (size_t s = 0; s < trial_.size(); ++s)
+      committedDistance_[end][s] =
+          (nodePos(x, def_->sliders[s]) - nodePos(x, def_->chain[trial_[s] + end])).norm();
+  }
+  std::fill(pendingHandover_.begin(), pendingHandover_.end(), 0);
   handoversCommitted_ = handoversTrial_;
 }
 
 void SlidingGroupState::revert() {
   trial_ = committed_;
+  std::fill(pendingHandover_.begin(), pendingHandover_.end(), 0);
+  std::fill(handoverAtCommit_.begin(), handoverAtCommit_.end(), 0);
   handoversTrial_ = handoversCommitted_;
 }
 

@@ -10,7 +10,8 @@ namespace chute {
 
 enum class SliderSearch {
   NearestLength,       // F12: every element of the group, least |l - L| (the paper's search)
-  MaterialCoordinate,  // track the slider along the chain: only hand over to a neighbour
+  MaterialCoordinate,  // track the slider along the chain: it leaves its element only by
+                       // passing one of the element's end nodes, to the neighbour there
 };
 
 class SlidingGroupState {
@@ -21,7 +22,20 @@ class SlidingGroupState {
   // Returns how many sliders changed element.
   int search(const Eigen::VectorXd& x, SliderSearch kind);
 
-  void commit();
+  // Fraction of the update dx from positions x at which a slider would pass straight through
+  // an end node of its active element (the apex of the |x3 - xi| cone, where F9 has 1/l_i), or 1.
+  // A slider exactly on a node that the update moves out of its element is handed over to the
+  // neighbour there at the next search(): both elements describe the same configuration then.
+  double passageFraction(const Eigen::VectorXd& x, const Eigen::VectorXd& dx);
+  // At a converged state: a slider that has reached an end node of its element (within
+  // radiusFraction of its reference length) while approaching it during the step is placed
+  // exactly on the node (the node moves onto the slider, or the slider onto a fixed node) and is
+  // handed over to the neighbour there when the step is committed. Not earlier: generalized-alpha
+  // evaluates this step's forces between its start and end, where the slider is still inside its
+  // element. Returns whether x was moved.
+  bool arriveAtNodes(const Model& model, Eigen::VectorXd& x, double radiusFraction);
+
+  void commit(const Eigen::VectorXd& x);  // x: the converged positions
   void revert();
 
   const SlidingGroupDef& def() const { return *def_; }
@@ -42,6 +56,9 @@ class SlidingGroupState {
  private:
   const SlidingGroupDef* def_;
   std::vector<int> trial_, committed_;
+  std::vector<double> committedDistance_[2];  // slider to end node 1 / 2 at the step start
+  std::vector<int> pendingHandover_;  // per slider: -1 across end 1, +1 across end 2, 0 none
+  std::vector<int> handoverAtCommit_;  // same, applied when the step is committed
   std::vector<double> cumulativeRef_;  // reference arc length at each chain node
   long handoversTrial_ = 0, handoversCommitted_ = 0;
 };

@@ -5,20 +5,26 @@
 
 namespace chute {
 
-GeneralizedAlphaParams GeneralizedAlphaParams::fromRhoInf(double rho) {
-  // Chung & Hulbert (1993): second-order accurate, unconditionally stable for linear problems,
-  // high-frequency spectral radius rho_inf.
+GeneralizedAlphaParams GeneralizedAlphaParams::fromRhoInf(double rho, AlphaScheme scheme) {
+  // Second-order accurate, unconditionally stable for linear problems, high-frequency spectral
+  // radius rho_inf (Chung & Hulbert 1993, eqs. 25-27 with their alpha_m, alpha_f signs).
   GeneralizedAlphaParams p;
-  p.alphaM = (2.0 * rho - 1.0) / (rho + 1.0);
-  p.alphaF = rho / (rho + 1.0);
+  if (scheme == AlphaScheme::ChungHulbert) {
+    p.alphaM = (2.0 * rho - 1.0) / (rho + 1.0);
+    p.alphaF = rho / (rho + 1.0);
+  } else {
+    p.alphaM = (rho - 1.0) / (rho + 1.0);
+    p.alphaF = 0.0;
+  }
   p.gamma = 0.5 - p.alphaM + p.alphaF;
   p.beta = 0.25 * (1.0 - p.alphaM + p.alphaF) * (1.0 - p.alphaM + p.alphaF);
   return p;
 }
 
-GeneralizedAlpha::GeneralizedAlpha(StructuralSystem& sys, double rhoInf, NewtonSettings newton)
+GeneralizedAlpha::GeneralizedAlpha(StructuralSystem& sys, double rhoInf, AlphaScheme scheme,
+                                   NewtonSettings newton)
     : sys_(&sys),
-      p_(GeneralizedAlphaParams::fromRhoInf(rhoInf)),
+      p_(GeneralizedAlphaParams::fromRhoInf(rhoInf, scheme)),
       newton_(newton),
       linear_(sys.symmetric(), sys.timings()) {}
 
@@ -42,6 +48,7 @@ void GeneralizedAlpha::computeInitialAcceleration(DynamicState& s) {
   SparseMatrix M = sys_->matrix();
   Eigen::VectorXd rhs = -sys_->residual();
   // Massless dofs have no inertia row: pin their initial acceleration to zero.
+  std::vector<char> emptyEq(M.cols(), 0);
   for (int e = 0; e < M.cols(); ++e) {
     bool empty = true;
     for (SparseMatrix::InnerIterator it(M, e); it; ++it)
@@ -49,7 +56,13 @@ void GeneralizedAlpha::computeInitialAcceleration(DynamicState& s) {
     if (empty) {
       M.coeffRef(e, e) = 1.0;
       rhs[e] = 0.0;
+      emptyEq[e] = 1;
     }
+  }
+  massless_.assign(s.x.size(), 0);
+  for (int d = 0; d < sys_->dofs().numDofs(); ++d) {
+    const int e = sys_->dofs().eqOfDof(d);
+    if (e >= 0) massless_[d] = emptyEq[e];
   }
   Eigen::UmfPackLU<SparseMatrix> lu;
   lu.compute(M);
@@ -86,20 +99,27 @@ NewtonReport GeneralizedAlpha::newton(Eigen::VectorXd& x, MakePoint&& makePoint,
     }
     dx.setZero();
     sys_->addToDofs(dxEq, dx);
-    const double alpha = sys_->maxStepFraction(x, dx);
-    x += alpha * dx;
-    onUpdate();
-    const double un = alpha * dxEq.lpNorm<Eigen::Infinity>();
+    const double un = dx.lpNorm<Eigen::Infinity>();
     rep.updateNorms.push_back(un);
     rep.iterations = it + 1;
-    if (newton_.verbose)
-      std::fprintf(stderr, "    newton %2d  |R| = %.3e  |dx| = %.3e  step %.3f  changes %d\n", it,
-                   rn, un, alpha, lastChanges);
     if (!std::isfinite(un)) {
       rep.failure = "non-finite update";
       return rep;
     }
-    if (alpha == 1.0 && lastChanges == 0 && un <= newton_.tolDisplacement) {
+    const double passage = sys_->passageFraction(x, dx);
+    if (newton_.verbose)
+      std::fprintf(stderr, "    newton %2d  |R| = %.3e  |dx| = %.3e  changes %d%s\n", it, rn, un,
+                   lastChanges, passage < 1.0 ? "  passes an event" : "");
+    if (passage < 1.0) {
+      // The first update is the linearised step: its passage fraction estimates the event time.
+      rep.failure = "a slider reaches a node within the step";
+      rep.eventFraction = it == 0 ? std::max(passage, 1e-3) : 0.5;
+      return rep;
+    }
+    x += dx;
+    onUpdate();
+    if (lastChanges == 0 && un <= newton_.tolDisplacement) {
+      if (sys_->onConverged(x)) onUpdate();  // moved by a negligible amount onto an event
       rep.converged = true;
       return rep;
     }
@@ -123,15 +143,13 @@ NewtonReport GeneralizedAlpha::step(DynamicState& s, double dt) {
   const auto& p = p_;
   const DynamicState old = s;
   DynamicState n = s;
-  // Predictor: constant acceleration.
-  n.a = old.a;
-  n.x = old.x + dt * old.v + dt * dt * ((0.5 - p.beta) * old.a + p.beta * n.a);
-  n.v = old.v + dt * ((1.0 - p.gamma) * old.a + p.gamma * n.a);
+  // Predictor: positions stay where they are (the first Newton update is then a consistent
+  // linearised step from the last converged state). Predicting positions from Newmark's
+  // velocity would move a heavy slider while the massless rope nodes around it, whose Newmark
+  // velocities carry no information, stay behind: a stiff rope then starts a step with a large
+  // spurious stretch.
+  n.x = old.x;
   n.t = old.t + dt;
-  // Constrained dofs stay where they are (fixed supports).
-  for (int d = 0; d < sys_->dofs().numDofs(); ++d)
-    if (sys_->dofs().eqOfDof(d) < 0) n.x[d] = old.x[d], n.v[d] = 0.0, n.a[d] = 0.0;
-
   auto newmark = [&] {
     n.a = (n.x - old.x - dt * old.v - dt * dt * (0.5 - p.beta) * old.a) / (p.beta * dt * dt);
     n.v = old.v + dt * ((1.0 - p.gamma) * old.a + p.gamma * n.a);
@@ -149,9 +167,10 @@ NewtonReport GeneralizedAlpha::step(DynamicState& s, double dt) {
                       true,
                       1.0};
   };
+  newmark();
   NewtonReport rep = newton(n.x, makePoint, newmark);
   if (rep.converged) {
-    sys_->commit();
+    sys_->commit(n.x);
     s = n;
   } else {
     sys_->revert();
@@ -177,7 +196,7 @@ NewtonReport GeneralizedAlpha::solveStatic(DynamicState& s, int nSteps) {
       total.failure = rep.failure + " at load factor " + std::to_string(lambda);
       return total;
     }
-    sys_->commit();
+    sys_->commit(x);
   }
   total.converged = true;
   s.x = x;

@@ -23,9 +23,19 @@ struct NewtonSettings {
   bool verbose = false;           // print the residual sequence of every iteration
 };
 
+// Members of the generalized-alpha family, both second-order accurate with high-frequency
+// spectral radius rho_inf:
+//  - ChungHulbert (1993): optimal alpha_m, alpha_f; forces at t_{n+1-alpha_f}.
+//  - Bossak (Wood, Bossak & Zienkiewicz 1980): alpha_f = 0, every force at t_{n+1}. Massless
+//    nodes then end each step in equilibrium and configuration changes (a slider handed over at
+//    a node) are consistent at the step's end; with Chung-Hulbert a massless node's end-of-step
+//    position is off equilibrium by O(dt^2), undamped for rho_inf = 1.
+// rho_inf = 1 gives Newmark's trapezoidal rule with Bossak.
+enum class AlphaScheme { Bossak, ChungHulbert };
+
 struct GeneralizedAlphaParams {
   double alphaM, alphaF, beta, gamma;
-  static GeneralizedAlphaParams fromRhoInf(double rhoInf);
+  static GeneralizedAlphaParams fromRhoInf(double rhoInf, AlphaScheme scheme);
 };
 
 struct NewtonReport {
@@ -35,11 +45,12 @@ struct NewtonReport {
   std::vector<double> residualNorms;   // ||R|| before each update
   std::vector<double> updateNorms;     // max |dx| of each update
   int stateChanges = 0;                // discrete changes (active elements) during the solve
+  double eventFraction = 0.0;          // > 0: the step passes an event; retry with this fraction
 };
 
 class GeneralizedAlpha {
  public:
-  GeneralizedAlpha(StructuralSystem& sys, double rhoInf, NewtonSettings newton);
+  GeneralizedAlpha(StructuralSystem& sys, double rhoInf, AlphaScheme scheme, NewtonSettings newton);
 
   // Initial state at rest or moving: positions from the model, consistent acceleration
   // M a0 = f_ext - f_int (massless dofs get a0 = 0).
@@ -60,6 +71,7 @@ class GeneralizedAlpha {
   NewtonReport newton(Eigen::VectorXd& x, MakePoint&& makePoint, Update&& onUpdate);
 
   StructuralSystem* sys_;
+  std::vector<char> massless_;  // per dof: no inertia at the start (set with the initial a0)
   GeneralizedAlphaParams p_;
   NewtonSettings newton_;
   LinearSolver linear_;

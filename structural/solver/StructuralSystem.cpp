@@ -44,11 +44,16 @@ bool StructuralSystem::symmetric() const {
                      [](const auto& t) { return t->symmetricJacobian(); });
 }
 
-double StructuralSystem::maxStepFraction(const Eigen::VectorXd& x,
-                                         const Eigen::VectorXd& dx) const {
-  double a = 1.0;
-  for (const auto& t : terms_) a = std::min(a, t->maxStepFraction(x, dx));
-  return a;
+double StructuralSystem::passageFraction(const Eigen::VectorXd& x, const Eigen::VectorXd& dx) {
+  double f = 1.0;
+  for (const auto& t : terms_) f = std::min(f, t->passageFraction(x, dx));
+  return f;
+}
+
+bool StructuralSystem::onConverged(Eigen::VectorXd& x) {
+  bool changed = false;
+  for (const auto& t : terms_) changed |= t->onConverged(x);
+  return changed;
 }
 
 EnergyBreakdown StructuralSystem::energy(const Eigen::VectorXd& x,
@@ -58,8 +63,8 @@ EnergyBreakdown StructuralSystem::energy(const Eigen::VectorXd& x,
   return e;
 }
 
-void StructuralSystem::commit() {
-  for (const auto& t : terms_) t->commit();
+void StructuralSystem::commit(const Eigen::VectorXd& x) {
+  for (const auto& t : terms_) t->commit(x);
 }
 void StructuralSystem::revert() {
   for (const auto& t : terms_) t->revert();

@@ -28,10 +28,11 @@ class StructuralSystem {
   const Eigen::VectorXd& residual() const { return assembler_.residual(); }
   const SparseMatrix& matrix() const { return assembler_.matrix(); }
   bool symmetric() const;
-  double maxStepFraction(const Eigen::VectorXd& x, const Eigen::VectorXd& dx) const;
+  double passageFraction(const Eigen::VectorXd& x, const Eigen::VectorXd& dx);
+  bool onConverged(Eigen::VectorXd& x);
 
   EnergyBreakdown energy(const Eigen::VectorXd& x, const Eigen::VectorXd& v) const;
-  void commit();
+  void commit(const Eigen::VectorXd& x);
   void revert();
 
   // Scatter equation-space vectors to / from full dof vectors.

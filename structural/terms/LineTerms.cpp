@@ -83,26 +83,6 @@ bool SlidingGroupTerm::symmetricJacobian() const {
   return mat.density == 0.0;
 }
 
-double SlidingGroupTerm::maxStepFraction(const Eigen::VectorXd& x,
-                                         const Eigen::VectorXd& dx) const {
-  const auto& g = state_.def();
-  double alpha = 1.0;
-  for (size_t s = 0; s < g.sliders.size(); ++s) {
-    const int k = state_.activeElement(static_cast<int>(s));
-    const int n3 = g.sliders[s];
-    const double tiny = 1e-6 * g.refLength[k];
-    for (int ni : {g.chain[k], g.chain[k + 1]}) {
-      const Vec3 d = pos(x, n3) - pos(x, ni);
-      const Vec3 delta = pos(dx, n3) - pos(dx, ni);
-      const double dd = d.squaredNorm(), dDelta = d.dot(delta);
-      // The segment flips direction (passes near the apex) when (d + delta) . d < 0.
-      if (dd > tiny * tiny && dd + dDelta < 0.0)
-        alpha = std::min(alpha, -dDelta / delta.squaredNorm());
-    }
-  }
-  return alpha;
-}
-
 void SlidingGroupTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
   const auto& g = state_.def();
   const auto& mat = m_->materials[g.material];

@@ -37,11 +37,16 @@ class SlidingGroupTerm final : public Term {
                  EnergyBreakdown& e) const override;
   // Configuration-dependent mass and gravity make the consistent Jacobian non-symmetric.
   bool symmetricJacobian() const override;
-  // A Newton update must not carry a slider straight through an end node of its active element
-  // (the apex of the |x3 - xi| cone, F9's 1/l_i): stop at the closest approach instead; the
-  // search then hands the slider to the neighbouring element.
-  double maxStepFraction(const Eigen::VectorXd& x, const Eigen::VectorXd& dx) const override;
-  void commit() override { state_.commit(); }
+  // Node crossings are located in time: an update that would carry a slider through an end node
+  // cuts the step to end where they meet (passageFraction); at the end of that step the slider is
+  // placed on the node and handed over to the neighbouring element (onConverged).
+  double passageFraction(const Eigen::VectorXd& x, const Eigen::VectorXd& dx) override {
+    return state_.passageFraction(x, dx);
+  }
+  bool onConverged(Eigen::VectorXd& x) override {
+    return state_.arriveAtNodes(*m_, x, kernels::kApexFraction);
+  }
+  void commit(const Eigen::VectorXd& x) override { state_.commit(x); }
   void revert() override { state_.revert(); }
   const SlidingGroupState& state() const { return state_; }
   SlidingGroupState& state() { return state_; }

@@ -52,37 +52,86 @@ struct EllipseScene {
 
 }  // namespace
 
-TEST(SlidingGroupSearch, FollowsTheSliderAcrossEveryNodeInBothDirections) {
+TEST(SlidingGroupSearch, NearestLengthFollowsTheSliderAcrossEveryNodeInBothDirections) {
   EllipseScene scene;
-  for (auto kind : {SliderSearch::NearestLength, SliderSearch::MaterialCoordinate}) {
-    SlidingGroupState st(scene.model.groups[0]);
-    int exact = 0, checked = 0, crossings = 0;
-    // theta from pi (slider near end 1) to 0 (near end 2) and back; 400 positions each way.
-    std::vector<double> sweep;
-    for (int i = 1; i < 400; ++i) sweep.push_back(M_PI * (1 - i / 400.0));
-    for (int i = 398; i >= 1; --i) sweep.push_back(M_PI * (1 - i / 400.0));
-    int last = st.activeElement(0);
-    for (double th : sweep) {
-      const Eigen::VectorXd x = scene.positions(th, &exact);
-      // A slider exactly on a node belongs to either element: not a test of the search.
-      const double l1 = (x.segment<3>(3 * (scene.n + 1)) - x.segment<3>(0)).norm();
-      const double h = 2 * scene.a / scene.n;
-      if (std::abs(l1 / h - std::round(l1 / h)) < 1e-9) continue;
-      // Start from the committed element of the previous position, as a time step would.
-      st.search(x, kind);
-      st.commit();
-      EXPECT_EQ(st.activeElement(0), exact) << "theta " << th;
-      crossings += std::abs(st.activeElement(0) - last);
-      last = st.activeElement(0);
-      ++checked;
-      // The material coordinate is the slider's arc length from end 1 (no stretch here).
-      EXPECT_NEAR(st.materialCoordinate(0, x), l1, 1e-12);
-    }
-    std::printf("%s: %d positions, %d node crossings, committed handovers %ld\n",
-                kind == SliderSearch::NearestLength ? "nearest-length (F12)" : "material-coordinate",
-                checked, crossings, st.committedHandovers());
-    EXPECT_EQ(crossings, 2 * (scene.n - 1));
+  SlidingGroupState st(scene.model.groups[0]);
+  int exact = 0, crossings = 0, positions = 0;
+  // theta from pi (slider near end 1) to 0 (near end 2) and back.
+  std::vector<double> sweep;
+  for (int i = 1; i < 400; ++i) sweep.push_back(M_PI * (1 - i / 400.0));
+  for (int i = 398; i >= 1; --i) sweep.push_back(M_PI * (1 - i / 400.0));
+  int last = st.activeElement(0);
+  for (double th : sweep) {
+    const Eigen::VectorXd x = scene.positions(th, &exact);
+    // A slider exactly on a node belongs to either element: not a test of the search.
+    const double l1 = (x.segment<3>(3 * (scene.n + 1)) - x.segment<3>(0)).norm();
+    const double h = 2 * scene.a / scene.n;
+    if (std::abs(l1 / h - std::round(l1 / h)) < 1e-9) continue;
+    st.search(x, SliderSearch::NearestLength);
+    st.commit(x);
+    EXPECT_EQ(st.activeElement(0), exact) << "theta " << th;
+    crossings += std::abs(st.activeElement(0) - last);
+    last = st.activeElement(0);
+    ++positions;
+    // The material coordinate is the slider's arc length from end 1 (no stretch here).
+    EXPECT_NEAR(st.materialCoordinate(0, x), l1, 1e-12);
   }
+  std::printf("nearest-length (F12): %d positions, %d node crossings\n", positions, crossings);
+  EXPECT_EQ(crossings, 2 * (scene.n - 1));
+}
+
+TEST(SlidingGroupSearch, TrackerLocatesEveryNodeCrossingInBothDirections) {
+  // A straight chain of 6 elements with fixed nodes; the slider is driven along it and back in
+  // linear updates, as Newton moves it. Each update that passes a node is cut where the slider
+  // meets the node (event location), the slider arrives and is handed over.
+  Model model;
+  model.materials.push_back({1e5, 1e-2, 0.0, true, 0.0});
+  SlidingGroupDef g;
+  g.material = 0;
+  const int n = 6;
+  for (int k = 0; k <= n; ++k) {
+    g.chain.push_back(model.addNode(Vec3(k, 0, 0)));
+    model.constraint.back().fixed = {true, true, true};
+  }
+  g.refLength.assign(n, 1.0);
+  g.sliders.push_back(model.addNode(Vec3(0.3, 0, 0)));
+  g.initialActive.push_back(0);
+  model.groups.push_back(g);
+  SlidingGroupState st(model.groups[0]);
+  Eigen::VectorXd x(3 * model.numNodes());
+  for (int k = 0; k < model.numNodes(); ++k) x.segment<3>(3 * k) = model.X[k];
+  st.commit(x);
+  const int slider = 3 * n + 3;
+  int handovers = 0, events = 0;
+  std::vector<double> path;
+  for (double s = 0.3; s < 5.8; s += 0.07) path.push_back(s);
+  for (double s = 5.8; s > 0.2; s -= 0.07) path.push_back(s);
+  for (double target : path) {
+    for (int guard = 0; guard < 10; ++guard) {
+      Eigen::VectorXd dx = Eigen::VectorXd::Zero(x.size());
+      dx[slider] = target - x[slider];
+      const double f = st.passageFraction(x, dx);
+      if (f >= 1.0) {
+        x += dx;
+        st.search(x, SliderSearch::MaterialCoordinate);
+        st.commit(x);
+        break;
+      }
+      ++events;
+      x += f * dx;  // the step cut to end at the node
+      const int before = st.activeElement(0);
+      st.arriveAtNodes(model, x, kernels::kApexFraction);
+      st.commit(x);  // the hand-over takes effect with the committed step
+      handovers += std::abs(st.activeElement(0) - before);
+    }
+    const int expected = std::clamp(static_cast<int>(std::floor(x[slider])), 0, n - 1);
+    EXPECT_EQ(st.activeElement(0), expected) << "slider at " << x[slider];
+    EXPECT_NEAR(st.materialCoordinate(0, x), x[slider], 1e-12);
+  }
+  std::printf("material-coordinate tracker: %zu positions, %d events located, %d hand-overs\n",
+              path.size(), events, handovers);
+  EXPECT_EQ(handovers, 2 * (n - 1));
+  EXPECT_EQ(events, 2 * (n - 1));
 }
 
 TEST(SlidingGroupSearch, RevertRestoresTheCommittedActiveElement) {
@@ -90,7 +139,7 @@ TEST(SlidingGroupSearch, RevertRestoresTheCommittedActiveElement) {
   SlidingGroupState st(scene.model.groups[0]);
   int exact = 0;
   st.search(scene.positions(2.0, &exact), SliderSearch::NearestLength);
-  st.commit();
+  st.commit(scene.positions(2.0, &exact));
   const int committed = st.activeElement(0);
   st.search(scene.positions(0.3, &exact), SliderSearch::NearestLength);
   EXPECT_NE(st.activeElement(0), committed);

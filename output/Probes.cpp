@@ -1,0 +1,99 @@
+#include "Probes.hpp"
+
+#include <stdexcept>
+
+#include "kernels/LineKernels.hpp"
+#include "terms/LineTerms.hpp"
+
+namespace chute {
+
+ProbeSet::ProbeSet(const Model& model, std::vector<ProbeSpec> probes)
+    : model_(&model), probes_(std::move(probes)) {
+  int off = 0;
+  for (const auto& p : probes_) {
+    offset_.push_back(off);
+    off += static_cast<int>(p.columns().size());
+  }
+}
+
+std::vector<std::string> ProbeSet::columns() const {
+  std::vector<std::string> c;
+  for (const auto& p : probes_)
+    for (auto& q : p.columns()) c.push_back(q);
+  return c;
+}
+
+namespace {
+// Axial force and strain of element `element` of line set `set` (cables first, then groups).
+std::pair<double, double> lineForce(const Model& m, const StructuralSystem& sys, int set,
+                                    int element, const Eigen::VectorXd& x) {
+  auto at = [&](int n) { return Vec3(x.segment<3>(3 * n)); };
+  int k = 0;
+  for (const auto& c : m.cables) {
+    if (c.set != set) continue;
+    if (k++ == element) {
+      const auto r = kernels::cableForce(at(c.a), at(c.b), c.L, m.materials[c.material], false);
+      return {r.axialForce, r.strain};
+    }
+  }
+  for (size_t g = 0; g < m.groups.size(); ++g) {
+    const auto& def = m.groups[g];
+    if (def.set != set) continue;
+    const auto& st = sys.slidingGroups()[g]->state();
+    const int s = st.sliderOfElement(element);
+    const auto& mat = m.materials[def.material];
+    const Vec3 x1 = at(def.chain[element]), x2 = at(def.chain[element + 1]);
+    if (s < 0) {
+      const auto c = kernels::cableForce(x1, x2, def.refLength[element], mat, false);
+      return {c.axialForce, c.strain};
+    }
+    const auto a = kernels::slidingForce(x1, x2, at(def.sliders[s]), def.refLength[element], mat, false);
+    return {a.axialForce, a.strain};
+  }
+  throw std::logic_error("line_force probe: element not found");
+}
+}  // namespace
+
+std::vector<double> ProbeSet::evaluate(const StructuralSystem& sys, const DynamicState& s) const {
+  std::vector<double> out;
+  for (const auto& p : probes_) {
+    if (p.kind == "node_position" || p.kind == "node_velocity") {
+      const Eigen::VectorXd& v = p.kind == "node_position" ? s.x : s.v;
+      for (int k = 0; k < 3; ++k) out.push_back(v[3 * p.node + k]);
+    } else if (p.kind == "slider") {
+      const auto& st = sys.slidingGroups()[p.group]->state();
+      out.push_back(st.materialCoordinate(p.slider, s.x));
+      out.push_back(st.activeElement(p.slider));
+    } else if (p.kind == "energy") {
+      const auto e = sys.energy(s.x, s.v);
+      out.insert(out.end(), {e.kinetic, e.strain, e.gravity, e.total()});
+    } else if (p.kind == "line_force") {
+      const auto [N, eps] = lineForce(*model_, sys, p.lineSet, p.element, s.x);
+      out.push_back(N);
+      out.push_back(eps);
+    }
+  }
+  return out;
+}
+
+CsvWriter::CsvWriter(const std::string& path, const std::vector<std::string>& columns) {
+  f_ = std::fopen(path.c_str(), "w");
+  if (!f_) throw std::runtime_error("cannot write " + path);
+  std::fputs("t", f_);
+  for (const auto& c : columns) std::fprintf(f_, ",%s", c.c_str());
+  std::fputc('\n', f_);
+  std::fflush(f_);
+}
+
+CsvWriter::~CsvWriter() {
+  if (f_) std::fclose(f_);
+}
+
+void CsvWriter::row(double t, const std::vector<double>& values) {
+  std::fprintf(f_, "%.15g", t);
+  for (double v : values) std::fprintf(f_, ",%.15g", v);
+  std::fputc('\n', f_);
+  std::fflush(f_);
+}
+
+}  // namespace chute

@@ -1,0 +1,40 @@
+#pragma once
+// Probe quantities of a run (interfaces.md: probes.csv, one column per "<probe>.<quantity>")
+// and the CSV file they go to, flushed row by row so a run stopped half-way leaves valid rows.
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "case/CaseSpec.hpp"
+#include "solver/GeneralizedAlpha.hpp"
+
+namespace chute {
+
+class ProbeSet {
+ public:
+  ProbeSet(const Model& model, std::vector<ProbeSpec> probes);
+  std::vector<std::string> columns() const;
+  std::vector<double> evaluate(const StructuralSystem& sys, const DynamicState& s) const;
+  const std::vector<ProbeSpec>& probes() const { return probes_; }
+  // Offset of probe p's first column in an evaluate() row.
+  int columnOffset(int p) const { return offset_[p]; }
+
+ private:
+  const Model* model_;
+  std::vector<ProbeSpec> probes_;
+  std::vector<int> offset_;
+};
+
+class CsvWriter {
+ public:
+  CsvWriter(const std::string& path, const std::vector<std::string>& columns);
+  ~CsvWriter();
+  CsvWriter(const CsvWriter&) = delete;
+  CsvWriter& operator=(const CsvWriter&) = delete;
+  void row(double t, const std::vector<double>& values);
+
+ private:
+  std::FILE* f_ = nullptr;
+};
+
+}  // namespace chute

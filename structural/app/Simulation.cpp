@@ -1,0 +1,246 @@
+#include "app/Simulation.hpp"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "Probes.hpp"
+#include "solver/GeneralizedAlpha.hpp"
+#include "terms/LineTerms.hpp"
+#include "verification/References.hpp"
+
+namespace chute {
+
+namespace {
+
+double modelSize(const Model& m) {
+  Vec3 lo = m.X.front(), hi = m.X.front();
+  for (const auto& x : m.X) lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
+  return std::max((hi - lo).norm(), 1e-300);
+}
+
+std::optional<ReferenceError> compareWithReference(const CaseSpec& spec, const RunResult& r,
+                                                   const ProbeSet& probes) {
+  if (!spec.reference) return std::nullopt;
+  const auto& ref = *spec.reference;
+  const Model& m = spec.model;
+  const int node = probes.probes()[ref.probe].node;
+  const int off = probes.columnOffset(ref.probe);
+  std::vector<Vec3> expected;
+  if (ref.kind == "pulley") {
+    const Vec3 d = m.X[node] - m.X[ref.pulley];
+    verification::PulleyReference p{ref.ropeLength, d.norm(), m.gravity.norm(), m.X[ref.pulley],
+                                     d.normalized()};
+    for (double t : r.times) expected.push_back(p.endPosition(t));
+  } else {
+    verification::BeadEllipseReference b(m.X[ref.anchor1], m.X[ref.anchor2], m.X[node], m.gravity);
+    expected = b.positions(r.times);
+  }
+  ReferenceError e;
+  e.kind = ref.kind;
+  e.probe = probes.probes()[ref.probe].name;
+  for (size_t k = 0; k < r.times.size(); ++k) {
+    const Vec3 x(r.rows[k][off], r.rows[k][off + 1], r.rows[k][off + 2]);
+    e.maxError = std::max(e.maxError, (x - expected[k]).norm());
+    e.motionSize = std::max(e.motionSize, (expected[k] - expected.front()).norm());
+  }
+  return e;
+}
+
+class Progress {
+ public:
+  explicit Progress(bool on) : on_(on && isatty(STDERR_FILENO)) {}
+  void update(long step, double t, double tEnd, double dt, int newton, double avg, long rejected,
+              bool force = false) {
+    if (!on_) return;
+    const auto now = std::chrono::steady_clock::now();
+    if (!force && now - last_ < std::chrono::milliseconds(200)) return;
+    last_ = now;
+    std::fprintf(stderr, "\r  step %7ld  t = %-10.6g / %-8.4g dt = %-9.3g newton %2d (avg %.2f)  "
+                 "rejected %ld   ", step, t, tEnd, dt, newton, avg, rejected);
+  }
+  void finish() {
+    if (on_) std::fputc('\n', stderr);
+  }
+
+ private:
+  bool on_;
+  std::chrono::steady_clock::time_point last_{};
+};
+
+}  // namespace
+
+RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
+  const auto wall0 = std::chrono::steady_clock::now();
+  RunResult r;
+  const Model& m = spec.model;
+  const SolverSpec& sv = spec.solver;
+  StructuralSystem sys(m, sv.search);
+  NewtonSettings ns;
+  ns.maxIterations = sv.maxNewton;
+  ns.tolDisplacement = sv.tolDisplacement > 0 ? sv.tolDisplacement : 1e-10 * modelSize(m);
+  ns.verbose = options.verboseNewton;
+  GeneralizedAlpha integrator(
+      sys, sv.rhoInf,
+      sv.integrator == "bossak" ? AlphaScheme::Bossak : AlphaScheme::ChungHulbert, ns);
+  ProbeSet probes(m, spec.output.probes);
+  r.columns = probes.columns();
+
+  std::unique_ptr<CsvWriter> csv;
+  if (!options.outDir.empty()) {
+    ScopedTimer timer(sys.timings().output);
+    std::filesystem::create_directories(options.outDir);
+    csv = std::make_unique<CsvWriter>(options.outDir + "/probes.csv", r.columns);
+  }
+  DynamicState state = integrator.initialState();
+  auto record = [&](const DynamicState& s) {
+    ScopedTimer timer(sys.timings().output);
+    r.times.push_back(s.t);
+    r.rows.push_back(probes.evaluate(sys, s));
+    if (csv) csv->row(s.t, r.rows.back());
+    const auto e = sys.energy(s.x, s.v);
+    if (r.times.size() == 1) r.energyInitial = e.total();
+    r.energyMaxDrift = std::max(r.energyMaxDrift, std::abs(e.total() - r.energyInitial));
+    r.kineticMax = std::max(r.kineticMax, e.kinetic);
+  };
+
+  Progress progress(options.progress);
+  if (sv.type == "static") {
+    sys.updateState(state.x);
+    sys.commit(state.x);
+    const auto rep = integrator.solveStatic(state, sv.loadSteps);
+    r.newtonIterations = rep.iterations;
+    r.steps = sv.loadSteps;
+    if (!rep.converged) r.status = "diverged", r.reason = rep.failure;
+    state.t = 1.0;
+    record(state);
+  } else {
+    integrator.computeInitialAcceleration(state);
+    sys.commit(state.x);
+    record(state);
+    double dt = sv.dt, eventStep = 0.0;
+    int successesSinceCut = 0;
+    const double tEnd = sv.tEnd;
+    long outputIndex = 1;
+    while (state.t < tEnd - 1e-12 * sv.dt) {
+      double h = std::min(dt, tEnd - state.t);
+      if (spec.output.interval > 0)
+        h = std::min(h, outputIndex * spec.output.interval - state.t);
+      // Avoid a sliver step before an output time or the end.
+      if (h < 1e-9 * sv.dt) h = std::min(dt, tEnd - state.t);
+      if (eventStep > 0) h = std::min(h, eventStep);
+      const NewtonReport rep = integrator.step(state, h);
+      r.newtonIterations += rep.iterations;
+      eventStep = 0.0;
+      if (!rep.converged && rep.eventFraction > 0.0 && h * rep.eventFraction >= sv.dtMin) {
+        // Event location: retry the step so that it ends where the event happens.
+        ++r.eventRetries;
+        eventStep = h * rep.eventFraction;
+        continue;
+      }
+      if (!rep.converged) {
+        ++r.rejectedSteps;
+        dt = 0.5 * h;
+        successesSinceCut = 0;
+        if (dt < sv.dtMin) {
+          r.status = "diverged";
+          r.reason = "step rejected at t = " + std::to_string(state.t) + " with dt = " +
+                     std::to_string(h) + " (" + rep.failure + "); dt would fall below dt_min";
+          break;
+        }
+        continue;
+      }
+      ++r.steps;
+      r.maxNewtonInStep = std::max(r.maxNewtonInStep, rep.iterations);
+      if (dt < sv.dt && ++successesSinceCut >= 4) dt = std::min(2 * dt, sv.dt), successesSinceCut = 0;
+      bool out = false;
+      if (spec.output.interval > 0) {
+        if (state.t >= outputIndex * spec.output.interval - 1e-9 * sv.dt) out = true, ++outputIndex;
+      } else {
+        out = r.steps % spec.output.everySteps == 0;
+      }
+      if (state.t >= tEnd - 1e-12 * sv.dt) out = true;
+      if (out) record(state);
+      progress.update(r.steps, state.t, tEnd, h, rep.iterations, r.newtonPerStep(),
+                      r.rejectedSteps);
+    }
+    progress.update(r.steps, state.t, tEnd, dt, 0, r.newtonPerStep(), r.rejectedSteps, true);
+    progress.finish();
+    if (r.status != "completed" && (r.times.empty() || r.times.back() != state.t))
+      record(state);  // the last good state
+  }
+  r.finalTime = state.t;
+  r.timings = sys.timings();
+  r.linearSolver = integrator.linearSolver().kindName();
+  r.symbolicAnalyses = integrator.linearSolver().analyses();
+  r.equations = sys.numEquations();
+  r.nonZeros = sys.matrix().nonZeros();
+  for (const auto* g : sys.slidingGroups()) r.handovers.push_back(g->state().committedHandovers());
+  r.reference = compareWithReference(spec, r, probes);
+  r.wallTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  if (!options.outDir.empty()) writeSummary(options.outDir + "/summary.json", spec, r);
+  return r;
+}
+
+void writeSummary(const std::string& path, const CaseSpec& spec, const RunResult& r) {
+  using nlohmann::json;
+  const auto& t = r.timings;
+  json j;
+  j["case"] = spec.name;
+  j["case_file"] = spec.file;
+  j["status"] = r.status;
+  if (!r.reason.empty()) j["reason"] = r.reason;
+  j["steps"] = r.steps;
+  j["rejected_steps"] = r.rejectedSteps;
+  j["event_retries"] = r.eventRetries;  // steps cut to end where a slider meets a node
+  j["newton_iterations"] = r.newtonIterations;
+  j["newton_iterations_per_step"] = r.newtonPerStep();
+  j["max_newton_iterations_in_a_step"] = r.maxNewtonInStep;
+  j["final_time"] = r.finalTime;
+  const double accounted = t.assembly + t.search + t.factorisation + t.solve + t.output;
+  j["wall_time"] = {{"total", r.wallTime},       {"assembly", t.assembly},
+                    {"search", t.search},        {"factorisation", t.factorisation},
+                    {"solve", t.solve},          {"output", t.output},
+                    {"other", std::max(0.0, r.wallTime - accounted)}};
+  j["counts"] = {{"assemblies", t.assemblies},
+                 {"searches", t.searches},
+                 {"factorisations", t.factorisations},
+                 {"solves", t.solves},
+                 {"symbolic_analyses", r.symbolicAnalyses}};
+  j["system"] = {{"equations", r.equations},
+                 {"nonzeros", r.nonZeros},
+                 {"linear_solver", r.linearSolver}};
+  j["solver"] = {{"type", spec.solver.type},
+                 {"dt", spec.solver.dt},
+                 {"rho_inf", spec.solver.rhoInf},
+                 {"integrator", spec.solver.integrator},
+                 {"mass", spec.model.massKind == kernels::MassKind::Lumped ? "lumped" : "consistent"},
+                 {"search", spec.solver.search == SliderSearch::NearestLength ? "nearest_length"
+                                                                             : "material_coordinate"}};
+  j["sliding_handovers"] = r.handovers;
+  j["energy"] = {{"initial", r.energyInitial},
+                 {"max_drift", r.energyMaxDrift},
+                 {"max_kinetic", r.kineticMax}};
+  if (r.reference) {
+    const auto& e = *r.reference;
+    j["reference"] = {{"kind", e.kind},
+                      {"probe", e.probe},
+                      {"max_error", e.maxError},
+                      {"motion_size", e.motionSize},
+                      {"relative_max_error", e.relative()}};
+  }
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream f(tmp);
+    f << j.dump(2) << "\n";
+  }
+  std::filesystem::rename(tmp, path);
+}
+
+}  // namespace chute

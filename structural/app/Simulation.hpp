@@ -1,0 +1,50 @@
+#pragma once
+// Runs a case: time stepping with step rejection, probes, the comparison with the case's
+// reference, summary.json. Used by `chute run` and by the case tests.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "case/CaseSpec.hpp"
+#include "solver/Timings.hpp"
+
+namespace chute {
+
+struct RunOptions {
+  std::string outDir;     // empty: write nothing
+  bool progress = false;  // one updating status line on stderr
+  bool verboseNewton = false;
+};
+
+struct ReferenceError {
+  std::string kind, probe;
+  double maxError = 0.0;    // max over output times of |x - x_ref|
+  double motionSize = 0.0;  // max over output times of |x_ref(t) - x_ref(0)|
+  double relative() const { return motionSize > 0 ? maxError / motionSize : maxError; }
+};
+
+struct RunResult {
+  std::string status = "completed";  // or "diverged"
+  std::string reason;
+  long steps = 0, rejectedSteps = 0, eventRetries = 0, newtonIterations = 0;
+  int maxNewtonInStep = 0;
+  double finalTime = 0.0, wallTime = 0.0;
+  Timings timings;
+  std::string linearSolver;
+  int equations = 0;
+  long nonZeros = 0, symbolicAnalyses = 0;
+  std::vector<long> handovers;  // per sliding group
+  double energyInitial = 0.0, energyMaxDrift = 0.0, kineticMax = 0.0;
+  std::vector<std::string> columns;
+  std::vector<double> times;
+  std::vector<std::vector<double>> rows;
+  std::optional<ReferenceError> reference;
+  double newtonPerStep() const { return steps ? double(newtonIterations) / steps : 0.0; }
+};
+
+RunResult runCase(const CaseSpec& spec, const RunOptions& options);
+
+// Writes summary.json for a run.
+void writeSummary(const std::string& path, const CaseSpec& spec, const RunResult& r);
+
+}  // namespace chute

@@ -1,0 +1,395 @@
+// Case file -> CaseSpec. The schema is documented in README.md ("Case files").
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "case/CaseSpec.hpp"
+#include "case/TomlTable.hpp"
+
+namespace chute {
+
+std::vector<std::string> ProbeSpec::columns() const {
+  std::vector<std::string> q;
+  if (kind == "node_position") q = {"x", "y", "z"};
+  if (kind == "node_velocity") q = {"vx", "vy", "vz"};
+  if (kind == "slider") q = {"s", "element"};
+  if (kind == "energy") q = {"kinetic", "strain", "gravity", "total"};
+  if (kind == "line_force") q = {"N", "strain"};
+  for (auto& s : q) s = name + "." + s;
+  return q;
+}
+
+namespace {
+
+toml::value parseFile(const std::string& file) {
+  if (!std::filesystem::exists(file)) throw CaseError(file + ": cannot open: no such file");
+  try {
+    return toml::parse(file);
+  } catch (const std::exception& e) {
+    throw CaseError(std::string("malformed TOML: ") + e.what());
+  }
+}
+
+void applyOverride(toml::value& root, const std::string& file, const std::string& assignment) {
+  const auto eq = assignment.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw CaseError("--set " + assignment + ": expected key=value");
+  const std::string path = assignment.substr(0, eq), text = assignment.substr(eq + 1);
+  std::vector<std::string> keys;
+  std::stringstream ss(path);
+  for (std::string k; std::getline(ss, k, '.');) {
+    if (k.empty()) throw CaseError("--set " + assignment + ": empty key in '" + path + "'");
+    keys.push_back(k);
+  }
+  toml::value* node = &root;
+  for (size_t i = 0; i + 1 < keys.size(); ++i) {
+    auto& t = node->as_table();
+    auto it = t.find(keys[i]);
+    if (it == t.end()) {
+      throw CaseError("--set " + assignment + ": " + file + " has no table '" + keys[i] +
+                      "' on the path " + path);
+    }
+    if (!it->second.is_table())
+      throw CaseError("--set " + assignment + ": '" + keys[i] + "' in " + path + " is not a table");
+    node = &it->second;
+  }
+  toml::value parsed;
+  try {
+    std::istringstream in("v = " + text);
+    parsed = toml::parse(in, "--set " + path).as_table().at("v");
+  } catch (const std::exception& e) {
+    throw CaseError("--set " + assignment + ": not a TOML value: " + e.what());
+  }
+  if (parsed.is_table() || parsed.is_array())
+    throw CaseError("--set " + assignment + ": only scalars can be set");
+  auto& t = node->as_table();
+  auto it = t.find(keys.back());
+  if (it != t.end() && (it->second.is_table() || it->second.is_array()))
+    throw CaseError("--set " + assignment + ": " + path + " is not a scalar in " + file);
+  t[keys.back()] = parsed;
+}
+
+kernels::LineMaterial readMaterial(TomlTable t) {
+  kernels::LineMaterial m;
+  const std::string kind = t.choice("kind", "cable", {"cable", "truss"});
+  m.tensionOnly = kind == "cable";
+  m.E = t.positive("E");
+  m.area = t.positive("area");
+  m.density = t.nonNegative("density", 0.0);
+  m.compressionStiffnessRatio = t.nonNegative("compression_stiffness_ratio", 0.0);
+  t.finish();
+  return m;
+}
+
+int nodeRef(const Model& m, TomlTable& t, const std::string& key, const std::string& name) {
+  auto it = m.nodeByName.find(name);
+  if (it == m.nodeByName.end()) t.fail(key, "unknown node '" + name + "'");
+  return it->second;
+}
+
+int materialRef(const Model& m, TomlTable& t) {
+  const std::string name = t.string("material");
+  for (size_t i = 0; i < m.materialName.size(); ++i)
+    if (m.materialName[i] == name) return static_cast<int>(i);
+  t.fail("material", "unknown material '" + name + "'");
+}
+
+// Points at equal arc length along a polyline, n intervals; returns n + 1 points.
+std::vector<Vec3> resample(const std::vector<Vec3>& path, int n, double* totalLength) {
+  std::vector<double> s(path.size(), 0.0);
+  for (size_t i = 1; i < path.size(); ++i) s[i] = s[i - 1] + (path[i] - path[i - 1]).norm();
+  *totalLength = s.back();
+  std::vector<Vec3> out;
+  size_t seg = 1;
+  for (int k = 0; k <= n; ++k) {
+    const double target = s.back() * k / n;
+    while (seg + 1 < path.size() && s[seg] < target) ++seg;
+    const double len = s[seg] - s[seg - 1];
+    const double f = len > 0 ? std::clamp((target - s[seg - 1]) / len, 0.0, 1.0) : 0.0;
+    out.push_back(path[seg - 1] + f * (path[seg] - path[seg - 1]));
+  }
+  out.front() = path.front();
+  out.back() = path.back();
+  return out;
+}
+
+std::vector<int> pathNodes(const Model& m, TomlTable& t) {
+  const auto names = t.strings("path");
+  if (names.size() < 2) t.fail("path", "needs at least two nodes");
+  std::vector<int> ids;
+  for (const auto& n : names) ids.push_back(nodeRef(m, t, "path", n));
+  return ids;
+}
+
+void readCable(Model& m, TomlTable t, int index) {
+  CableElement proto;
+  const std::string name = t.string("name", "cables" + std::to_string(index));
+  proto.material = materialRef(m, t);
+  const auto ids = pathNodes(m, t);
+  const long perSegment = t.integer("elements_per_segment", 1, 1, 1000000);
+  const double prestrain = t.number("prestrain", 0.0);
+  if (prestrain <= -1.0) t.fail("prestrain", "must be > -1");
+  t.finish();
+  proto.set = static_cast<int>(m.lineSets.size());
+  m.lineSets.push_back({name, false});
+  for (size_t i = 0; i + 1 < ids.size(); ++i) {
+    const Vec3 a = m.X[ids[i]], b = m.X[ids[i + 1]];
+    if ((b - a).norm() <= 0.0)
+      t.fail("path", "zero-length segment between '" + m.nodeName[ids[i]] + "' and '" +
+                         m.nodeName[ids[i + 1]] + "'");
+    int prev = ids[i];
+    for (long k = 1; k <= perSegment; ++k) {
+      const int next = k == perSegment ? ids[i + 1]
+                                       : m.addNode(a + (b - a) * (double(k) / perSegment),
+                                                   name + "." + std::to_string(m.numNodes()));
+      CableElement c = proto;
+      c.a = prev;
+      c.b = next;
+      c.L = (m.X[next] - m.X[prev]).norm() / (1.0 + prestrain);
+      m.cables.push_back(c);
+      prev = next;
+    }
+  }
+}
+
+void readSlidingGroup(Model& m, TomlTable t, int index) {
+  SlidingGroupDef g;
+  g.name = t.string("name", "sliding_group" + std::to_string(index));
+  g.material = materialRef(m, t);
+  const auto path = pathNodes(m, t);
+  std::vector<int> sliders;
+  for (const auto& s : t.strings("sliders")) sliders.push_back(nodeRef(m, t, "sliders", s));
+  if (sliders.empty()) t.fail("sliders", "a sliding group needs at least one slider");
+  std::set<int> sliderSet(sliders.begin(), sliders.end());
+  if (sliderSet.size() != sliders.size()) t.fail("sliders", "a slider is listed twice");
+  if (sliderSet.count(path.front()) || sliderSet.count(path.back()))
+    t.fail("path", "the chain's end nodes cannot be sliders");
+  for (size_t i = 1; i + 1 < path.size(); ++i)
+    if (!sliderSet.count(path[i]))
+      t.fail("path", "interior path node '" + m.nodeName[path[i]] +
+                         "' is not a slider (the path runs end -> sliders -> end)");
+  const long n = t.integer("elements", 1, 1, 1000000);
+  const double prestrain = t.number("prestrain", 0.0);
+  if (prestrain <= -1.0) t.fail("prestrain", "must be > -1");
+  std::vector<long> active;
+  if (t.has("active")) active = t.integers("active");
+  t.finish();
+
+  std::vector<Vec3> geom;
+  for (int id : path) geom.push_back(m.X[id]);
+  double total = 0.0;
+  const auto pts = resample(geom, static_cast<int>(n), &total);
+  if (total <= 0.0) t.fail("path", "the path has zero length");
+  const double h = total / n;
+  g.chain.push_back(path.front());
+  for (long k = 1; k < n; ++k) g.chain.push_back(m.addNode(pts[k], g.name + "." + std::to_string(k)));
+  g.chain.push_back(path.back());
+  g.refLength.assign(n, h / (1.0 + prestrain));
+  g.sliders = sliders;
+  g.set = static_cast<int>(m.lineSets.size());
+  m.lineSets.push_back({g.name, true});
+
+  if (!active.empty() && active.size() != sliders.size())
+    t.fail("active", "needs one element index per slider (" + std::to_string(sliders.size()) + ")");
+  // Arc length of each path vertex, for the initially active element of sliders on the path.
+  std::vector<double> arc(path.size(), 0.0);
+  for (size_t i = 1; i < path.size(); ++i) arc[i] = arc[i - 1] + (geom[i] - geom[i - 1]).norm();
+  for (size_t s = 0; s < sliders.size(); ++s) {
+    int k;
+    if (!active.empty()) {
+      if (active[s] < 0 || active[s] >= n)
+        t.fail("active", "element " + std::to_string(active[s]) + " out of range [0, " +
+                             std::to_string(n - 1) + "]");
+      k = static_cast<int>(active[s]);
+    } else {
+      auto it = std::find(path.begin(), path.end(), sliders[s]);
+      if (it == path.end())
+        t.fail("active", "slider '" + m.nodeName[sliders[s]] +
+                             "' is not on the path: give its initially active element");
+      const double sArc = arc[it - path.begin()];
+      k = std::clamp(static_cast<int>(std::floor(sArc / h)), 0, static_cast<int>(n - 1));
+    }
+    // The slider must lie on its active element: l = l1 + l2 equals the element's current
+    // length (1 + prestrain) L up to round-off.
+    const Vec3 xs = m.X[sliders[s]];
+    const double l = (xs - m.X[g.chain[k]]).norm() + (xs - m.X[g.chain[k + 1]]).norm();
+    if (std::abs(l - h) > 1e-6 * h)
+      t.fail(active.empty() ? "sliders" : "active",
+             "slider '" + m.nodeName[sliders[s]] + "' is not on element " + std::to_string(k) +
+                 " of the chain (l1 + l2 = " + std::to_string(l) + ", element length " +
+                 std::to_string(h) + ")");
+    for (size_t o = 0; o < s; ++o)
+      if (g.initialActive[o] == k)
+        t.fail("sliders", "two sliders on element " + std::to_string(k) +
+                              ": use more elements so each slider has its own");
+    g.initialActive.push_back(k);
+  }
+  m.groups.push_back(std::move(g));
+}
+
+ProbeSpec readProbe(const Model& m, TomlTable t) {
+  ProbeSpec p;
+  p.name = t.string("name");
+  p.kind = t.choice("kind", "node_position",
+                    {"node_position", "node_velocity", "slider", "energy", "line_force"});
+  if (p.kind == "node_position" || p.kind == "node_velocity") {
+    p.node = nodeRef(m, t, "node", t.string("node", p.name));
+  } else if (p.kind == "slider") {
+    const std::string g = t.string("group");
+    for (size_t i = 0; i < m.groups.size(); ++i)
+      if (m.groups[i].name == g) p.group = static_cast<int>(i);
+    if (p.group < 0) t.fail("group", "unknown sliding group '" + g + "'");
+    const auto& sl = m.groups[p.group].sliders;
+    const int node = nodeRef(m, t, "slider", t.string("slider", m.nodeName[sl.front()]));
+    auto it = std::find(sl.begin(), sl.end(), node);
+    if (it == sl.end()) t.fail("slider", "node is not a slider of group '" + g + "'");
+    p.slider = static_cast<int>(it - sl.begin());
+  } else if (p.kind == "line_force") {
+    const std::string set = t.string("set");
+    for (size_t i = 0; i < m.lineSets.size(); ++i)
+      if (m.lineSets[i].name == set) p.lineSet = static_cast<int>(i);
+    if (p.lineSet < 0) t.fail("set", "unknown cable set or sliding group '" + set + "'");
+    long count = 0;
+    for (const auto& c : m.cables) count += c.set == p.lineSet;
+    for (const auto& g : m.groups) count += g.set == p.lineSet ? g.numElements() : 0;
+    p.element = static_cast<int>(t.integer("element", 0, 0, count - 1));
+  }
+  t.finish();
+  return p;
+}
+
+}  // namespace
+
+CaseSpec readCase(const std::string& file, const std::vector<std::string>& overrides) {
+  toml::value root = parseFile(file);
+  for (const auto& o : overrides) applyOverride(root, file, o);
+  TomlTable top(root, "", file);
+  CaseSpec c;
+  c.file = file;
+  c.name = top.string("name", std::filesystem::path(file).stem().string());
+  c.description = top.string("description", "");
+  c.units = top.string("units", "");
+  Model& m = c.model;
+
+  {
+    TomlTable nodes = top.table("nodes");
+    for (const auto& name : nodes.keys()) {
+      if (name.find('.') != std::string::npos) nodes.fail(name, "node names cannot contain '.'");
+      m.addNode(nodes.vec3(name), name);
+    }
+    if (m.numNodes() == 0) top.fail("nodes", "no nodes");
+  }
+  if (top.has("materials")) {
+    TomlTable mats = top.table("materials");
+    for (const auto& name : mats.keys()) {
+      m.materialName.push_back(name);
+      m.materials.push_back(readMaterial(mats.table(name)));
+    }
+  }
+  int i = 0;
+  for (auto& t : top.tables("cables")) readCable(m, t, i++);
+  i = 0;
+  for (auto& t : top.tables("sliding_groups")) readSlidingGroup(m, t, i++);
+  {
+    std::set<std::string> names;
+    for (const auto& s : m.lineSets)
+      if (!names.insert(s.name).second)
+        top.fail(s.sliding ? "sliding_groups" : "cables", "duplicate set name '" + s.name + "'");
+  }
+  for (auto& t : top.tables("point_masses")) {
+    const int n = nodeRef(m, t, "node", t.string("node"));
+    m.pointMass[n] += t.positive("mass");
+    t.finish();
+  }
+  if (top.has("boundary")) {
+    TomlTable b = top.table("boundary");
+    for (const auto& name : b.strings("fixed", {}))
+      m.constraint[nodeRef(m, b, "fixed", name)].fixed = {true, true, true};
+    for (auto& t : b.tables("constraints")) {
+      const std::string dofs = t.string("dofs");
+      if (dofs.empty() || dofs.find_first_not_of("xyz") != std::string::npos)
+        t.fail("dofs", "expected a combination of x, y, z");
+      for (const auto& name : t.strings("nodes")) {
+        const int n = nodeRef(m, t, "nodes", name);
+        for (char d : dofs) m.constraint[n].fixed[d - 'x'] = true;
+      }
+      t.finish();
+    }
+    b.finish();
+  }
+  if (top.has("loads")) {
+    TomlTable l = top.table("loads");
+    m.gravity = l.vec3("gravity", Vec3::Zero());
+    l.finish();
+  }
+  {
+    TomlTable s = top.table("solver");
+    auto& sv = c.solver;
+    sv.type = s.choice("type", "dynamic", {"dynamic", "static"});
+    if (sv.type == "dynamic") {
+      sv.dt = s.positive("dt");
+      sv.tEnd = s.positive("t_end");
+      sv.rhoInf = s.number("rho_inf", 0.9);
+      sv.integrator = s.choice("integrator", "bossak", {"bossak", "generalized_alpha"});
+      if (sv.rhoInf < 0.0 || sv.rhoInf > 1.0) s.fail("rho_inf", "must be in [0, 1]");
+      sv.dtMin = s.positive("dt_min", sv.dt * 1e-6);
+      if (sv.dtMin > sv.dt) s.fail("dt_min", "must not exceed dt");
+    }
+    sv.loadSteps = static_cast<int>(s.integer("load_steps", 1, 1, 1000000));
+    m.massKind = s.choice("mass", "lumped", {"lumped", "consistent"}) == "lumped"
+                     ? kernels::MassKind::Lumped
+                     : kernels::MassKind::Consistent;
+    sv.search = s.choice("search", "material_coordinate",
+                         {"nearest_length", "material_coordinate"}) == "nearest_length"
+                    ? SliderSearch::NearestLength
+                    : SliderSearch::MaterialCoordinate;
+    sv.maxNewton = static_cast<int>(s.integer("newton_max_iterations", 25, 1, 1000));
+    if (s.has("newton_tolerance")) sv.tolDisplacement = s.positive("newton_tolerance");
+    s.finish();
+  }
+  if (top.has("output")) {
+    TomlTable o = top.table("output");
+    c.output.everySteps = static_cast<int>(o.integer("every", 1, 1, 1L << 40));
+    if (o.has("interval")) c.output.interval = o.positive("interval");
+    if (o.has("interval") && o.has("every")) o.fail("every", "give either every or interval");
+    std::set<std::string> names;
+    for (auto& p : o.tables("probes")) {
+      c.output.probes.push_back(readProbe(m, p));
+      if (!names.insert(c.output.probes.back().name).second)
+        p.fail("name", "duplicate probe name '" + c.output.probes.back().name + "'");
+    }
+    o.finish();
+  }
+  if (top.has("reference")) {
+    TomlTable r = top.table("reference");
+    ReferenceSpec ref;
+    ref.kind = r.choice("kind", "", {"pulley", "bead_ellipse"});
+    const std::string probe = r.string("probe");
+    for (size_t p = 0; p < c.output.probes.size(); ++p)
+      if (c.output.probes[p].name == probe) ref.probe = static_cast<int>(p);
+    if (ref.probe < 0 || c.output.probes[ref.probe].kind != "node_position")
+      r.fail("probe", "no node_position probe named '" + probe + "'");
+    if (ref.kind == "pulley") {
+      ref.pulley = nodeRef(m, r, "pulley", r.string("pulley"));
+      const std::string group = r.string("group");
+      for (const auto& g : m.groups)
+        if (g.name == group)
+          for (double L : g.refLength) ref.ropeLength += L;
+      if (ref.ropeLength <= 0.0) r.fail("group", "unknown sliding group '" + group + "'");
+    } else {
+      const auto anchors = r.strings("anchors");
+      if (anchors.size() != 2) r.fail("anchors", "expected the two fixed rope ends");
+      ref.anchor1 = nodeRef(m, r, "anchors", anchors[0]);
+      ref.anchor2 = nodeRef(m, r, "anchors", anchors[1]);
+    }
+    r.finish();
+    c.reference = ref;
+  }
+  top.finish();
+  return c;
+}
+
+}  // namespace chute

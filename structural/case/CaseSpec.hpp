@@ -1,0 +1,58 @@
+#pragma once
+// Everything a case file describes: the model, solver and output settings, probes and the
+// reference the run is compared with.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "model/Model.hpp"
+#include "model/SlidingGroupState.hpp"
+
+namespace chute {
+
+struct ProbeSpec {
+  std::string name;
+  std::string kind;  // node_position, node_velocity, slider, energy, line_force
+  int node = -1;
+  int group = -1, slider = -1;  // slider probes
+  int lineSet = -1, element = -1;  // line_force probes: set index and element within it
+  std::vector<std::string> columns() const;  // "<name>.<quantity>"
+};
+
+struct ReferenceSpec {
+  std::string kind;   // "pulley" (F13) or "bead_ellipse"
+  int probe = -1;     // index of the node_position probe compared
+  int pulley = -1;    // pulley: the fixed slider node
+  double ropeLength = 0.0;
+  int anchor1 = -1, anchor2 = -1;  // bead_ellipse: the rope's fixed ends
+};
+
+struct SolverSpec {
+  std::string type = "dynamic";  // or "static"
+  double dt = 1e-3, tEnd = 1.0, dtMin = 0.0, rhoInf = 0.9;
+  int maxNewton = 25;
+  double tolDisplacement = 0.0;  // 0: 1e-10 x model size
+  SliderSearch search = SliderSearch::MaterialCoordinate;
+  std::string integrator = "bossak";  // or "generalized_alpha" (Chung-Hulbert)
+  int loadSteps = 1;
+};
+
+struct OutputSpec {
+  int everySteps = 1;
+  double interval = 0.0;  // > 0: output times at multiples of this instead of every N steps
+  std::vector<ProbeSpec> probes;
+};
+
+struct CaseSpec {
+  std::string file, name, description, units;
+  Model model;
+  SolverSpec solver;
+  OutputSpec output;
+  std::optional<ReferenceSpec> reference;
+};
+
+// Reads and validates a case file; overrides are "dotted.key=value" strings (--set).
+// Throws CaseError naming file, line and key.
+CaseSpec readCase(const std::string& file, const std::vector<std::string>& overrides = {});
+
+}  // namespace chute

@@ -1,0 +1,63 @@
+#pragma once
+// A validating view of one TOML table: typed accessors that remember every key they were asked
+// for, range checks, and finish(), which rejects keys nobody asked for with a did-you-mean.
+// Every error names file, line and the key's dotted path.
+#include <Eigen/Core>
+#include <set>
+#include <string>
+#include <toml.hpp>
+#include <vector>
+
+#include "case/CaseError.hpp"
+
+namespace chute {
+
+class TomlTable {
+ public:
+  TomlTable(const toml::value& table, std::string path, std::string file);
+
+  bool has(const std::string& key) const;
+  const std::string& path() const { return path_; }
+
+  double number(const std::string& key);
+  double number(const std::string& key, double fallback);
+  double positive(const std::string& key);
+  double positive(const std::string& key, double fallback);
+  double nonNegative(const std::string& key, double fallback);
+  long integer(const std::string& key, long fallback, long min, long max);
+  bool boolean(const std::string& key, bool fallback);
+  std::string string(const std::string& key);
+  std::string string(const std::string& key, const std::string& fallback);
+  std::string choice(const std::string& key, const std::string& fallback,
+                     const std::vector<std::string>& allowed);
+  Eigen::Vector3d vec3(const std::string& key);
+  Eigen::Vector3d vec3(const std::string& key, const Eigen::Vector3d& fallback);
+  std::vector<std::string> strings(const std::string& key);
+  std::vector<std::string> strings(const std::string& key, const std::vector<std::string>& fallback);
+  std::vector<long> integers(const std::string& key);
+
+  TomlTable table(const std::string& key);
+  std::vector<TomlTable> tables(const std::string& key);  // array of tables; empty if absent
+  // Every key of this table (for tables whose keys are names, such as [nodes]).
+  std::vector<std::string> keys() const;
+
+  // Throws for every key present that was never asked for.
+  void finish() const;
+
+  [[noreturn]] void fail(const std::string& key, const std::string& message) const;
+  [[noreturn]] void failAt(const toml::value& v, const std::string& key,
+                           const std::string& message) const;
+  std::string where(const std::string& key) const;  // "file:line: path.key"
+
+ private:
+  const toml::value& at(const std::string& key) const;
+  std::string dotted(const std::string& key) const;
+  const toml::value* table_;
+  std::string path_, file_;
+  mutable std::set<std::string> asked_;
+};
+
+// Levenshtein distance, for did-you-mean suggestions.
+int editDistance(const std::string& a, const std::string& b);
+
+}  // namespace chute
