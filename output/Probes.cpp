@@ -47,7 +47,8 @@ std::pair<double, double> lineForce(const Model& m, const StructuralSystem& sys,
       const auto c = kernels::cableForce(x1, x2, def.refLength[element], mat, false);
       return {c.axialForce, c.strain};
     }
-    const auto a = kernels::slidingForce(x1, x2, at(def.sliders[s]), def.refLength[element], mat, false);
+    const auto a =
+        kernels::slidingForce(x1, x2, at(def.sliders[s]), def.refLength[element], mat, false);
     return {a.axialForce, a.strain};
   }
   throw std::logic_error("line_force probe: element not found");

@@ -36,7 +36,7 @@ std::optional<ReferenceError> compareWithReference(const CaseSpec& spec, const R
   if (ref.kind == "pulley") {
     const Vec3 d = m.X[node] - m.X[ref.pulley];
     verification::PulleyReference p{ref.ropeLength, d.norm(), m.gravity.norm(), m.X[ref.pulley],
-                                     d.normalized()};
+                                    d.normalized()};
     for (double t : r.times) expected.push_back(p.endPosition(t));
   } else {
     verification::BeadEllipseReference b(m.X[ref.anchor1], m.X[ref.anchor2], m.X[node], m.gravity);
@@ -62,8 +62,10 @@ class Progress {
     const auto now = std::chrono::steady_clock::now();
     if (!force && now - last_ < std::chrono::milliseconds(200)) return;
     last_ = now;
-    std::fprintf(stderr, "\r  step %7ld  t = %-10.6g / %-8.4g dt = %-9.3g newton %2d (avg %.2f)  "
-                 "rejected %ld   ", step, t, tEnd, dt, newton, avg, rejected);
+    std::fprintf(stderr,
+                 "\r  step %7ld  t = %-10.6g / %-8.4g dt = %-9.3g newton %2d (avg %.2f)  "
+                 "rejected %ld   ",
+                 step, t, tEnd, dt, newton, avg, rejected);
   }
   void finish() {
     if (on_) std::fputc('\n', stderr);
@@ -87,8 +89,8 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
   ns.tolDisplacement = sv.tolDisplacement > 0 ? sv.tolDisplacement : 1e-10 * modelSize(m);
   ns.verbose = options.verboseNewton;
   GeneralizedAlpha integrator(
-      sys, sv.rhoInf,
-      sv.integrator == "bossak" ? AlphaScheme::Bossak : AlphaScheme::ChungHulbert, ns);
+      sys, sv.rhoInf, sv.integrator == "bossak" ? AlphaScheme::Bossak : AlphaScheme::ChungHulbert,
+      ns);
   ProbeSet probes(m, spec.output.probes);
   r.columns = probes.columns();
 
@@ -130,8 +132,7 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
     long outputIndex = 1;
     while (state.t < tEnd - 1e-12 * sv.dt) {
       double h = std::min(dt, tEnd - state.t);
-      if (spec.output.interval > 0)
-        h = std::min(h, outputIndex * spec.output.interval - state.t);
+      if (spec.output.interval > 0) h = std::min(h, outputIndex * spec.output.interval - state.t);
       // Avoid a sliver step before an output time or the end.
       if (h < 1e-9 * sv.dt) h = std::min(dt, tEnd - state.t);
       if (eventStep > 0) h = std::min(h, eventStep);
@@ -150,15 +151,17 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
         successesSinceCut = 0;
         if (dt < sv.dtMin) {
           r.status = "diverged";
-          r.reason = "step rejected at t = " + std::to_string(state.t) + " with dt = " +
-                     std::to_string(h) + " (" + rep.failure + "); dt would fall below dt_min";
+          r.reason = "step rejected at t = " + std::to_string(state.t) +
+                     " with dt = " + std::to_string(h) + " (" + rep.failure +
+                     "); dt would fall below dt_min";
           break;
         }
         continue;
       }
       ++r.steps;
       r.maxNewtonInStep = std::max(r.maxNewtonInStep, rep.iterations);
-      if (dt < sv.dt && ++successesSinceCut >= 4) dt = std::min(2 * dt, sv.dt), successesSinceCut = 0;
+      if (dt < sv.dt && ++successesSinceCut >= 4)
+        dt = std::min(2 * dt, sv.dt), successesSinceCut = 0;
       bool out = false;
       if (spec.output.interval > 0) {
         if (state.t >= outputIndex * spec.output.interval - 1e-9 * sv.dt) out = true, ++outputIndex;
@@ -204,29 +207,31 @@ void writeSummary(const std::string& path, const CaseSpec& spec, const RunResult
   j["max_newton_iterations_in_a_step"] = r.maxNewtonInStep;
   j["final_time"] = r.finalTime;
   const double accounted = t.assembly + t.search + t.factorisation + t.solve + t.output;
-  j["wall_time"] = {{"total", r.wallTime},       {"assembly", t.assembly},
-                    {"search", t.search},        {"factorisation", t.factorisation},
-                    {"solve", t.solve},          {"output", t.output},
+  j["wall_time"] = {{"total", r.wallTime},
+                    {"assembly", t.assembly},
+                    {"search", t.search},
+                    {"factorisation", t.factorisation},
+                    {"solve", t.solve},
+                    {"output", t.output},
                     {"other", std::max(0.0, r.wallTime - accounted)}};
   j["counts"] = {{"assemblies", t.assemblies},
                  {"searches", t.searches},
                  {"factorisations", t.factorisations},
                  {"solves", t.solves},
                  {"symbolic_analyses", r.symbolicAnalyses}};
-  j["system"] = {{"equations", r.equations},
-                 {"nonzeros", r.nonZeros},
-                 {"linear_solver", r.linearSolver}};
-  j["solver"] = {{"type", spec.solver.type},
-                 {"dt", spec.solver.dt},
-                 {"rho_inf", spec.solver.rhoInf},
-                 {"integrator", spec.solver.integrator},
-                 {"mass", spec.model.massKind == kernels::MassKind::Lumped ? "lumped" : "consistent"},
-                 {"search", spec.solver.search == SliderSearch::NearestLength ? "nearest_length"
-                                                                             : "material_coordinate"}};
+  j["system"] = {
+      {"equations", r.equations}, {"nonzeros", r.nonZeros}, {"linear_solver", r.linearSolver}};
+  j["solver"] = {
+      {"type", spec.solver.type},
+      {"dt", spec.solver.dt},
+      {"rho_inf", spec.solver.rhoInf},
+      {"integrator", spec.solver.integrator},
+      {"mass", spec.model.massKind == kernels::MassKind::Lumped ? "lumped" : "consistent"},
+      {"search", spec.solver.search == SliderSearch::NearestLength ? "nearest_length"
+                                                                   : "material_coordinate"}};
   j["sliding_handovers"] = r.handovers;
-  j["energy"] = {{"initial", r.energyInitial},
-                 {"max_drift", r.energyMaxDrift},
-                 {"max_kinetic", r.kineticMax}};
+  j["energy"] = {
+      {"initial", r.energyInitial}, {"max_drift", r.energyMaxDrift}, {"max_kinetic", r.kineticMax}};
   if (r.reference) {
     const auto& e = *r.reference;
     j["reference"] = {{"kind", e.kind},

@@ -1,8 +1,9 @@
 // chute: command-line front end (interfaces.md "Command line"). A thin layer over the libraries.
+#include <fmt/core.h>
+
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <filesystem>
-#include <fmt/core.h>
 
 #include "app/Simulation.hpp"
 #include "case/CaseError.hpp"
@@ -29,10 +30,10 @@ int runCommand(const std::string& caseFile, std::string outDir,
   opt.verboseNewton = verboseNewton;
   const auto r = chute::runCase(spec, opt);
   if (!quiet) {
-    fmt::print("{}: {} at t = {:.6g}: {} steps, {} rejected, {:.2f} Newton iterations/step, "
-               "{:.3f} s wall\n",
-               spec.name, r.status, r.finalTime, r.steps, r.rejectedSteps, r.newtonPerStep(),
-               r.wallTime);
+    fmt::print(
+        "{}: {} at t = {:.6g}: {} steps, {} rejected, {:.2f} Newton iterations/step, "
+        "{:.3f} s wall\n",
+        spec.name, r.status, r.finalTime, r.steps, r.rejectedSteps, r.newtonPerStep(), r.wallTime);
     if (r.reference)
       fmt::print("  reference {} ({}): max error {:.3e}, {:.4f} % of the motion ({:.4g})\n",
                  r.reference->kind, r.reference->probe, r.reference->maxError,

@@ -16,7 +16,7 @@ struct EvalPoint {
   const Eigen::VectorXd& a;  // accelerations entering the inertia forces
   double t = 0.0;
   double cx = 1.0, cv = 0.0, ca = 0.0;
-  bool inertia = true;  // false in static mode
+  bool inertia = true;      // false in static mode
   double loadFactor = 1.0;  // scales external loads (static load stepping)
 };
 

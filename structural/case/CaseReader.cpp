@@ -185,7 +185,8 @@ void readSlidingGroup(Model& m, TomlTable t, int index) {
   if (total <= 0.0) t.fail("path", "the path has zero length");
   const double h = total / n;
   g.chain.push_back(path.front());
-  for (long k = 1; k < n; ++k) g.chain.push_back(m.addNode(pts[k], g.name + "." + std::to_string(k)));
+  for (long k = 1; k < n; ++k)
+    g.chain.push_back(m.addNode(pts[k], g.name + "." + std::to_string(k)));
   g.chain.push_back(path.back());
   g.refLength.assign(n, h / (1.0 + prestrain));
   g.sliders = sliders;

@@ -14,15 +14,15 @@ struct ProbeSpec {
   std::string name;
   std::string kind;  // node_position, node_velocity, slider, energy, line_force
   int node = -1;
-  int group = -1, slider = -1;  // slider probes
-  int lineSet = -1, element = -1;  // line_force probes: set index and element within it
+  int group = -1, slider = -1;               // slider probes
+  int lineSet = -1, element = -1;            // line_force probes: set index and element within it
   std::vector<std::string> columns() const;  // "<name>.<quantity>"
 };
 
 struct ReferenceSpec {
-  std::string kind;   // "pulley" (F13) or "bead_ellipse"
-  int probe = -1;     // index of the node_position probe compared
-  int pulley = -1;    // pulley: the fixed slider node
+  std::string kind;  // "pulley" (F13) or "bead_ellipse"
+  int probe = -1;    // index of the node_position probe compared
+  int pulley = -1;   // pulley: the fixed slider node
   double ropeLength = 0.0;
   int anchor1 = -1, anchor2 = -1;  // bead_ellipse: the rope's fixed ends
 };

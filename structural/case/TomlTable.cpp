@@ -15,7 +15,9 @@ std::string typeName(const toml::value& v) {
   if (v.is_table()) return "a table";
   return "a date/time";
 }
-int lineOf(const toml::value& v) { return static_cast<int>(v.location().line()); }
+int lineOf(const toml::value& v) {
+  return static_cast<int>(v.location().line());
+}
 }  // namespace
 
 int editDistance(const std::string& a, const std::string& b) {

@@ -33,7 +33,8 @@ class TomlTable {
   Eigen::Vector3d vec3(const std::string& key);
   Eigen::Vector3d vec3(const std::string& key, const Eigen::Vector3d& fallback);
   std::vector<std::string> strings(const std::string& key);
-  std::vector<std::string> strings(const std::string& key, const std::vector<std::string>& fallback);
+  std::vector<std::string> strings(const std::string& key,
+                                   const std::vector<std::string>& fallback);
   std::vector<long> integers(const std::string& key);
 
   TomlTable table(const std::string& key);

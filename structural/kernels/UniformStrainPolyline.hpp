@@ -27,10 +27,10 @@ using Vec3 = Eigen::Vector3d;
 using Mat3 = Eigen::Matrix3d;
 
 struct LineMaterial {
-  double E = 0.0;           // Young's modulus
-  double area = 0.0;        // reference cross-section A0
-  double density = 0.0;     // mass per reference volume
-  bool tensionOnly = true;  // cable (true) or truss (false)
+  double E = 0.0;                          // Young's modulus
+  double area = 0.0;                       // reference cross-section A0
+  double density = 0.0;                    // mass per reference volume
+  bool tensionOnly = true;                 // cable (true) or truss (false)
   double compressionStiffnessRatio = 0.0;  // E_c / E used when eps < 0 for a cable
 };
 
@@ -51,15 +51,15 @@ PartLength partLength(const Vec3& d, double apexRadius);
 template <int NumNodes>
 struct PolylineResult {
   static constexpr int kDofs = 3 * NumNodes;
-  double length = 0.0;  // current length l
-  double strain = 0.0;  // Green-Lagrange strain eps
+  double length = 0.0;      // current length l
+  double strain = 0.0;      // Green-Lagrange strain eps
   double axialForce = 0.0;  // N = E A0 eps l / L (second Piola-Kirchhoff force times stretch)
-  double energy = 0.0;  // W = E A0 L eps^2 / 2
-  std::array<double, NumNodes - 1> segmentLength{};   // (regularised) part lengths
-  std::array<Vec3, NumNodes - 1> segmentGradient{};   // d length_k / d x_{k+1}
-  Eigen::Matrix<double, kDofs, 1> dLength;  // D = dl/dx
-  Eigen::Matrix<double, kDofs, 1> force;  // internal force f = dW/dx
-  Eigen::Matrix<double, kDofs, kDofs> stiffness;  // K = d^2W/dx^2
+  double energy = 0.0;      // W = E A0 L eps^2 / 2
+  std::array<double, NumNodes - 1> segmentLength{};  // (regularised) part lengths
+  std::array<Vec3, NumNodes - 1> segmentGradient{};  // d length_k / d x_{k+1}
+  Eigen::Matrix<double, kDofs, 1> dLength;           // D = dl/dx
+  Eigen::Matrix<double, kDofs, 1> force;             // internal force f = dW/dx
+  Eigen::Matrix<double, kDofs, kDofs> stiffness;     // K = d^2W/dx^2
 };
 
 // x: node coordinates in path order. L: reference length. withTangent: compute stiffness.

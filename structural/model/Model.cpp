@@ -22,9 +22,11 @@ int Model::nodeId(const std::string& name) const {
 
 double Model::totalLineMass() const {
   double m = 0.0;
-  for (const auto& c : cables) m += materials[c.material].density * materials[c.material].area * c.L;
+  for (const auto& c : cables)
+    m += materials[c.material].density * materials[c.material].area * c.L;
   for (const auto& g : groups)
-    for (double L : g.refLength) m += materials[g.material].density * materials[g.material].area * L;
+    for (double L : g.refLength)
+      m += materials[g.material].density * materials[g.material].area * L;
   return m;
 }
 

@@ -31,10 +31,10 @@ struct SlidingGroupDef {
   std::string name;
   int material = -1;
   int set = -1;
-  std::vector<int> chain;         // node ids along the chain, chain.size() - 1 elements
-  std::vector<double> refLength;  // reference length of each element
-  std::vector<int> sliders;       // slider node ids
-  std::vector<int> initialActive; // initially active element per slider
+  std::vector<int> chain;          // node ids along the chain, chain.size() - 1 elements
+  std::vector<double> refLength;   // reference length of each element
+  std::vector<int> sliders;        // slider node ids
+  std::vector<int> initialActive;  // initially active element per slider
   int numElements() const { return static_cast<int>(refLength.size()); }
 };
 

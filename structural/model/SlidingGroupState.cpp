@@ -8,7 +8,9 @@
 namespace chute {
 
 namespace {
-Vec3 nodePos(const Eigen::VectorXd& x, int n) { return x.segment<3>(3 * n); }
+Vec3 nodePos(const Eigen::VectorXd& x, int n) {
+  return x.segment<3>(3 * n);
+}
 }  // namespace
 
 SlidingGroupState::SlidingGroupState(const SlidingGroupDef& def)
@@ -29,7 +31,9 @@ double SlidingGroupState::lengthMismatch(int slider, int element, const Eigen::V
   return std::abs(l - def_->refLength[element]);
 }
 
-bool SlidingGroupState::isActive(int element) const { return sliderOfElement(element) >= 0; }
+bool SlidingGroupState::isActive(int element) const {
+  return sliderOfElement(element) >= 0;
+}
 
 int SlidingGroupState::sliderOfElement(int element) const {
   for (size_t s = 0; s < trial_.size(); ++s)
@@ -116,7 +120,7 @@ bool SlidingGroupState::arriveAtNodes(const Model& model, Eigen::VectorXd& x,
       const int next = k + (end == 0 ? -1 : +1);
       const double dist = (nodePos(x, n3) - nodePos(x, ni)).norm();
       if (dist > radiusFraction * def_->refLength[k]) continue;
-      if (dist >= committedDistance_[end][s]) continue;  // not approaching this node
+      if (dist >= committedDistance_[end][s]) continue;       // not approaching this node
       if (next < 0 || next >= def_->numElements()) continue;  // the chain ends here
       bool nodeFree = true;
       for (int c = 0; c < 3; ++c) nodeFree &= !model.constraint[ni].fixed[c];
@@ -162,9 +166,9 @@ void SlidingGroupState::revert() {
 
 double SlidingGroupState::materialCoordinate(int slider, const Eigen::VectorXd& x) const {
   const int k = trial_[slider];
-  const double offset = kernels::sliderReferenceOffset(
-      nodePos(x, def_->chain[k]), nodePos(x, def_->chain[k + 1]),
-      nodePos(x, def_->sliders[slider]), def_->refLength[k]);
+  const double offset =
+      kernels::sliderReferenceOffset(nodePos(x, def_->chain[k]), nodePos(x, def_->chain[k + 1]),
+                                     nodePos(x, def_->sliders[slider]), def_->refLength[k]);
   return cumulativeRef_[k] + offset;
 }
 

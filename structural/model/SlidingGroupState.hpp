@@ -42,8 +42,8 @@ class SlidingGroupState {
   int activeElement(int slider) const { return trial_[slider]; }
   int committedActiveElement(int slider) const { return committed_[slider]; }
   void setActiveElement(int slider, int element);  // restart / checkpoint restore
-  bool isActive(int element) const;  // active for some slider (trial state)
-  int sliderOfElement(int element) const;  // -1 if inactive
+  bool isActive(int element) const;                // active for some slider (trial state)
+  int sliderOfElement(int element) const;          // -1 if inactive
 
   // Reference arc length from the chain's first node to the slider (uniform strain in the
   // active element: the slider splits its reference length as l1 : l2).
@@ -57,7 +57,7 @@ class SlidingGroupState {
   const SlidingGroupDef* def_;
   std::vector<int> trial_, committed_;
   std::vector<double> committedDistance_[2];  // slider to end node 1 / 2 at the step start
-  std::vector<int> pendingHandover_;  // per slider: -1 across end 1, +1 across end 2, 0 none
+  std::vector<int> pendingHandover_;   // per slider: -1 across end 1, +1 across end 2, 0 none
   std::vector<int> handoverAtCommit_;  // same, applied when the step is committed
   std::vector<double> cumulativeRef_;  // reference arc length at each chain node
   long handoversTrial_ = 0, handoversCommitted_ = 0;

@@ -184,8 +184,15 @@ NewtonReport GeneralizedAlpha::solveStatic(DynamicState& s, int nSteps) {
   for (int k = 1; k <= nSteps; ++k) {
     const double lambda = static_cast<double>(k) / nSteps;
     auto makePoint = [&] {
-      return OwnedPoint{x, Eigen::VectorXd::Zero(x.size()), Eigen::VectorXd::Zero(x.size()),
-                        s.t, 1.0, 0.0, 0.0, false, lambda};
+      return OwnedPoint{x,
+                        Eigen::VectorXd::Zero(x.size()),
+                        Eigen::VectorXd::Zero(x.size()),
+                        s.t,
+                        1.0,
+                        0.0,
+                        0.0,
+                        false,
+                        lambda};
     };
     NewtonReport rep = newton(x, makePoint, [] {});
     total.iterations += rep.iterations;

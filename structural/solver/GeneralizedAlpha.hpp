@@ -41,11 +41,11 @@ struct GeneralizedAlphaParams {
 struct NewtonReport {
   bool converged = false;
   int iterations = 0;
-  std::string failure;                 // why not converged
-  std::vector<double> residualNorms;   // ||R|| before each update
-  std::vector<double> updateNorms;     // max |dx| of each update
-  int stateChanges = 0;                // discrete changes (active elements) during the solve
-  double eventFraction = 0.0;          // > 0: the step passes an event; retry with this fraction
+  std::string failure;                // why not converged
+  std::vector<double> residualNorms;  // ||R|| before each update
+  std::vector<double> updateNorms;    // max |dx| of each update
+  int stateChanges = 0;               // discrete changes (active elements) during the solve
+  double eventFraction = 0.0;         // > 0: the step passes an event; retry with this fraction
 };
 
 class GeneralizedAlpha {

@@ -11,7 +11,12 @@ bool LinearSolver::factorize(const SparseMatrix& A) {
   ScopedTimer timer(timings_->factorisation);
   ++timings_->factorisations;
   if (kind_ == Kind::Cholmod) {
-    if (!cholmod_) cholmod_ = std::make_unique<Eigen::CholmodDecomposition<SparseMatrix, Eigen::Lower>>();
+    if (!cholmod_) {
+      cholmod_ = std::make_unique<Eigen::CholmodDecomposition<SparseMatrix, Eigen::Lower>>();
+      // A matrix that is not positive definite is an expected outcome here (we fall back to LU),
+      // not something for CHOLMOD to print.
+      cholmod_->cholmod().print = 0;
+    }
     if (!analysed_) {
       cholmod_->analyzePattern(A);
       analysed_ = true;

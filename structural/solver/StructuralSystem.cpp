@@ -56,8 +56,7 @@ bool StructuralSystem::onConverged(Eigen::VectorXd& x) {
   return changed;
 }
 
-EnergyBreakdown StructuralSystem::energy(const Eigen::VectorXd& x,
-                                         const Eigen::VectorXd& v) const {
+EnergyBreakdown StructuralSystem::energy(const Eigen::VectorXd& x, const Eigen::VectorXd& v) const {
   EnergyBreakdown e;
   for (const auto& t : terms_) t->addEnergy(x, v, e);
   return e;

@@ -10,7 +10,29 @@ using kernels::Vec6;
 using kernels::Vec9;
 
 namespace {
-Vec3 pos(const Eigen::VectorXd& x, int n) { return x.segment<3>(3 * n); }
+Vec3 pos(const Eigen::VectorXd& x, int n) {
+  return x.segment<3>(3 * n);
+}
+
+// A slack tension-only part has no stiffness at all, so a massless node between slack parts
+// would make the Newton matrix singular. The Jacobian (never the residual) gets a spring of
+// kSlackTangent E A / L between the part's ends: converged states are untouched.
+constexpr double kSlackTangent = 1e-8;
+
+template <int N>
+void addSlackTangent(const kernels::PolylineResult<N>& res, const kernels::LineMaterial& mat,
+                     double L, const std::array<int, N>& pathToLocal, double cx,
+                     Eigen::Matrix<double, 3 * N, 3 * N>& J) {
+  if (!mat.tensionOnly || mat.compressionStiffnessRatio > 0.0 || res.strain > 0.0) return;
+  const Eigen::Matrix3d k = cx * kSlackTangent * mat.E * mat.area / L * Eigen::Matrix3d::Identity();
+  for (int seg = 0; seg + 1 < N; ++seg) {
+    const int a = pathToLocal[seg], b = pathToLocal[seg + 1];
+    J.template block<3, 3>(3 * a, 3 * a) += k;
+    J.template block<3, 3>(3 * b, 3 * b) += k;
+    J.template block<3, 3>(3 * a, 3 * b) -= k;
+    J.template block<3, 3>(3 * b, 3 * a) -= k;
+  }
+}
 
 Vec6 gather2(const Eigen::VectorXd& v, int a, int b) {
   Vec6 r;
@@ -31,6 +53,7 @@ void assembleCable(const Model& m, int a, int b, double L, int material, const E
   const auto res = kernels::cableForce(pos(p.x, a), pos(p.x, b), L, mat, wantJ);
   Vec6 r = res.force;
   Mat6 J = p.cx * res.stiffness;
+  if (wantJ) addSlackTangent<2>(res, mat, L, {0, 1}, p.cx, J);
   if (mat.density > 0.0) {
     if (p.inertia) {
       const Mat6 M = kernels::cableMass(L, mat, m.massKind);
@@ -100,6 +123,7 @@ void SlidingGroupTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
     const auto res = kernels::slidingForce(x1, x2, x3, L, mat, wantJ);
     Vec9 r = res.force;
     Mat9 J = p.cx * res.stiffness;
+    if (wantJ) addSlackTangent<3>(res, mat, L, {0, 2, 1}, p.cx, J);  // path 1 -> slider -> 2
     if (mat.density > 0.0) {
       if (p.inertia) {
         const auto in =

@@ -176,12 +176,13 @@ TEST_P(SlidingKernelFD, TangentInertiaAndGravityMatchFiniteDifferences) {
       const auto p = split3(y);
       return slidingGravity(p[0], p[1], p[2], L, mat, g).force;
     };
-    worstG = std::max(worstG, relativeError(gr.dForce, fdJacobian(gravity, x, h),
-                                            1e-12 * gr.force.norm()));
+    worstG = std::max(worstG,
+                      relativeError(gr.dForce, fdJacobian(gravity, x, h), 1e-12 * gr.force.norm()));
   }
-  std::printf("%s: worst relative error  K vs FD(f) %.2e  f vs FD(W) %.2e  "
-              "dM/dx lumped %.2e consistent %.2e  dFg/dx %.2e\n",
-              cs.name, worstK, worstF, worstM[0], worstM[1], worstG);
+  std::printf(
+      "%s: worst relative error  K vs FD(f) %.2e  f vs FD(W) %.2e  "
+      "dM/dx lumped %.2e consistent %.2e  dFg/dx %.2e\n",
+      cs.name, worstK, worstF, worstM[0], worstM[1], worstG);
   EXPECT_LE(worstK, 1e-6);
   EXPECT_LE(worstF, 1e-6);
   EXPECT_LE(worstM[0], 1e-6);
@@ -190,8 +191,7 @@ TEST_P(SlidingKernelFD, TangentInertiaAndGravityMatchFiniteDifferences) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Configurations, SlidingKernelFD,
-                         ::testing::Values(Case{"taut", 0.37, 0.02},
-                                           Case{"near_slack", 0.6, 1e-5},
+                         ::testing::Values(Case{"taut", 0.37, 0.02}, Case{"near_slack", 0.6, 1e-5},
                                            Case{"slider_near_end_1", 1e-3, 0.01},
                                            Case{"slider_near_end_2", 1 - 1e-3, 0.01},
                                            Case{"strongly_stretched", 0.5, 0.4}),
@@ -292,9 +292,13 @@ TEST(SlidingKernel, TangentMatchesFiniteDifferencesInsideTheApexRadius) {
     const Vec3 d = frac * r * u + Vec3(0.1, 0.2, -0.3) * r;
     const PartLength pl = partLength(d, r);
     auto len = [&](const Eigen::VectorXd& y) { return partLength(Vec3(y), r).length; };
-    auto grad = [&](const Eigen::VectorXd& y) -> Eigen::VectorXd { return partLength(Vec3(y), r).gradient; };
-    worstF = std::max(worstF, relativeError(pl.gradient, fdGradient(len, Eigen::VectorXd(d), 1e-3 * r)));
-    worstK = std::max(worstK, relativeError(pl.hessian, fdJacobian(grad, Eigen::VectorXd(d), 1e-3 * r)));
+    auto grad = [&](const Eigen::VectorXd& y) -> Eigen::VectorXd {
+      return partLength(Vec3(y), r).gradient;
+    };
+    worstF =
+        std::max(worstF, relativeError(pl.gradient, fdGradient(len, Eigen::VectorXd(d), 1e-3 * r)));
+    worstK =
+        std::max(worstK, relativeError(pl.hessian, fdJacobian(grad, Eigen::VectorXd(d), 1e-3 * r)));
   }
   std::printf("slider within the apex radius: K vs FD(f) %.2e  part length gradient vs FD %.2e\n",
               worstK, worstF);

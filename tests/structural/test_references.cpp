@@ -23,9 +23,10 @@ TEST(BeadEllipseReference, ConvergedToTenDigitsAndConservesEnergy) {
   // Energy: the bead is at rest at the ends of its swing, where it returns to its start height.
   // The turning points are where z is highest; the bead never rises above its release height.
   for (const auto& p : fine) energyDrift = std::max(energyDrift, p.z() - bead0.z());
-  std::printf("bead reference: RK4 h vs 2h difference %.2e ft over 20 s, off-ellipse %.2e ft, "
-              "rise above release %.2e ft\n",
-              diff, offEllipse, energyDrift);
+  std::printf(
+      "bead reference: RK4 h vs 2h difference %.2e ft over 20 s, off-ellipse %.2e ft, "
+      "rise above release %.2e ft\n",
+      diff, offEllipse, energyDrift);
   // RK4 error scales with h^4: the h = 1e-5 result is 16x closer than this difference.
   EXPECT_LE(diff, 1.6e-9);
   EXPECT_LE(offEllipse, 1e-12);

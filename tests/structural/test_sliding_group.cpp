@@ -27,8 +27,8 @@ struct EllipseScene {
     Eigen::VectorXd x(3 * model.numNodes());
     for (int k = 0; k <= n; ++k) {
       const double s = total * k / n;
-      const Vec3 q = s <= l1 ? Vec3(f1 + s * (p - f1) / l1)
-                             : Vec3(p + (s - l1) * (f2 - p) / (total - l1));
+      const Vec3 q =
+          s <= l1 ? Vec3(f1 + s * (p - f1) / l1) : Vec3(p + (s - l1) * (f2 - p) / (total - l1));
       x.segment<3>(3 * k) = q;
     }
     x.segment<3>(3 * (n + 1)) = p;

@@ -1,0 +1,77 @@
+// The paper's verification problems with the settings shipped in cases/, against independent
+// references (formulation.md F13; the bead's ellipse ODE). Prints the measured errors.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "app/Simulation.hpp"
+#include "case/CaseSpec.hpp"
+
+using namespace chute;
+
+namespace {
+RunResult runShipped(const std::string& name, const std::vector<std::string>& sets = {}) {
+  const CaseSpec spec = readCase(CHUTE_SOURCE_DIR "/cases/" + name + ".toml", sets);
+  return runCase(spec, RunOptions{});
+}
+
+void report(const std::string& label, const RunResult& r) {
+  std::printf(
+      "%-34s %s t=%.2f  max error %.3e = %.4f %% of the motion (%.4g)  steps %ld  "
+      "rejected %ld  events %ld  Newton/step %.2f  wall %.3f s\n",
+      label.c_str(), r.status.c_str(), r.finalTime, r.reference->maxError,
+      100 * r.reference->relative(), r.reference->motionSize, r.steps, r.rejectedSteps,
+      r.eventRetries, r.newtonPerStep(), r.wallTime);
+}
+}  // namespace
+
+TEST(Verification, PulleyWithinPointOnePercent) {
+  const auto r = runShipped("pulley");
+  report("pulley", r);
+  ASSERT_EQ(r.status, "completed");
+  EXPECT_GE(r.finalTime, 4.0);
+  EXPECT_LE(r.reference->relative(), 1e-3);
+}
+
+TEST(Verification, BeadOneElementWithinHalfAPercent) {
+  const auto r = runShipped("bead_1");
+  report("bead_1", r);
+  ASSERT_EQ(r.status, "completed");
+  EXPECT_GE(r.finalTime, 4.0);
+  EXPECT_LE(r.reference->relative(), 5e-3);
+}
+
+TEST(Verification, BeadFiveElementsWithinOnePercentCrossingNodes) {
+  const auto r = runShipped("bead_5");
+  report("bead_5", r);
+  ASSERT_EQ(r.status, "completed");
+  EXPECT_GE(r.finalTime, 4.0);
+  EXPECT_LE(r.reference->relative(), 1e-2);
+  EXPECT_GT(r.handovers.at(0), 0);  // the bead did cross rope nodes
+}
+
+TEST(Verification, BeadFiveWithoutNumericalDampingTo20s) {
+  // rho_inf = 1: no numerical damping at all. Energy must stay bounded and every node crossing
+  // must pass.
+  const auto r = runShipped("bead_5", {"solver.rho_inf=1", "solver.t_end=20"});
+  report("bead_5 rho_inf=1 to 20 s", r);
+  std::printf("  energy drift %.3e (max kinetic energy %.3e), hand-overs %ld\n", r.energyMaxDrift,
+              r.kineticMax, r.handovers.at(0));
+  ASSERT_EQ(r.status, "completed");
+  EXPECT_GE(r.finalTime, 20.0);
+  EXPECT_EQ(r.rejectedSteps, 0);
+  EXPECT_LE(r.energyMaxDrift, 1e-3 * r.kineticMax);
+  EXPECT_GE(r.handovers.at(0), 20);
+  EXPECT_LE(r.reference->relative(), 1e-2);
+}
+
+TEST(Verification, BothSlidingSearchesAgreeOnBeadFive) {
+  const auto tracker = runShipped("bead_5", {"solver.search=\"material_coordinate\""});
+  const auto f12 = runShipped("bead_5", {"solver.search=\"nearest_length\""});
+  report("bead_5 material-coordinate tracker", tracker);
+  report("bead_5 nearest-length search (F12)", f12);
+  ASSERT_EQ(tracker.status, "completed");
+  ASSERT_EQ(f12.status, "completed");
+  EXPECT_LE(tracker.reference->relative(), 1e-2);
+  EXPECT_LE(f12.reference->relative(), 1e-2);
+}
