@@ -28,7 +28,7 @@ struct RunResult {
   std::string reason;
   long steps = 0, rejectedSteps = 0, eventRetries = 0, newtonIterations = 0;
   int maxNewtonInStep = 0;
-  double finalTime = 0.0, wallTime = 0.0;
+  double finalTime = 0.0, wallTime = 0.0, referenceTime = 0.0;
   Timings timings;
   std::string linearSolver;
   int equations = 0;

@@ -40,6 +40,15 @@ struct LineMaterial {
 // then eps 1e9 E A / L: 1e3 E A / L for eps = 1e-6, well within a direct solver's reach.
 inline constexpr double kApexFraction = 1e-9;
 
+// A slider closer than this fraction of its element's reference length to an end node it is
+// approaching has arrived there: the step that brought it is accepted, the two are placed on the
+// same point (a massless node moves for free, a massive one by at most this much) and the slider
+// is handed over. Event location lands within it in one or two retries.
+inline constexpr double kArrivalFraction = 1e-6;
+// Node and slider are left this far apart after a hand-over (10 apex radii): the strains of the
+// two elements change by 1e-8, and the new short part has its direction along the cable.
+inline constexpr double kSeparationFraction = 10 * kApexFraction;
+
 // Length of a part with relative position d, its gradient and Hessian, regularised at the apex.
 struct PartLength {
   double length;

@@ -64,11 +64,17 @@ int SlidingGroupState::search(const Eigen::VectorXd& x, SliderSearch kind) {
       if (k >= 0 && k < nEl && !takenByOther(k)) best = k;
     }
     if (kind == SliderSearch::NearestLength) {
+      // F12, with ties kept by the current element: at a node both neighbours fit to within
+      // round-off of the strains, and only a clear improvement (kArrivalFraction L) is a reason
+      // to move the slider.
+      const int current = best;
       double bestScore = lengthMismatch(static_cast<int>(s), best, x);
       for (int k = 0; k < nEl; ++k) {
         if (k == best || takenByOther(k)) continue;
+        const double margin =
+            k == current ? 0.0 : kernels::kArrivalFraction * def_->refLength[current];
         const double score = lengthMismatch(static_cast<int>(s), k, x);
-        if (score < bestScore) best = k, bestScore = score;
+        if (score < bestScore - margin) best = k, bestScore = score;
       }
     }
     pendingHandover_[s] = 0;
@@ -106,8 +112,8 @@ double SlidingGroupState::passageFraction(const Eigen::VectorXd& x, const Eigen:
   return fraction;
 }
 
-bool SlidingGroupState::arriveAtNodes(const Model& model, Eigen::VectorXd& x,
-                                      double radiusFraction) {
+bool SlidingGroupState::arriveAtNodes(const Model& model, Eigen::VectorXd& x, double radiusFraction,
+                                      double separationFraction) {
   bool changed = false;
   for (size_t s = 0; s < trial_.size(); ++s) {
     const int k = trial_[s];
@@ -122,13 +128,22 @@ bool SlidingGroupState::arriveAtNodes(const Model& model, Eigen::VectorXd& x,
       if (dist > radiusFraction * def_->refLength[k]) continue;
       if (dist >= committedDistance_[end][s]) continue;       // not approaching this node
       if (next < 0 || next >= def_->numElements()) continue;  // the chain ends here
+      // Node and slider are placed a hair apart, the node on the side of the element being
+      // left, at kSeparation (outside the apex radius): the new element's short part then starts
+      // with its true direction along the cable instead of an apex where any direction goes.
+      const int far = def_->chain[k + 1 - end];
+      const double sep = separationFraction * def_->refLength[k];
+      const Vec3 back = (nodePos(x, far) - nodePos(x, n3)).normalized();
       bool nodeFree = true;
       for (int c = 0; c < 3; ++c) nodeFree &= !model.constraint[ni].fixed[c];
-      if (nodeFree)
-        x.segment<3>(3 * ni) = x.segment<3>(3 * n3);
-      else
+      if (nodeFree) {
+        x.segment<3>(3 * ni) = nodePos(x, n3) + sep * back;
+      } else {
+        // A fixed node: the slider moves just past it, into the neighbouring element.
+        const Vec3 ahead = (nodePos(x, def_->chain[next + 1 - end]) - nodePos(x, ni)).normalized();
         for (int c = 0; c < 3; ++c)
-          if (!model.constraint[n3].fixed[c]) x[3 * n3 + c] = x[3 * ni + c];
+          if (!model.constraint[n3].fixed[c]) x[3 * n3 + c] = x[3 * ni + c] + sep * ahead[c];
+      }
       handoverAtCommit_[s] = end == 0 ? -1 : +1;
       changed = true;
       break;

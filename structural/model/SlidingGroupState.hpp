@@ -28,12 +28,14 @@ class SlidingGroupState {
   // neighbour there at the next search(): both elements describe the same configuration then.
   double passageFraction(const Eigen::VectorXd& x, const Eigen::VectorXd& dx);
   // At a converged state: a slider that has reached an end node of its element (within
-  // radiusFraction of its reference length) while approaching it during the step is placed
-  // exactly on the node (the node moves onto the slider, or the slider onto a fixed node) and is
-  // handed over to the neighbour there when the step is committed. Not earlier: generalized-alpha
-  // evaluates this step's forces between its start and end, where the slider is still inside its
-  // element. Returns whether x was moved.
-  bool arriveAtNodes(const Model& model, Eigen::VectorXd& x, double radiusFraction);
+  // radiusFraction of its reference length) while approaching it during the step is handed over
+  // to the neighbour there when the step is committed, and node and slider are placed
+  // separationFraction of the reference length apart along the cable, the slider just inside
+  // its new element (the node moves, or the slider if the node is fixed). Not earlier:
+  // generalized-alpha evaluates this step's forces between its start and end, where the slider is
+  // still inside its element. Returns whether x was moved.
+  bool arriveAtNodes(const Model& model, Eigen::VectorXd& x, double radiusFraction,
+                     double separationFraction);
 
   void commit(const Eigen::VectorXd& x);  // x: the converged positions
   void revert();

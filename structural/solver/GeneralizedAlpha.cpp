@@ -1,5 +1,6 @@
 #include "solver/GeneralizedAlpha.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -71,7 +72,7 @@ void GeneralizedAlpha::computeInitialAcceleration(DynamicState& s) {
 }
 
 template <class MakePoint, class Update>
-NewtonReport GeneralizedAlpha::newton(Eigen::VectorXd& x, MakePoint&& makePoint,
+NewtonReport GeneralizedAlpha::newton(Eigen::VectorXd& x, double tol, MakePoint&& makePoint,
                                       Update&& onUpdate) {
   NewtonReport rep;
   const int neq = sys_->numEquations();
@@ -113,12 +114,12 @@ NewtonReport GeneralizedAlpha::newton(Eigen::VectorXd& x, MakePoint&& makePoint,
     if (passage < 1.0) {
       // The first update is the linearised step: its passage fraction estimates the event time.
       rep.failure = "a slider reaches a node within the step";
-      rep.eventFraction = it == 0 ? std::max(passage, 1e-3) : 0.5;
+      rep.eventFraction = it == 0 ? std::max(passage, 1e-12) : 0.5;
       return rep;
     }
     x += dx;
     onUpdate();
-    if (lastChanges == 0 && un <= newton_.tolDisplacement) {
+    if (lastChanges == 0 && un <= tol) {
       if (sys_->onConverged(x)) onUpdate();  // moved by a negligible amount onto an event
       rep.converged = true;
       return rep;
@@ -168,7 +169,12 @@ NewtonReport GeneralizedAlpha::step(DynamicState& s, double dt) {
                       1.0};
   };
   newmark();
-  NewtonReport rep = newton(n.x, makePoint, newmark);
+  double tol = newton_.tolDisplacement;
+  if (newton_.nominalStep > 0.0 && dt < newton_.nominalStep) {
+    const double ratio = dt / newton_.nominalStep;
+    tol = std::max(tol * ratio * ratio, 100.0 * 2.22e-16 * newton_.lengthScale);
+  }
+  NewtonReport rep = newton(n.x, tol, makePoint, newmark);
   if (rep.converged) {
     sys_->commit(n.x);
     s = n;
@@ -194,7 +200,7 @@ NewtonReport GeneralizedAlpha::solveStatic(DynamicState& s, int nSteps) {
                         false,
                         lambda};
     };
-    NewtonReport rep = newton(x, makePoint, [] {});
+    NewtonReport rep = newton(x, newton_.tolDisplacement, makePoint, [] {});
     total.iterations += rep.iterations;
     total.residualNorms.insert(total.residualNorms.end(), rep.residualNorms.begin(),
                                rep.residualNorms.end());

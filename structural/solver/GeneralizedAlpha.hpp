@@ -19,8 +19,14 @@ struct DynamicState {
 
 struct NewtonSettings {
   int maxIterations = 25;
-  double tolDisplacement = 1e-9;  // converged when max |dx| <= this (length units)
-  bool verbose = false;           // print the residual sequence of every iteration
+  // Converged when max |dx| <= tolDisplacement (length units) at the nominal step. A shorter
+  // step h tightens it by (h / nominalStep)^2, down to round-off (100 eps x lengthScale):
+  // accelerations are dx / (beta h^2), so a fixed position tolerance would let a short step's
+  // velocity and acceleration drift.
+  double tolDisplacement = 1e-9;
+  double nominalStep = 0.0;  // 0: no scaling
+  double lengthScale = 1.0;
+  bool verbose = false;  // print the residual sequence of every iteration
 };
 
 // Members of the generalized-alpha family, both second-order accurate with high-frequency
@@ -68,7 +74,7 @@ class GeneralizedAlpha {
 
  private:
   template <class MakePoint, class Update>
-  NewtonReport newton(Eigen::VectorXd& x, MakePoint&& makePoint, Update&& onUpdate);
+  NewtonReport newton(Eigen::VectorXd& x, double tol, MakePoint&& makePoint, Update&& onUpdate);
 
   StructuralSystem* sys_;
   std::vector<char> massless_;  // per dof: no inertia at the start (set with the initial a0)

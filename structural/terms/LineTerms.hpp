@@ -44,7 +44,7 @@ class SlidingGroupTerm final : public Term {
     return state_.passageFraction(x, dx);
   }
   bool onConverged(Eigen::VectorXd& x) override {
-    return state_.arriveAtNodes(*m_, x, kernels::kApexFraction);
+    return state_.arriveAtNodes(*m_, x, kernels::kArrivalFraction, kernels::kSeparationFraction);
   }
   void commit(const Eigen::VectorXd& x) override { state_.commit(x); }
   void revert() override { state_.revert(); }

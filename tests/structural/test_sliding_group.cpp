@@ -120,7 +120,7 @@ TEST(SlidingGroupSearch, TrackerLocatesEveryNodeCrossingInBothDirections) {
       ++events;
       x += f * dx;  // the step cut to end at the node
       const int before = st.activeElement(0);
-      st.arriveAtNodes(model, x, kernels::kApexFraction);
+      st.arriveAtNodes(model, x, kernels::kArrivalFraction, kernels::kSeparationFraction);
       st.commit(x);  // the hand-over takes effect with the committed step
       handovers += std::abs(st.activeElement(0) - before);
     }
