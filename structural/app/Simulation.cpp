@@ -38,6 +38,8 @@ std::optional<ReferenceError> compareWithReference(const CaseSpec& spec, const R
     verification::PulleyReference p{ref.ropeLength, d.norm(), m.gravity.norm(), m.X[ref.pulley],
                                     d.normalized()};
     for (double t : r.times) expected.push_back(p.endPosition(t));
+  } else if (ref.kind == "free_fall") {
+    for (double t : r.times) expected.push_back(m.X[node] + 0.5 * t * t * m.gravity);
   } else {
     verification::BeadEllipseReference b(m.X[ref.anchor1], m.X[ref.anchor2], m.X[node], m.gravity);
     expected = b.positions(r.times);

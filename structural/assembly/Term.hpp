@@ -53,6 +53,9 @@ class Term {
   // end of the step, and schedule the discrete change there for commit(). Returns whether it
   // moved x.
   virtual bool onConverged(Eigen::VectorXd& /*x*/) { return false; }
+  // Static equilibrium: the update reached a kink (the fraction passageFraction gave); make the
+  // discrete change now. Returns whether anything changed.
+  virtual bool crossNow(Eigen::VectorXd& /*x*/) { return false; }
   virtual void commit(const Eigen::VectorXd& /*x*/) {}  // x: the converged positions
   virtual void revert() {}
 };

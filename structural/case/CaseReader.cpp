@@ -309,6 +309,22 @@ CaseSpec readCase(const std::string& file, const std::vector<std::string>& overr
     TomlTable b = top.table("boundary");
     for (const auto& name : b.strings("fixed", {}))
       m.constraint[nodeRef(m, b, "fixed", name)].fixed = {true, true, true};
+    for (auto& t : b.tables("prescribed")) {
+      const std::string dofs = t.string("dofs", "xyz");
+      if (dofs.empty() || dofs.find_first_not_of("xyz") != std::string::npos)
+        t.fail("dofs", "expected a combination of x, y, z");
+      const Vec3 velocity = t.vec3("velocity", Vec3::Zero());
+      const Vec3 amplitude = t.vec3("amplitude", Vec3::Zero());
+      const double frequency = t.nonNegative("frequency", 0.0);
+      for (const auto& name : t.strings("nodes")) {
+        auto& nc = m.constraint[nodeRef(m, t, "nodes", name)];
+        for (char d : dofs) nc.fixed[d - 'x'] = true;
+        nc.velocity = velocity;
+        nc.amplitude = amplitude;
+        nc.frequency = frequency;
+      }
+      t.finish();
+    }
     for (auto& t : b.tables("constraints")) {
       const std::string dofs = t.string("dofs");
       if (dofs.empty() || dofs.find_first_not_of("xyz") != std::string::npos)
@@ -367,7 +383,7 @@ CaseSpec readCase(const std::string& file, const std::vector<std::string>& overr
   if (top.has("reference")) {
     TomlTable r = top.table("reference");
     ReferenceSpec ref;
-    ref.kind = r.choice("kind", "", {"pulley", "bead_ellipse"});
+    ref.kind = r.choice("kind", "", {"pulley", "bead_ellipse", "free_fall"});
     const std::string probe = r.string("probe");
     for (size_t p = 0; p < c.output.probes.size(); ++p)
       if (c.output.probes[p].name == probe) ref.probe = static_cast<int>(p);
@@ -380,7 +396,7 @@ CaseSpec readCase(const std::string& file, const std::vector<std::string>& overr
         if (g.name == group)
           for (double L : g.refLength) ref.ropeLength += L;
       if (ref.ropeLength <= 0.0) r.fail("group", "unknown sliding group '" + group + "'");
-    } else {
+    } else if (ref.kind == "bead_ellipse") {
       const auto anchors = r.strings("anchors");
       if (anchors.size() != 2) r.fail("anchors", "expected the two fixed rope ends");
       ref.anchor1 = nodeRef(m, r, "anchors", anchors[0]);

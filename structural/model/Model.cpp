@@ -1,8 +1,24 @@
 #include "model/Model.hpp"
 
+#include <cmath>
 #include <stdexcept>
 
 namespace chute {
+
+namespace {
+constexpr double kTwoPi = 6.283185307179586;
+}
+
+double NodeConstraint::position(double X, int k, double t) const {
+  return X + velocity[k] * t + amplitude[k] * std::sin(kTwoPi * frequency * t);
+}
+double NodeConstraint::speed(int k, double t) const {
+  return velocity[k] + amplitude[k] * kTwoPi * frequency * std::cos(kTwoPi * frequency * t);
+}
+double NodeConstraint::acceleration(int k, double t) const {
+  const double w = kTwoPi * frequency;
+  return -amplitude[k] * w * w * std::sin(w * t);
+}
 
 int Model::addNode(const Vec3& x, const std::string& name) {
   const int id = numNodes();

@@ -38,9 +38,17 @@ struct SlidingGroupDef {
   int numElements() const { return static_cast<int>(refLength.size()); }
 };
 
-// How a node's three dofs are constrained: free or fixed at the reference position.
+// How a node's three dofs are constrained: free, or prescribed. A prescribed dof follows
+// x(t) = X + velocity t + amplitude sin(2 pi frequency t) (all zero: fixed where it starts).
 struct NodeConstraint {
   std::array<bool, 3> fixed{false, false, false};
+  Vec3 velocity = Vec3::Zero();
+  Vec3 amplitude = Vec3::Zero();
+  double frequency = 0.0;
+  // Prescribed position, velocity and acceleration of dof k at time t.
+  double position(double X, int k, double t) const;
+  double speed(int k, double t) const;
+  double acceleration(int k, double t) const;
 };
 
 struct Model {

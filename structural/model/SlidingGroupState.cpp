@@ -113,12 +113,12 @@ double SlidingGroupState::passageFraction(const Eigen::VectorXd& x, const Eigen:
 }
 
 bool SlidingGroupState::arriveAtNodes(const Model& model, Eigen::VectorXd& x, double radiusFraction,
-                                      double separationFraction) {
+                                      double separationFraction, bool immediate) {
   bool changed = false;
   for (size_t s = 0; s < trial_.size(); ++s) {
     const int k = trial_[s];
     // One hand-over per step: not after a free one at the step's start.
-    if (k != committed_[s] || pendingHandover_[s] != 0) continue;
+    if (!immediate && (k != committed_[s] || pendingHandover_[s] != 0)) continue;
     handoverAtCommit_[s] = 0;
     const int n3 = def_->sliders[s];
     for (int end = 0; end < 2; ++end) {
@@ -144,7 +144,7 @@ bool SlidingGroupState::arriveAtNodes(const Model& model, Eigen::VectorXd& x, do
         for (int c = 0; c < 3; ++c)
           if (!model.constraint[n3].fixed[c]) x[3 * n3 + c] = x[3 * ni + c] + sep * ahead[c];
       }
-      handoverAtCommit_[s] = end == 0 ? -1 : +1;
+      (immediate ? pendingHandover_ : handoverAtCommit_)[s] = end == 0 ? -1 : +1;
       changed = true;
       break;
     }

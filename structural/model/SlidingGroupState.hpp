@@ -34,8 +34,10 @@ class SlidingGroupState {
   // its new element (the node moves, or the slider if the node is fixed). Not earlier:
   // generalized-alpha evaluates this step's forces between its start and end, where the slider is
   // still inside its element. Returns whether x was moved.
+  // immediate: hand over at the next search() instead of at commit, any number of times in a
+  // solve (static equilibrium, where no step straddles the crossing).
   bool arriveAtNodes(const Model& model, Eigen::VectorXd& x, double radiusFraction,
-                     double separationFraction);
+                     double separationFraction, bool immediate = false);
 
   void commit(const Eigen::VectorXd& x);  // x: the converged positions
   void revert();

@@ -37,6 +37,8 @@ DynamicState GeneralizedAlpha::initialState() const {
   for (int i = 0; i < m.numNodes(); ++i) s.x.segment<3>(3 * i) = m.X[i];
   s.v.setZero(n);
   s.a.setZero(n);
+  for (int d = 0; d < n; ++d)
+    if (sys_->dofs().eqOfDof(d) < 0) s.v[d] = m.constraint[d / 3].speed(d % 3, 0.0);
   return s;
 }
 
@@ -49,7 +51,6 @@ void GeneralizedAlpha::computeInitialAcceleration(DynamicState& s) {
   SparseMatrix M = sys_->matrix();
   Eigen::VectorXd rhs = -sys_->residual();
   // Massless dofs have no inertia row: pin their initial acceleration to zero.
-  std::vector<char> emptyEq(M.cols(), 0);
   for (int e = 0; e < M.cols(); ++e) {
     bool empty = true;
     for (SparseMatrix::InnerIterator it(M, e); it; ++it)
@@ -57,13 +58,7 @@ void GeneralizedAlpha::computeInitialAcceleration(DynamicState& s) {
     if (empty) {
       M.coeffRef(e, e) = 1.0;
       rhs[e] = 0.0;
-      emptyEq[e] = 1;
     }
-  }
-  massless_.assign(s.x.size(), 0);
-  for (int d = 0; d < sys_->dofs().numDofs(); ++d) {
-    const int e = sys_->dofs().eqOfDof(d);
-    if (e >= 0) massless_[d] = emptyEq[e];
   }
   Eigen::UmfPackLU<SparseMatrix> lu;
   lu.compute(M);
@@ -73,7 +68,7 @@ void GeneralizedAlpha::computeInitialAcceleration(DynamicState& s) {
 
 template <class MakePoint, class Update>
 NewtonReport GeneralizedAlpha::newton(Eigen::VectorXd& x, double tol, MakePoint&& makePoint,
-                                      Update&& onUpdate) {
+                                      Update&& onUpdate, bool crossInPlace) {
   NewtonReport rep;
   const int neq = sys_->numEquations();
   Eigen::VectorXd dxEq(neq), dx(x.size());
@@ -111,6 +106,12 @@ NewtonReport GeneralizedAlpha::newton(Eigen::VectorXd& x, double tol, MakePoint&
     if (newton_.verbose)
       std::fprintf(stderr, "    newton %2d  |R| = %.3e  |dx| = %.3e  changes %d%s\n", it, rn, un,
                    lastChanges, passage < 1.0 ? "  passes an event" : "");
+    if (passage < 1.0 && crossInPlace) {
+      x += passage * dx;  // to where slider and node meet, then across
+      sys_->crossNow(x);
+      onUpdate();
+      continue;
+    }
     if (passage < 1.0) {
       // The first update is the linearised step: its passage fraction estimates the event time.
       rep.failure = "a slider reaches a node within the step";
@@ -151,11 +152,22 @@ NewtonReport GeneralizedAlpha::step(DynamicState& s, double dt) {
   // spurious stretch.
   n.x = old.x;
   n.t = old.t + dt;
+  // Constrained dofs follow their prescribed motion (fixed: where they started).
+  const Model& model = sys_->model();
+  auto prescribe = [&] {
+    for (int d = 0; d < sys_->dofs().numDofs(); ++d) {
+      if (sys_->dofs().eqOfDof(d) >= 0) continue;
+      const auto& c = model.constraint[d / 3];
+      n.x[d] = c.position(model.X[d / 3][d % 3], d % 3, n.t);
+      n.v[d] = c.speed(d % 3, n.t);
+      n.a[d] = c.acceleration(d % 3, n.t);
+    }
+  };
+  prescribe();
   auto newmark = [&] {
     n.a = (n.x - old.x - dt * old.v - dt * dt * (0.5 - p.beta) * old.a) / (p.beta * dt * dt);
     n.v = old.v + dt * ((1.0 - p.gamma) * old.a + p.gamma * n.a);
-    for (int d = 0; d < sys_->dofs().numDofs(); ++d)
-      if (sys_->dofs().eqOfDof(d) < 0) n.v[d] = 0.0, n.a[d] = 0.0;
+    prescribe();
   };
   auto makePoint = [&] {
     return OwnedPoint{(1.0 - p.alphaF) * n.x + p.alphaF * old.x,
@@ -185,10 +197,13 @@ NewtonReport GeneralizedAlpha::step(DynamicState& s, double dt) {
 }
 
 NewtonReport GeneralizedAlpha::solveStatic(DynamicState& s, int nSteps) {
+  // Load stepping in the load factor; a slider reaching a node is handed over within the solve
+  // (no step straddles it in statics), failed increments are halved.
   NewtonReport total;
   Eigen::VectorXd x = s.x;
-  for (int k = 1; k <= nSteps; ++k) {
-    const double lambda = static_cast<double>(k) / nSteps;
+  double lambda = 0.0, increment = 1.0 / nSteps;
+  while (lambda < 1.0 - 1e-12) {
+    const double target = std::min(1.0, lambda + increment);
     auto makePoint = [&] {
       return OwnedPoint{x,
                         Eigen::VectorXd::Zero(x.size()),
@@ -198,18 +213,26 @@ NewtonReport GeneralizedAlpha::solveStatic(DynamicState& s, int nSteps) {
                         0.0,
                         0.0,
                         false,
-                        lambda};
+                        target};
     };
-    NewtonReport rep = newton(x, newton_.tolDisplacement, makePoint, [] {});
+    const Eigen::VectorXd start = x;
+    NewtonReport rep = newton(
+        x, newton_.tolDisplacement, makePoint, [] {}, true);
     total.iterations += rep.iterations;
     total.residualNorms.insert(total.residualNorms.end(), rep.residualNorms.begin(),
                                rep.residualNorms.end());
     if (!rep.converged) {
+      x = start;
       sys_->revert();
-      total.failure = rep.failure + " at load factor " + std::to_string(lambda);
-      return total;
+      increment *= 0.5;
+      if (increment < 1e-9) {
+        total.failure = rep.failure + " at load factor " + std::to_string(target);
+        return total;
+      }
+      continue;
     }
     sys_->commit(x);
+    lambda = target;
   }
   total.converged = true;
   s.x = x;

@@ -73,11 +73,12 @@ class GeneralizedAlpha {
   const LinearSolver& linearSolver() const { return linear_; }
 
  private:
+  // crossInPlace: a passage is crossed within the solve (static) instead of cutting the step.
   template <class MakePoint, class Update>
-  NewtonReport newton(Eigen::VectorXd& x, double tol, MakePoint&& makePoint, Update&& onUpdate);
+  NewtonReport newton(Eigen::VectorXd& x, double tol, MakePoint&& makePoint, Update&& onUpdate,
+                      bool crossInPlace = false);
 
   StructuralSystem* sys_;
-  std::vector<char> massless_;  // per dof: no inertia at the start (set with the initial a0)
   GeneralizedAlphaParams p_;
   NewtonSettings newton_;
   LinearSolver linear_;

@@ -50,6 +50,12 @@ double StructuralSystem::passageFraction(const Eigen::VectorXd& x, const Eigen::
   return f;
 }
 
+bool StructuralSystem::crossNow(Eigen::VectorXd& x) {
+  bool changed = false;
+  for (const auto& t : terms_) changed |= t->crossNow(x);
+  return changed;
+}
+
 bool StructuralSystem::onConverged(Eigen::VectorXd& x) {
   bool changed = false;
   for (const auto& t : terms_) changed |= t->onConverged(x);

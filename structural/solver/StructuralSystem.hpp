@@ -30,6 +30,7 @@ class StructuralSystem {
   bool symmetric() const;
   double passageFraction(const Eigen::VectorXd& x, const Eigen::VectorXd& dx);
   bool onConverged(Eigen::VectorXd& x);
+  bool crossNow(Eigen::VectorXd& x);
 
   EnergyBreakdown energy(const Eigen::VectorXd& x, const Eigen::VectorXd& v) const;
   void commit(const Eigen::VectorXd& x);

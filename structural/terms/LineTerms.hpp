@@ -46,6 +46,10 @@ class SlidingGroupTerm final : public Term {
   bool onConverged(Eigen::VectorXd& x) override {
     return state_.arriveAtNodes(*m_, x, kernels::kArrivalFraction, kernels::kSeparationFraction);
   }
+  bool crossNow(Eigen::VectorXd& x) override {
+    return state_.arriveAtNodes(*m_, x, kernels::kArrivalFraction, kernels::kSeparationFraction,
+                                true);
+  }
   void commit(const Eigen::VectorXd& x) override { state_.commit(x); }
   void revert() override { state_.revert(); }
   const SlidingGroupState& state() const { return state_; }
