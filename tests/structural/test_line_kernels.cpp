@@ -53,6 +53,25 @@ Eigen::VectorXd stack(const SlidingConfig& c) {
   return x;
 }
 
+// Node coordinates of a stacked 9-vector (node 1, node 2, slider).
+std::array<Vec3, 3> split3(const Eigen::VectorXd& y) {
+  return {y.segment<3>(0), y.segment<3>(3), y.segment<3>(6)};
+}
+
+// The sliding element's force and energy as functions of the stacked coordinates.
+auto slidingForceOf(double L, const LineMaterial& mat) {
+  return [L, mat](const Eigen::VectorXd& y) -> Eigen::VectorXd {
+    const auto p = split3(y);
+    return slidingForce(p[0], p[1], p[2], L, mat, false).force;
+  };
+}
+auto slidingEnergyOf(double L, const LineMaterial& mat) {
+  return [L, mat](const Eigen::VectorXd& y) {
+    const auto p = split3(y);
+    return slidingForce(p[0], p[1], p[2], L, mat, false).energy;
+  };
+}
+
 struct Case {
   const char* name;
   double split;   // l1 / l
@@ -144,18 +163,9 @@ TEST_P(SlidingKernelFD, TangentInertiaAndGravityMatchFiniteDifferences) {
     // Step well below the shortest part (the stencil must not reach the slider apex) and below
     // the strain (it must not cross the slack kink at eps = 0).
     const double h = std::min(1e-5 * std::min(cs.split, 1 - cs.split), 1e-3 * cs.strain) * L;
-    auto split3 = [](const Eigen::VectorXd& y) {
-      return std::array<Vec3, 3>{y.segment<3>(0), y.segment<3>(3), y.segment<3>(6)};
-    };
     const auto r = slidingForce(c.x1, c.x2, c.x3, L, mat, true);
-    auto force = [&](const Eigen::VectorXd& y) -> Eigen::VectorXd {
-      const auto p = split3(y);
-      return slidingForce(p[0], p[1], p[2], L, mat, false).force;
-    };
-    auto energy = [&](const Eigen::VectorXd& y) {
-      const auto p = split3(y);
-      return slidingForce(p[0], p[1], p[2], L, mat, false).energy;
-    };
+    const auto force = slidingForceOf(L, mat);
+    const auto energy = slidingEnergyOf(L, mat);
     worstK = std::max(worstK, relativeError(r.stiffness, fdJacobian(force, x, h)));
     worstF = std::max(worstF, relativeError(r.force, fdGradient(energy, x, h)));
 
@@ -267,17 +277,8 @@ TEST(SlidingKernel, TangentMatchesFiniteDifferencesInsideTheApexRadius) {
     // Slider within the apex radius of node 1; node 2 far enough for a taut element.
     Eigen::VectorXd x(9);
     x << 0, 0, 0, 1.5, 0.2, -0.1, (frac * r * u).eval();
-    auto split3 = [](const Eigen::VectorXd& y) {
-      return std::array<Vec3, 3>{y.segment<3>(0), y.segment<3>(3), y.segment<3>(6)};
-    };
-    auto force = [&](const Eigen::VectorXd& y) -> Eigen::VectorXd {
-      const auto p = split3(y);
-      return slidingForce(p[0], p[1], p[2], L, mat, false).force;
-    };
-    auto energy = [&](const Eigen::VectorXd& y) {
-      const auto p = split3(y);
-      return slidingForce(p[0], p[1], p[2], L, mat, false).energy;
-    };
+    const auto force = slidingForceOf(L, mat);
+    const auto energy = slidingEnergyOf(L, mat);
     const auto p = split3(x);
     const auto res = slidingForce(p[0], p[1], p[2], L, mat, true);
     const double h = 1e-2 * r;  // the stencil stays inside the apex radius
