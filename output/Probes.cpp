@@ -4,6 +4,7 @@
 
 #include "kernels/LineKernels.hpp"
 #include "terms/LineTerms.hpp"
+#include "terms/SurfaceTerms.hpp"
 
 namespace chute {
 
@@ -68,6 +69,17 @@ std::vector<double> ProbeSet::evaluate(const StructuralSystem& sys, const Dynami
     } else if (p.kind == "energy") {
       const auto e = sys.energy(s.x, s.v);
       out.insert(out.end(), {e.kinetic, e.strain, e.gravity, e.total()});
+    } else if (p.kind == "membrane_stress") {
+      // Principal second Piola-Kirchhoff stresses averaged over the elements at the node.
+      Eigen::Vector2d S = Eigen::Vector2d::Zero();
+      const auto* mt = sys.membranes();
+      if (mt) {
+        const auto around = mt->elementsAt(p.node);
+        for (int k : around) S += mt->elementStates()[k].principalStress;
+        if (!around.empty()) S /= static_cast<double>(around.size());
+      }
+      out.push_back(S[0]);
+      out.push_back(S[1]);
     } else if (p.kind == "line_force") {
       const auto [N, eps] = lineForce(*model_, sys, p.lineSet, p.element, s.x);
       out.push_back(N);

@@ -13,6 +13,7 @@
 #include "Probes.hpp"
 #include "solver/GeneralizedAlpha.hpp"
 #include "terms/LineTerms.hpp"
+#include "verification/HenckyReference.hpp"
 #include "verification/References.hpp"
 
 namespace chute {
@@ -38,6 +39,19 @@ std::optional<ReferenceError> compareWithReference(const CaseSpec& spec, const R
     verification::PulleyReference p{ref.ropeLength, d.norm(), m.gravity.norm(), m.X[ref.pulley],
                                     d.normalized()};
     for (double t : r.times) expected.push_back(p.endPosition(t));
+  } else if (ref.kind == "hencky") {
+    // Static: the final state against the Foeppl-Hencky centre deflection.
+    const verification::HenckyReference h{ref.E, ref.nu, ref.thickness, std::abs(ref.pressure),
+                                          ref.radius};
+    const double w0 = h.centreDeflection();
+    const Vec3 d = (ref.pressure > 0 ? 1.0 : -1.0) * ref.direction;
+    ReferenceError e;
+    e.kind = ref.kind;
+    e.probe = probes.probes()[ref.probe].name;
+    const auto& last = r.rows.back();
+    e.maxError = (Vec3(last[off], last[off + 1], last[off + 2]) - (m.X[node] + w0 * d)).norm();
+    e.motionSize = w0;
+    return e;
   } else if (ref.kind == "free_fall") {
     for (double t : r.times) expected.push_back(m.X[node] + 0.5 * t * t * m.gravity);
   } else {
@@ -120,7 +134,7 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
   if (sv.type == "static") {
     sys.updateState(state.x);
     sys.commit(state.x);
-    const auto rep = integrator.solveStatic(state, sv.loadSteps);
+    const auto rep = integrator.solveStatic(state, sv.loadSteps, sv.initialLoadFactor);
     r.newtonIterations = rep.iterations;
     r.steps = sv.loadSteps;
     if (!rep.converged) r.status = "diverged", r.reason = rep.failure;

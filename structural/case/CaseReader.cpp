@@ -1,4 +1,5 @@
 // Case file -> CaseSpec. The schema is documented in README.md ("Case files").
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -6,6 +7,7 @@
 #include <set>
 #include <sstream>
 
+#include "StructuredMeshes.hpp"
 #include "case/CaseSpec.hpp"
 #include "case/TomlTable.hpp"
 
@@ -18,6 +20,7 @@ std::vector<std::string> ProbeSpec::columns() const {
   if (kind == "slider") q = {"s", "element"};
   if (kind == "energy") q = {"kinetic", "strain", "gravity", "total"};
   if (kind == "line_force") q = {"N", "strain"};
+  if (kind == "membrane_stress") q = {"S1", "S2"};
   for (auto& s : q) s = name + "." + s;
   return q;
 }
@@ -44,18 +47,31 @@ void applyOverride(toml::value& root, const std::string& file, const std::string
     if (k.empty()) throw CaseError("--set " + assignment + ": empty key in '" + path + "'");
     keys.push_back(k);
   }
+  // Each step is a table key, or an index into an array of tables ("membranes.0.rings").
   toml::value* node = &root;
   for (size_t i = 0; i + 1 < keys.size(); ++i) {
+    if (node->is_array()) {
+      auto& arr = node->as_array();
+      const bool numeric = keys[i].find_first_not_of("0123456789") == std::string::npos;
+      const size_t idx = numeric ? std::stoul(keys[i]) : arr.size();
+      if (idx >= arr.size())
+        throw CaseError("--set " + assignment + ": '" + keys[i] + "' is not an index of " +
+                        std::to_string(arr.size()) + " entries on the path " + path);
+      node = &arr[idx];
+      continue;
+    }
     auto& t = node->as_table();
     auto it = t.find(keys[i]);
     if (it == t.end()) {
       throw CaseError("--set " + assignment + ": " + file + " has no table '" + keys[i] +
                       "' on the path " + path);
     }
-    if (!it->second.is_table())
+    if (!it->second.is_table() && !it->second.is_array())
       throw CaseError("--set " + assignment + ": '" + keys[i] + "' in " + path + " is not a table");
     node = &it->second;
   }
+  if (!node->is_table())
+    throw CaseError("--set " + assignment + ": " + path + " does not name a key of a table");
   toml::value parsed;
   try {
     std::istringstream in("v = " + text);
@@ -72,9 +88,21 @@ void applyOverride(toml::value& root, const std::string& file, const std::string
   t[keys.back()] = parsed;
 }
 
+kernels::MembraneMaterial readMembraneMaterial(TomlTable t) {
+  kernels::MembraneMaterial m;
+  t.string("kind");
+  m.E = t.positive("E");
+  m.nu = t.number("nu", 0.3);
+  if (m.nu < 0.0 || m.nu >= 0.5) t.fail("nu", "must be in [0, 0.5)");
+  m.thickness = t.positive("thickness");
+  m.density = t.nonNegative("density", 0.0);
+  t.finish();
+  return m;
+}
+
 kernels::LineMaterial readMaterial(TomlTable t) {
   kernels::LineMaterial m;
-  const std::string kind = t.choice("kind", "cable", {"cable", "truss"});
+  const std::string kind = t.choice("kind", "cable", {"cable", "truss", "membrane"});
   m.tensionOnly = kind == "cable";
   m.E = t.positive("E");
   m.area = t.positive("area");
@@ -231,12 +259,64 @@ void readSlidingGroup(Model& m, TomlTable t, int index) {
   m.groups.push_back(std::move(g));
 }
 
+int membraneMaterialRef(const Model& m, TomlTable& t) {
+  const std::string name = t.string("material");
+  for (size_t i = 0; i < m.membraneMaterialName.size(); ++i)
+    if (m.membraneMaterialName[i] == name) return static_cast<int>(i);
+  t.fail("material", "no membrane material '" + name + "' (kind = \"membrane\")");
+}
+
+void readMembranes(Model& m, TomlTable t) {
+  MembraneSet set;
+  set.name = t.string("name");
+  if (m.nodeSets.count(set.name)) t.fail("name", "a node set '" + set.name + "' exists already");
+  const int material = membraneMaterialRef(m, t);
+  set.wrinkling = t.boolean("wrinkling", true);
+  set.prestrain = t.number("prestrain", 0.0);
+  if (set.prestrain <= -1.0) t.fail("prestrain", "must be > -1");
+  const int setId = static_cast<int>(m.membraneSets.size());
+  const std::string kind = t.choice("mesh", "disk", {"disk", "rectangle"});
+  if (kind == "disk") {
+    const Vec3 centre = t.vec3("center", Vec3::Zero());
+    const double radius = t.positive("radius");
+    const long rings = t.integer("rings", 8, 1, 2000);
+    t.finish();
+    mesh::addDisk(m, set.name, setId, material, centre, radius, static_cast<int>(rings));
+  } else {
+    const Vec3 corner = t.vec3("corner", Vec3::Zero());
+    const Vec3 size = t.vec3("size");
+    if (size.x() <= 0 || size.y() <= 0) t.fail("size", "needs positive x and y extents");
+    const auto div = t.integers("divisions");
+    if (div.size() != 2 || div[0] < 1 || div[1] < 1) t.fail("divisions", "expected [nx, ny] >= 1");
+    const bool quads = t.choice("element", "quad", {"quad", "triangle"}) == "quad";
+    t.finish();
+    mesh::addRectangle(m, set.name, setId, material, corner, size.x(), size.y(),
+                       static_cast<int>(div[0]), static_cast<int>(div[1]), quads);
+  }
+  m.membraneSets.push_back(set);
+}
+
+std::vector<int> nodesOf(const Model& m, TomlTable& t) {
+  std::vector<int> out;
+  if (t.has("nodes"))
+    for (const auto& name : t.strings("nodes")) out.push_back(nodeRef(m, t, "nodes", name));
+  if (t.has("set")) {
+    const std::string set = t.string("set");
+    auto it = m.nodeSets.find(set);
+    if (it == m.nodeSets.end()) t.fail("set", "unknown node set '" + set + "'");
+    out.insert(out.end(), it->second.begin(), it->second.end());
+  }
+  if (out.empty()) t.fail("nodes", "give nodes = [...] or set = \"...\"");
+  return out;
+}
+
 ProbeSpec readProbe(const Model& m, TomlTable t) {
   ProbeSpec p;
   p.name = t.string("name");
-  p.kind = t.choice("kind", "node_position",
-                    {"node_position", "node_velocity", "slider", "energy", "line_force"});
-  if (p.kind == "node_position" || p.kind == "node_velocity") {
+  p.kind = t.choice(
+      "kind", "node_position",
+      {"node_position", "node_velocity", "slider", "energy", "line_force", "membrane_stress"});
+  if (p.kind == "node_position" || p.kind == "node_velocity" || p.kind == "membrane_stress") {
     p.node = nodeRef(m, t, "node", t.string("node", p.name));
   } else if (p.kind == "slider") {
     const std::string g = t.string("group");
@@ -275,25 +355,32 @@ CaseSpec readCase(const std::string& file, const std::vector<std::string>& overr
   c.units = top.string("units", "");
   Model& m = c.model;
 
-  {
+  if (top.has("nodes")) {
     TomlTable nodes = top.table("nodes");
     for (const auto& name : nodes.keys()) {
       if (name.find('.') != std::string::npos) nodes.fail(name, "node names cannot contain '.'");
       m.addNode(nodes.vec3(name), name);
     }
-    if (m.numNodes() == 0) top.fail("nodes", "no nodes");
   }
   if (top.has("materials")) {
     TomlTable mats = top.table("materials");
     for (const auto& name : mats.keys()) {
-      m.materialName.push_back(name);
-      m.materials.push_back(readMaterial(mats.table(name)));
+      TomlTable t = mats.table(name);
+      if (t.has("kind") && t.string("kind") == "membrane") {
+        m.membraneMaterialName.push_back(name);
+        m.membraneMaterials.push_back(readMembraneMaterial(t));
+      } else {
+        m.materialName.push_back(name);
+        m.materials.push_back(readMaterial(t));
+      }
     }
   }
   int i = 0;
   for (auto& t : top.tables("cables")) readCable(m, t, i++);
   i = 0;
   for (auto& t : top.tables("sliding_groups")) readSlidingGroup(m, t, i++);
+  for (auto& t : top.tables("membranes")) readMembranes(m, t);
+  if (m.numNodes() == 0) top.fail("nodes", "the case has no nodes (no [nodes] and no meshes)");
   {
     std::set<std::string> names;
     for (const auto& s : m.lineSets)
@@ -316,8 +403,8 @@ CaseSpec readCase(const std::string& file, const std::vector<std::string>& overr
       const Vec3 velocity = t.vec3("velocity", Vec3::Zero());
       const Vec3 amplitude = t.vec3("amplitude", Vec3::Zero());
       const double frequency = t.nonNegative("frequency", 0.0);
-      for (const auto& name : t.strings("nodes")) {
-        auto& nc = m.constraint[nodeRef(m, t, "nodes", name)];
+      for (int node : nodesOf(m, t)) {
+        auto& nc = m.constraint[node];
         for (char d : dofs) nc.fixed[d - 'x'] = true;
         nc.velocity = velocity;
         nc.amplitude = amplitude;
@@ -329,10 +416,8 @@ CaseSpec readCase(const std::string& file, const std::vector<std::string>& overr
       const std::string dofs = t.string("dofs");
       if (dofs.empty() || dofs.find_first_not_of("xyz") != std::string::npos)
         t.fail("dofs", "expected a combination of x, y, z");
-      for (const auto& name : t.strings("nodes")) {
-        const int n = nodeRef(m, t, "nodes", name);
+      for (int n : nodesOf(m, t))
         for (char d : dofs) m.constraint[n].fixed[d - 'x'] = true;
-      }
       t.finish();
     }
     b.finish();
@@ -340,6 +425,31 @@ CaseSpec readCase(const std::string& file, const std::vector<std::string>& overr
   if (top.has("loads")) {
     TomlTable l = top.table("loads");
     m.gravity = l.vec3("gravity", Vec3::Zero());
+    for (auto& t : l.tables("pressure")) {
+      PressureLoadDef p;
+      const std::string set = t.string("membranes");
+      for (size_t k = 0; k < m.membraneSets.size(); ++k)
+        if (m.membraneSets[k].name == set) p.set = static_cast<int>(k);
+      if (p.set < 0) t.fail("membranes", "unknown membrane set '" + set + "'");
+      p.pressure = t.number("pressure");
+      p.rampTime = t.nonNegative("ramp_time", 0.0);
+      t.finish();
+      m.pressures.push_back(p);
+    }
+    for (auto& t : l.tables("drag")) {
+      DragLoadDef d;
+      const std::string set = t.string("set");
+      for (size_t k = 0; k < m.lineSets.size(); ++k)
+        if (m.lineSets[k].name == set) d.lineSet = static_cast<int>(k);
+      if (d.lineSet < 0) t.fail("set", "unknown cable set or sliding group '" + set + "'");
+      const double diameter = t.positive("diameter");
+      const double cd = t.positive("cd");
+      const double rho = t.positive("air_density");
+      d.coefficient = 0.5 * rho * cd * diameter;
+      d.wind = t.vec3("wind", Vec3::Zero());
+      t.finish();
+      m.drags.push_back(d);
+    }
     l.finish();
   }
   {
@@ -356,6 +466,8 @@ CaseSpec readCase(const std::string& file, const std::vector<std::string>& overr
       if (sv.dtMin > sv.dt) s.fail("dt_min", "must not exceed dt");
     }
     sv.loadSteps = static_cast<int>(s.integer("load_steps", 1, 1, 1000000));
+    sv.initialLoadFactor = s.positive("initial_load_factor", 0.0 + 1.0);
+    if (sv.initialLoadFactor > 1.0) s.fail("initial_load_factor", "must be in (0, 1]");
     m.massKind = s.choice("mass", "lumped", {"lumped", "consistent"}) == "lumped"
                      ? kernels::MassKind::Lumped
                      : kernels::MassKind::Consistent;
@@ -383,7 +495,7 @@ CaseSpec readCase(const std::string& file, const std::vector<std::string>& overr
   if (top.has("reference")) {
     TomlTable r = top.table("reference");
     ReferenceSpec ref;
-    ref.kind = r.choice("kind", "", {"pulley", "bead_ellipse", "free_fall"});
+    ref.kind = r.choice("kind", "", {"pulley", "bead_ellipse", "free_fall", "hencky"});
     const std::string probe = r.string("probe");
     for (size_t p = 0; p < c.output.probes.size(); ++p)
       if (c.output.probes[p].name == probe) ref.probe = static_cast<int>(p);
@@ -396,6 +508,28 @@ CaseSpec readCase(const std::string& file, const std::vector<std::string>& overr
         if (g.name == group)
           for (double L : g.refLength) ref.ropeLength += L;
       if (ref.ropeLength <= 0.0) r.fail("group", "unknown sliding group '" + group + "'");
+    } else if (ref.kind == "hencky") {
+      const std::string set = r.string("membranes");
+      int setId = -1;
+      for (size_t k = 0; k < m.membraneSets.size(); ++k)
+        if (m.membraneSets[k].name == set) setId = static_cast<int>(k);
+      auto rim = m.nodeSets.find(set + ".rim");
+      if (setId < 0 || rim == m.nodeSets.end())
+        r.fail("membranes", "no disk membrane '" + set + "'");
+      const int centre = c.output.probes[ref.probe].node;
+      for (int n : rim->second) ref.radius = std::max(ref.radius, (m.X[n] - m.X[centre]).norm());
+      for (const auto& e : m.membranes) {
+        if (e.set != setId) continue;
+        const auto& mat = m.membraneMaterials[e.material];
+        ref.E = mat.E, ref.nu = mat.nu, ref.thickness = mat.thickness;
+        ref.direction = (m.X[e.nodes[1]] - m.X[e.nodes[0]])
+                            .cross(m.X[e.nodes[2]] - m.X[e.nodes[0]])
+                            .normalized();
+        break;
+      }
+      for (const auto& pl : m.pressures)
+        if (pl.set == setId) ref.pressure += pl.pressure;
+      if (ref.pressure == 0.0) r.fail("membranes", "no pressure on membrane set '" + set + "'");
     } else if (ref.kind == "bead_ellipse") {
       const auto anchors = r.strings("anchors");
       if (anchors.size() != 2) r.fail("anchors", "expected the two fixed rope ends");

@@ -25,6 +25,9 @@ struct ReferenceSpec {
   int pulley = -1;   // pulley: the fixed slider node
   double ropeLength = 0.0;
   int anchor1 = -1, anchor2 = -1;  // bead_ellipse: the rope's fixed ends
+  // hencky: the disk's material, thickness, pressure, radius and the pressure's direction
+  double E = 0.0, nu = 0.0, thickness = 0.0, pressure = 0.0, radius = 0.0;
+  Vec3 direction = Vec3::UnitZ();
 };
 
 struct SolverSpec {
@@ -35,6 +38,8 @@ struct SolverSpec {
   SliderSearch search = SliderSearch::MaterialCoordinate;
   std::string integrator = "bossak";  // or "generalized_alpha" (Chung-Hulbert)
   int loadSteps = 1;
+  // Static: load factors grow geometrically from this to 1 over loadSteps (1: equal steps).
+  double initialLoadFactor = 1.0;
 };
 
 struct OutputSpec {

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "kernels/LineKernels.hpp"
+#include "kernels/MembraneKernels.hpp"
 
 namespace chute {
 
@@ -38,6 +39,38 @@ struct SlidingGroupDef {
   int numElements() const { return static_cast<int>(refLength.size()); }
 };
 
+// A membrane element: triangle (3 nodes) or quadrilateral (4 nodes, counter-clockwise about its
+// normal, which is also the direction pressure pushes).
+struct MembraneElement {
+  std::array<int, 4> nodes{-1, -1, -1, -1};
+  int numNodes = 3;
+  int material = -1;  // index into Model::membraneMaterials
+  int set = -1;       // index into Model::membraneSets
+};
+
+struct MembraneSet {
+  std::string name;
+  bool wrinkling = true;
+  double prestrain = 0.0;  // reference = initial geometry shrunk by 1 / (1 + prestrain)
+};
+
+// Follower pressure on a membrane set: p(t) = pressure min(1, t / rampTime).
+struct PressureLoadDef {
+  int set = -1;
+  double pressure = 0.0;
+  double rampTime = 0.0;
+  double at(double t) const {
+    return rampTime > 0.0 && t < rampTime ? pressure * t / rampTime : pressure;
+  }
+};
+
+// Drag on the line elements of a line set (formulation.md section 6).
+struct DragLoadDef {
+  int lineSet = -1;
+  double coefficient = 0.0;  // (1/2) rho_air Cd d
+  Vec3 wind = Vec3::Zero();
+};
+
 // How a node's three dofs are constrained: free, or prescribed. A prescribed dof follows
 // x(t) = X + velocity t + amplitude sin(2 pi frequency t) (all zero: fixed where it starts).
 struct NodeConstraint {
@@ -63,6 +96,15 @@ struct Model {
   std::vector<LineSet> lineSets;
   std::vector<CableElement> cables;
   std::vector<SlidingGroupDef> groups;
+
+  std::vector<std::string> membraneMaterialName;
+  std::vector<kernels::MembraneMaterial> membraneMaterials;
+  std::vector<MembraneSet> membraneSets;
+  std::vector<MembraneElement> membranes;
+  std::map<std::string, std::vector<int>> nodeSets;  // named node sets (e.g. a mesh's rim)
+
+  std::vector<PressureLoadDef> pressures;
+  std::vector<DragLoadDef> drags;
 
   Vec3 gravity = Vec3::Zero();
   kernels::MassKind massKind = kernels::MassKind::Lumped;

@@ -196,12 +196,15 @@ NewtonReport GeneralizedAlpha::step(DynamicState& s, double dt) {
   return rep;
 }
 
-NewtonReport GeneralizedAlpha::solveStatic(DynamicState& s, int nSteps) {
+NewtonReport GeneralizedAlpha::solveStatic(DynamicState& s, int nSteps, double initialFactor) {
   // Load stepping in the load factor; a slider reaching a node is handed over within the solve
   // (no step straddles it in statics), failed increments are halved.
   NewtonReport total;
   Eigen::VectorXd x = s.x;
   double lambda = 0.0, increment = 1.0 / nSteps;
+  const bool geometric = initialFactor < 1.0 && nSteps > 1;
+  const double growth = geometric ? std::pow(1.0 / initialFactor, 1.0 / (nSteps - 1)) : 1.0;
+  if (geometric) increment = initialFactor;
   while (lambda < 1.0 - 1e-12) {
     const double target = std::min(1.0, lambda + increment);
     auto makePoint = [&] {
@@ -233,6 +236,7 @@ NewtonReport GeneralizedAlpha::solveStatic(DynamicState& s, int nSteps) {
     }
     sys_->commit(x);
     lambda = target;
+    increment = geometric ? std::max(increment, lambda * (growth - 1.0)) : increment;
   }
   total.converged = true;
   s.x = x;

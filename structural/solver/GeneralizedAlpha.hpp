@@ -66,8 +66,10 @@ class GeneralizedAlpha {
   // Advances s by dt. On failure s and every term's history are left as they were.
   NewtonReport step(DynamicState& s, double dt);
 
-  // Static equilibrium under the loads, applied in nSteps equal increments.
-  NewtonReport solveStatic(DynamicState& s, int nSteps);
+  // Static equilibrium under the loads, applied in nSteps increments of the load factor: equal,
+  // or growing geometrically from initialFactor to 1 (a flat membrane under pressure stiffens
+  // with its deflection: w ~ p^(1/3)).
+  NewtonReport solveStatic(DynamicState& s, int nSteps, double initialFactor = 1.0);
 
   const GeneralizedAlphaParams& params() const { return p_; }
   const LinearSolver& linearSolver() const { return linear_; }

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "terms/LineTerms.hpp"
+#include "terms/SurfaceTerms.hpp"
 
 namespace chute {
 
@@ -17,6 +18,17 @@ StructuralSystem::StructuralSystem(const Model& model, SliderSearch search)
   }
   if (std::any_of(model.pointMass.begin(), model.pointMass.end(), [](double m) { return m > 0; }))
     terms_.push_back(std::make_unique<PointMassTerm>(model));
+  if (!model.membranes.empty()) {
+    auto t = std::make_unique<MembraneTerm>(model);
+    membranes_ = t.get();
+    terms_.push_back(std::move(t));
+  }
+  if (!model.pressures.empty()) terms_.push_back(std::make_unique<PressureTerm>(model));
+  if (!model.drags.empty()) {
+    std::vector<const SlidingGroupState*> states;
+    for (auto* g : groups_) states.push_back(&g->state());
+    terms_.push_back(std::make_unique<DragTerm>(model, states));
+  }
 
   std::vector<std::vector<int>> cliques;
   for (const auto& t : terms_) t->addCouplings(cliques);

@@ -13,6 +13,7 @@
 namespace chute {
 
 class SlidingGroupTerm;
+class MembraneTerm;
 
 class StructuralSystem {
  public:
@@ -43,6 +44,8 @@ class StructuralSystem {
   const std::vector<std::unique_ptr<Term>>& terms() const { return terms_; }
   // The sliding group terms, in the model's group order (empty without sliding groups).
   const std::vector<SlidingGroupTerm*>& slidingGroups() const { return groups_; }
+  // The membrane term (nullptr without membranes).
+  const MembraneTerm* membranes() const { return membranes_; }
 
   Timings& timings() { return timings_; }
   const Timings& timings() const { return timings_; }
@@ -52,6 +55,7 @@ class StructuralSystem {
   DofMap dofs_;
   std::vector<std::unique_ptr<Term>> terms_;
   std::vector<SlidingGroupTerm*> groups_;
+  MembraneTerm* membranes_ = nullptr;
   SystemAssembler assembler_;
   Timings timings_;
 };
