@@ -275,8 +275,36 @@ void readMembranes(Model& m, TomlTable t) {
   set.prestrain = t.number("prestrain", 0.0);
   if (set.prestrain <= -1.0) t.fail("prestrain", "must be > -1");
   const int setId = static_cast<int>(m.membraneSets.size());
-  const std::string kind = t.choice("mesh", "disk", {"disk", "rectangle"});
-  if (kind == "disk") {
+  const std::string kind = t.choice("mesh", "disk", {"disk", "rectangle", "elements"});
+  if (kind == "elements") {
+    // Explicit elements over named nodes: triangles = [["a", "b", "c"], ...], quads likewise.
+    auto& all = m.nodeSets[set.name];
+    for (const char* key : {"triangles", "quads"}) {
+      if (!t.has(key)) continue;
+      const size_t n = std::string(key) == "triangles" ? 3 : 4;
+      const auto& arr = toml::find(t.raw(), key);
+      if (!arr.is_array()) t.fail(key, "expected an array of node-name arrays");
+      for (const auto& el : arr.as_array()) {
+        if (!el.is_array() || el.as_array().size() != n)
+          t.failAt(el, key, "each element needs " + std::to_string(n) + " node names");
+        MembraneElement e;
+        e.numNodes = static_cast<int>(n);
+        e.set = setId;
+        e.material = material;
+        for (size_t i = 0; i < n; ++i) {
+          const auto& v = el.as_array()[i];
+          if (!v.is_string()) t.failAt(v, key, "expected a node name");
+          auto it = m.nodeByName.find(v.as_string().str);
+          if (it == m.nodeByName.end())
+            t.failAt(v, key, "unknown node '" + v.as_string().str + "'");
+          e.nodes[i] = it->second;
+          if (std::find(all.begin(), all.end(), it->second) == all.end()) all.push_back(it->second);
+        }
+        m.membranes.push_back(e);
+      }
+    }
+    t.finish();
+  } else if (kind == "disk") {
     const Vec3 centre = t.vec3("center", Vec3::Zero());
     const double radius = t.positive("radius");
     const long rings = t.integer("rings", 8, 1, 2000);

@@ -18,6 +18,7 @@ class TomlTable {
 
   bool has(const std::string& key) const;
   const std::string& path() const { return path_; }
+  const toml::value& raw() const { return *table_; }
 
   double number(const std::string& key);
   double number(const std::string& key, double fallback);
