@@ -80,6 +80,13 @@ std::vector<double> ProbeSet::evaluate(const StructuralSystem& sys, const Dynami
       }
       out.push_back(S[0]);
       out.push_back(S[1]);
+    } else if (p.kind == "wrinkling") {
+      // Fractions of the membrane elements taut, wrinkled and slack.
+      double count[3] = {0, 0, 0};
+      if (const auto* mt = sys.membranes())
+        for (const auto& st : mt->elementStates()) count[static_cast<int>(st.state)] += 1.0;
+      const double n = std::max(1.0, count[0] + count[1] + count[2]);
+      for (double c : count) out.push_back(c / n);
     } else if (p.kind == "line_force") {
       const auto [N, eps] = lineForce(*model_, sys, p.lineSet, p.element, s.x);
       out.push_back(N);

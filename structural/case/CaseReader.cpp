@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <set>
 #include <sstream>
 
@@ -21,6 +22,7 @@ std::vector<std::string> ProbeSpec::columns() const {
   if (kind == "energy") q = {"kinetic", "strain", "gravity", "total"};
   if (kind == "line_force") q = {"N", "strain"};
   if (kind == "membrane_stress") q = {"S1", "S2"};
+  if (kind == "wrinkling") q = {"taut", "wrinkled", "slack"};
   for (auto& s : q) s = name + "." + s;
   return q;
 }
@@ -303,12 +305,10 @@ void readMembranes(Model& m, TomlTable t) {
         m.membranes.push_back(e);
       }
     }
-    t.finish();
   } else if (kind == "disk") {
     const Vec3 centre = t.vec3("center", Vec3::Zero());
     const double radius = t.positive("radius");
     const long rings = t.integer("rings", 8, 1, 2000);
-    t.finish();
     mesh::addDisk(m, set.name, setId, material, centre, radius, static_cast<int>(rings));
   } else {
     const Vec3 corner = t.vec3("corner", Vec3::Zero());
@@ -317,10 +317,31 @@ void readMembranes(Model& m, TomlTable t) {
     const auto div = t.integers("divisions");
     if (div.size() != 2 || div[0] < 1 || div[1] < 1) t.fail("divisions", "expected [nx, ny] >= 1");
     const bool quads = t.choice("element", "quad", {"quad", "triangle"}) == "quad";
-    t.finish();
     mesh::addRectangle(m, set.name, setId, material, corner, size.x(), size.y(),
                        static_cast<int>(div[0]), static_cast<int>(div[1]), quads);
   }
+  // Optional bulged start (the reference stays flat): u_z = bulge cos(pi/2 dx/ax) cos(pi/2 dy/ay)
+  // around bulge_centre [x, y] within bulge_extent [ax, ay] (disk: bulge (1 - r^2/R^2)).
+  if (t.has("bulge")) {
+    const double h = t.number("bulge");
+    const auto& nodes = m.nodeSets[set.name];
+    if (kind == "disk") {
+      const Vec3 c = m.X[m.nodeId(set.name + ".center")];
+      double R = 0.0;
+      for (int n : nodes) R = std::max(R, (m.X[n] - c).norm());
+      for (int n : nodes) m.u0[n].z() += h * (1.0 - (m.X[n] - c).squaredNorm() / (R * R));
+    } else {
+      const Vec3 c = t.vec3("bulge_centre");
+      const Vec3 ext = t.vec3("bulge_extent");
+      for (int n : nodes) {
+        const double dx = std::abs(m.X[n].x() - c.x()) / ext.x(),
+                     dy = std::abs(m.X[n].y() - c.y()) / ext.y();
+        if (dx < 1.0 && dy < 1.0)
+          m.u0[n].z() += h * std::cos(M_PI / 2 * dx) * std::cos(M_PI / 2 * dy);
+      }
+    }
+  }
+  t.finish();
   m.membraneSets.push_back(set);
 }
 
@@ -341,9 +362,9 @@ std::vector<int> nodesOf(const Model& m, TomlTable& t) {
 ProbeSpec readProbe(const Model& m, TomlTable t) {
   ProbeSpec p;
   p.name = t.string("name");
-  p.kind = t.choice(
-      "kind", "node_position",
-      {"node_position", "node_velocity", "slider", "energy", "line_force", "membrane_stress"});
+  p.kind = t.choice("kind", "node_position",
+                    {"node_position", "node_velocity", "slider", "energy", "line_force",
+                     "membrane_stress", "wrinkling"});
   if (p.kind == "node_position" || p.kind == "node_velocity" || p.kind == "membrane_stress") {
     p.node = nodeRef(m, t, "node", t.string("node", p.name));
   } else if (p.kind == "slider") {
@@ -489,6 +510,7 @@ CaseSpec readCase(const std::string& file, const std::vector<std::string>& overr
       sv.tEnd = s.positive("t_end");
       sv.rhoInf = s.number("rho_inf", 0.9);
       sv.integrator = s.choice("integrator", "bossak", {"bossak", "generalized_alpha"});
+      m.massDamping = s.nonNegative("mass_damping", 0.0);
       if (sv.rhoInf < 0.0 || sv.rhoInf > 1.0) s.fail("rho_inf", "must be in [0, 1]");
       sv.dtMin = s.positive("dt_min", sv.dt * 1e-6);
       if (sv.dtMin > sv.dt) s.fail("dt_min", "must not exceed dt");

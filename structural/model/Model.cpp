@@ -23,6 +23,7 @@ double NodeConstraint::acceleration(int k, double t) const {
 int Model::addNode(const Vec3& x, const std::string& name) {
   const int id = numNodes();
   X.push_back(x);
+  u0.push_back(Vec3::Zero());
   nodeName.push_back(name);
   constraint.emplace_back();
   pointMass.push_back(0.0);

@@ -85,7 +85,9 @@ struct NodeConstraint {
 };
 
 struct Model {
-  std::vector<Vec3> X;  // reference (initial) coordinates
+  std::vector<Vec3> X;   // reference coordinates (elements are stress-free here)
+  std::vector<Vec3> u0;  // initial displacement: the run starts at X + u0 (a bulged or folded
+                         // start whose reference is the flat cutting pattern)
   std::vector<std::string> nodeName;
   std::map<std::string, int> nodeByName;
   std::vector<NodeConstraint> constraint;
@@ -107,6 +109,7 @@ struct Model {
   std::vector<DragLoadDef> drags;
 
   Vec3 gravity = Vec3::Zero();
+  double massDamping = 0.0;  // Rayleigh mass-proportional damping C = alpha M (membranes)
   kernels::MassKind massKind = kernels::MassKind::Lumped;
 
   int numNodes() const { return static_cast<int>(X.size()); }

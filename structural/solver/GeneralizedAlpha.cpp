@@ -34,7 +34,7 @@ DynamicState GeneralizedAlpha::initialState() const {
   DynamicState s;
   const int n = 3 * m.numNodes();
   s.x.resize(n);
-  for (int i = 0; i < m.numNodes(); ++i) s.x.segment<3>(3 * i) = m.X[i];
+  for (int i = 0; i < m.numNodes(); ++i) s.x.segment<3>(3 * i) = m.X[i] + m.u0[i];
   s.v.setZero(n);
   s.a.setZero(n);
   for (int d = 0; d < n; ++d)
@@ -158,7 +158,7 @@ NewtonReport GeneralizedAlpha::step(DynamicState& s, double dt) {
     for (int d = 0; d < sys_->dofs().numDofs(); ++d) {
       if (sys_->dofs().eqOfDof(d) >= 0) continue;
       const auto& c = model.constraint[d / 3];
-      n.x[d] = c.position(model.X[d / 3][d % 3], d % 3, n.t);
+      n.x[d] = c.position(model.X[d / 3][d % 3] + model.u0[d / 3][d % 3], d % 3, n.t);
       n.v[d] = c.speed(d % 3, n.t);
       n.a[d] = c.acceleration(d % 3, n.t);
     }

@@ -70,6 +70,16 @@ void MembraneTerm::assembleElement(int k, const kernels::MembraneReference<N>& r
   states_[k] = {res.state, res.principalStress, res.principalStrain};
   Eigen::Matrix<double, 3 * N, 1> r = res.force;
   Eigen::Matrix<double, 3 * N, 3 * N> J = p.cx * res.stiffness;
+  if (wantJ && res.state != kernels::WrinkleState::Taut) {
+    // Slack or wrinkled fabric has no stiffness across the wrinkles: the Jacobian (never the
+    // residual) gets a membrane tension of kSlackTangent E t in every direction, so that slack
+    // regions do not make it singular. Converged states are untouched.
+    constexpr double kSlackTangent = 1e-6;
+    Eigen::Matrix<double, N, N> G = Eigen::Matrix<double, N, N>::Zero();
+    for (int g = 0; g < kernels::MembraneReference<N>::kGauss; ++g)
+      G += ref.weight[g] * ref.dN[g] * ref.dN[g].transpose();
+    J += p.cx * kSlackTangent * mat.E * expand<N>(G);
+  }
   if (mat.density > 0.0) {
     const auto Ms =
         kernels::membraneMass<N>(ref, mat.density, m_->massKind == kernels::MassKind::Lumped);
@@ -79,6 +89,12 @@ void MembraneTerm::assembleElement(int k, const kernels::MembraneReference<N>& r
       for (int i = 0; i < N; ++i) a.template segment<3>(3 * i) = p.a.segment<3>(3 * e.nodes[i]);
       r += M * a;
       J += p.ca * M;
+      if (m_->massDamping > 0.0) {  // C v with C = alpha M (pseudo-dynamics, physical damping)
+        Eigen::Matrix<double, 3 * N, 1> vel;
+        for (int i = 0; i < N; ++i) vel.template segment<3>(3 * i) = p.v.segment<3>(3 * e.nodes[i]);
+        r += m_->massDamping * M * vel;
+        J += p.cv * m_->massDamping * M;
+      }
     }
     if (m_->hasGravity()) {
       const Eigen::Matrix<double, N, 1> share = Ms.rowwise().sum();  // rho t0 int N_i dA
