@@ -59,15 +59,18 @@ struct PressureLoadDef {
   int set = -1;
   double pressure = 0.0;
   double rampTime = 0.0;
+  std::vector<double> elementFactor;  // per element of the set, in order; empty: uniform
   double at(double t) const {
     return rampTime > 0.0 && t < rampTime ? pressure * t / rampTime : pressure;
   }
 };
 
-// Drag on the line elements of a line set (formulation.md section 6).
+// Drag on the line elements of a line set, or on the edges joining consecutive nodes of a node
+// set (membrane edges, e.g. a slider's four edges) (formulation.md section 6).
 struct DragLoadDef {
   int lineSet = -1;
-  double coefficient = 0.0;  // (1/2) rho_air Cd d
+  std::vector<std::array<int, 2>> edges;  // used when lineSet < 0
+  double coefficient = 0.0;               // (1/2) rho_air Cd d
   Vec3 wind = Vec3::Zero();
 };
 

@@ -150,10 +150,13 @@ void PressureTerm::addCouplings(std::vector<std::vector<int>>& cliques) const {
 void PressureTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
   const bool wantJ = out.wantMatrix();
   for (const auto& load : m_->pressures) {
-    const double pr = p.loadFactor * load.at(p.t);
-    if (pr == 0.0) continue;
+    const double p0 = p.loadFactor * load.at(p.t);
+    if (p0 == 0.0) continue;
+    int inSet = 0;
     for (const auto& e : m_->membranes) {
       if (e.set != load.set) continue;
+      const double pr = load.elementFactor.empty() ? p0 : p0 * load.elementFactor[inSet];
+      ++inSet;
       auto one = [&](auto nodesTag) {
         constexpr int N = decltype(nodesTag)::value;
         const auto pl = kernels::pressureLoad<N>(gatherNodes<N>(p.x, e), pr, wantJ);
@@ -172,6 +175,7 @@ void PressureTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
 // ---- DragTerm ------------------------------------------------------------------------------
 void DragTerm::addCouplings(std::vector<std::vector<int>>& cliques) const {
   for (const auto& d : m_->drags) {
+    for (const auto& e : d.edges) cliques.push_back({e[0], e[1]});
     for (const auto& c : m_->cables)
       if (c.set == d.lineSet) cliques.push_back({c.a, c.b});
     for (const auto& g : m_->groups) {
@@ -194,6 +198,7 @@ void DragTerm::addSegment(int a, int b, const Vec3& wind, double c, const EvalPo
 void DragTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
   if (!p.inertia) return;  // drag needs motion: nothing in statics
   for (const auto& d : m_->drags) {
+    for (const auto& e : d.edges) addSegment(e[0], e[1], d.wind, d.coefficient, p, out);
     for (const auto& c : m_->cables)
       if (c.set == d.lineSet) addSegment(c.a, c.b, d.wind, d.coefficient, p, out);
     for (size_t gi = 0; gi < m_->groups.size(); ++gi) {
