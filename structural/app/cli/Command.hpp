@@ -1,0 +1,20 @@
+// One verb of the `chute` command line. Each verb lives in its own file and registers itself with
+// the CLI11 application; main() runs the one the user chose.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <functional>
+
+namespace chute::cli {
+
+constexpr int kExitBadInput = 2;   // case file, mesh or command line wrong: nothing written
+constexpr int kExitRunFailed = 3;  // the run stopped early: last good state written
+
+struct Command {
+  CLI::App* sub = nullptr;   // the CLI11 subcommand (owned by the application)
+  std::function<int()> run;  // runs it once the command line is parsed; returns the exit status
+};
+
+Command addRunCommand(CLI::App& app);
+
+}  // namespace chute::cli

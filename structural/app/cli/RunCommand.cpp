@@ -1,0 +1,68 @@
+// `chute run CASE [--out DIR] [--set k=v ...] [--quiet] [--newton-log]` (interfaces.md).
+#include <fmt/core.h>
+
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "app/Simulation.hpp"
+#include "app/cli/Command.hpp"
+#include "case/CaseError.hpp"
+#include "case/CaseSpec.hpp"
+
+namespace chute::cli {
+namespace {
+
+struct RunArgs {
+  std::string caseFile, outDir;
+  std::vector<std::string> sets;
+  bool quiet = false, verboseNewton = false;
+};
+
+int runCase(const RunArgs& a) {
+  CaseSpec spec;
+  try {
+    spec = readCase(a.caseFile, a.sets);
+  } catch (const CaseError& e) {
+    fmt::print(stderr, "chute: {}\n", e.what());
+    return kExitBadInput;
+  }
+  RunOptions opt;
+  opt.outDir = a.outDir.empty() ? "out/" + spec.name : a.outDir;
+  opt.progress = !a.quiet;
+  opt.verboseNewton = a.verboseNewton;
+  const auto r = chute::runCase(spec, opt);
+  if (!a.quiet) {
+    fmt::print(
+        "{}: {} at t = {:.6g}: {} steps, {} rejected, {:.2f} Newton iterations/step, "
+        "{:.3f} s wall\n",
+        spec.name, r.status, r.finalTime, r.steps, r.rejectedSteps, r.newtonPerStep(), r.wallTime);
+    if (r.reference)
+      fmt::print("  reference {} ({}): max error {:.3e}, {:.4f} % of the motion ({:.4g})\n",
+                 r.reference->kind, r.reference->probe, r.reference->maxError,
+                 100 * r.reference->relative(), r.reference->motionSize);
+    fmt::print("  output in {}\n", opt.outDir);
+  }
+  if (r.status != "completed") {
+    fmt::print(stderr, "chute: {}: {}\n", spec.name, r.reason);
+    return kExitRunFailed;
+  }
+  return 0;
+}
+
+}  // namespace
+
+Command addRunCommand(CLI::App& app) {
+  auto a = std::make_shared<RunArgs>();
+  auto* run = app.add_subcommand("run", "run a case file");
+  run->add_option("case", a->caseFile, "case file (TOML)")->required();
+  run->add_option("--out", a->outDir, "output directory (default out/<case name>/)");
+  run->add_option("--set", a->sets, "override a scalar by its dotted path, e.g. solver.dt=1e-4")
+      ->take_all();
+  run->add_flag("--quiet", a->quiet, "no progress or report on the terminal");
+  run->add_flag("--newton-log", a->verboseNewton, "print the residual of every Newton iteration");
+  return {run, [a] { return runCase(*a); }};
+}
+
+}  // namespace chute::cli
