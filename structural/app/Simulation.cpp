@@ -2,15 +2,19 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
 
 #include "Probes.hpp"
+#include "SceneFrame.hpp"
+#include "VtuSeries.hpp"
 #include "solver/GeneralizedAlpha.hpp"
 #include "terms/LineTerms.hpp"
 #include "verification/HenckyReference.hpp"
@@ -69,6 +73,25 @@ std::optional<ReferenceError> compareWithReference(const CaseSpec& spec, const R
   return e;
 }
 
+// When output is due: every N steps, or at multiples of an interval (the stepping stops there).
+struct OutputClock {
+  bool on = true;
+  int every = 1;
+  double interval = 0.0;
+  long index = 1;
+  double nextTime() const {
+    return on && interval > 0 ? static_cast<double>(index) * interval
+                              : std::numeric_limits<double>::infinity();
+  }
+  bool due(double t, long steps, double dt) {
+    if (!on) return false;
+    if (interval <= 0) return steps % every == 0;
+    if (t < static_cast<double>(index) * interval - 1e-9 * dt) return false;
+    while (static_cast<double>(index) * interval <= t + 1e-9 * dt) ++index;
+    return true;
+  }
+};
+
 class Progress {
  public:
   explicit Progress(bool on) : on_(on && isatty(STDERR_FILENO)) {}
@@ -118,6 +141,26 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
     std::filesystem::create_directories(options.outDir);
     csv = std::make_unique<CsvWriter>(options.outDir + "/probes.csv", r.columns);
   }
+  // The VTU series only when the case asks for it: no VTK work otherwise.
+  const auto& vtuSpec = spec.output.vtu;
+  std::unique_ptr<VtuSeries> vtu;
+  FrameFields fields;
+  if (vtuSpec.write && !options.outDir.empty()) {
+    ScopedTimer timer(sys.timings().output);
+    vtu = std::make_unique<VtuSeries>(options.outDir, spec.name);
+    if (!vtuSpec.fields.empty()) fields.select(vtuSpec.fields);
+  }
+  const bool inertia = sv.type != "static";
+  double vtuLast = -std::numeric_limits<double>::infinity();
+  auto writeVtu = [&](const DynamicState& s) {
+    if (!vtu || s.t == vtuLast) return;
+    ScopedTimer timer(sys.timings().output);
+    vtu->write(buildFrame(sys, s, fields, inertia));
+    vtuLast = s.t;
+  };
+  OutputClock probeClock{true, spec.output.everySteps, spec.output.interval};
+  OutputClock vtuClock{static_cast<bool>(vtu), vtuSpec.everySteps, vtuSpec.interval};
+
   DynamicState state = integrator.initialState();
   auto record = [&](const DynamicState& s) {
     ScopedTimer timer(sys.timings().output);
@@ -140,19 +183,19 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
     if (!rep.converged) r.status = "diverged", r.reason = rep.failure;
     state.t = 1.0;
     record(state);
+    writeVtu(state);
   } else {
     integrator.computeInitialAcceleration(state);
     sys.commit(state.x);
     record(state);
+    writeVtu(state);
     double dt = sv.dt, eventStep = 0.0;
     int successesSinceCut = 0;
     const double tEnd = sv.tEnd;
-    long outputIndex = 1;
     while (state.t < tEnd - 1e-12 * sv.dt) {
       // The next stop: the end or the next output time. A step that would leave a sliver of
       // less than a tenth of a step before it is stretched to reach it.
-      double stop = tEnd;
-      if (spec.output.interval > 0) stop = std::min(stop, outputIndex * spec.output.interval);
+      const double stop = std::min({tEnd, probeClock.nextTime(), vtuClock.nextTime()});
       double h = std::min(dt, stop - state.t);
       if (stop - state.t - h < 0.1 * h) h = stop - state.t;
       if (eventStep > 0 && eventStep < h) h = eventStep;
@@ -184,23 +227,21 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
       r.maxNewtonInStep = std::max(r.maxNewtonInStep, rep.iterations);
       if (dt < sv.dt && ++successesSinceCut >= 4)
         dt = std::min(2 * dt, sv.dt), successesSinceCut = 0;
-      bool out = false;
-      if (spec.output.interval > 0) {
-        if (state.t >= outputIndex * spec.output.interval - 1e-9 * sv.dt) out = true, ++outputIndex;
-      } else {
-        out = r.steps % spec.output.everySteps == 0;
-      }
-      if (state.t >= tEnd - 1e-12 * sv.dt) out = true;
-      if (out) record(state);
+      const bool last = state.t >= tEnd - 1e-12 * sv.dt;
+      if (probeClock.due(state.t, r.steps, sv.dt) || last) record(state);
+      if (vtuClock.due(state.t, r.steps, sv.dt) || last) writeVtu(state);
       progress.update(r.steps, state.t, tEnd, h, rep.iterations, r.newtonPerStep(),
                       r.rejectedSteps);
     }
     progress.update(r.steps, state.t, tEnd, dt, 0, r.newtonPerStep(), r.rejectedSteps, true);
     progress.finish();
-    if (r.status != "completed" && (r.times.empty() || r.times.back() != state.t))
-      record(state);  // the last good state
+    if (r.status != "completed") {  // the last good state
+      if (r.times.empty() || r.times.back() != state.t) record(state);
+      writeVtu(state);
+    }
   }
   r.finalTime = state.t;
+  r.vtuFrames = vtu ? vtu->frames() : 0;
   r.timings = sys.timings();
   r.linearSolver = integrator.linearSolver().kindName();
   r.symbolicAnalyses = integrator.linearSolver().analyses();
@@ -258,6 +299,8 @@ void writeSummary(const std::string& path, const CaseSpec& spec, const RunResult
       {"search", spec.solver.search == SliderSearch::NearestLength ? "nearest_length"
                                                                    : "material_coordinate"}};
   j["sliding_handovers"] = r.handovers;
+  j["output"] = {{"probe_rows", r.times.size()}, {"vtu_frames", r.vtuFrames}};
+  if (!spec.units.empty()) j["units"] = spec.units;
   j["energy"] = {
       {"initial", r.energyInitial}, {"max_drift", r.energyMaxDrift}, {"max_kinetic", r.kineticMax}};
   if (r.reference) {

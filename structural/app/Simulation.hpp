@@ -34,6 +34,7 @@ struct RunResult {
   int equations = 0;
   long nonZeros = 0, symbolicAnalyses = 0;
   std::vector<long> handovers;  // per sliding group
+  int vtuFrames = 0;
   double energyInitial = 0.0, energyMaxDrift = 0.0, kineticMax = 0.0;
   std::vector<std::string> columns;
   std::vector<double> times;

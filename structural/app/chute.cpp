@@ -13,7 +13,8 @@ int main(int argc, char** argv) {
   using namespace chute::cli;
   CLI::App app{"chute: structural finite elements for parachute systems"};
   app.require_subcommand(1);
-  const std::vector<Command> commands = {addRunCommand(app)};
+  const std::vector<Command> commands = {addRunCommand(app), addRenderCommand(app),
+                                         addPlotCommand(app)};
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -30,6 +30,8 @@ class SystemAssembler {
       for (int k = 0; k < 3; ++k) eq[3 * i + k] = dofs_->eq(nodes[i], k);
     for (int i = 0; i < 3 * N; ++i)
       if (eq[i] >= 0) residual_[eq[i]] += r[i];
+    if (full_)
+      for (int i = 0; i < N; ++i) full_->segment<3>(3 * nodes[i]) += r.template segment<3>(3 * i);
     if (!J || !wantMatrix_) return;
     for (int j = 0; j < 3 * N; ++j) {
       if (eq[j] < 0) continue;
@@ -37,6 +39,10 @@ class SystemAssembler {
         if (eq[i] >= 0 && (*J)(i, j) != 0.0) matrix_.coeffRef(eq[i], eq[j]) += (*J)(i, j);
     }
   }
+
+  // While set, every residual is also summed over all dofs, constrained ones included (for
+  // reactions and applied loads in the output); nullptr switches it off.
+  void captureAllDofs(Eigen::VectorXd* full) { full_ = full; }
 
   const Eigen::VectorXd& residual() const { return residual_; }
   const SparseMatrix& matrix() const { return matrix_; }
@@ -48,6 +54,7 @@ class SystemAssembler {
   SparseMatrix matrix_;
   Eigen::VectorXd residual_;
   bool wantMatrix_ = true;
+  Eigen::VectorXd* full_ = nullptr;
 };
 
 }  // namespace chute

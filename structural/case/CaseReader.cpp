@@ -567,6 +567,24 @@ CaseSpec readCase(const std::string& file, const std::vector<std::string>& overr
       if (!names.insert(c.output.probes.back().name).second)
         p.fail("name", "duplicate probe name '" + c.output.probes.back().name + "'");
     }
+    if (o.has("vtu")) {
+      TomlTable v = o.table("vtu");
+      auto& vtu = c.output.vtu;
+      vtu.write = v.boolean("write", true);
+      vtu.everySteps = static_cast<int>(v.integer("every", 1, 1, 1L << 40));
+      if (v.has("interval")) vtu.interval = v.positive("interval");
+      if (v.has("interval") && v.has("every")) v.fail("every", "give either every or interval");
+      vtu.fields = v.strings("fields", {});
+      for (const auto& f : vtu.fields) {
+        const auto& known = vtuPointFieldNames();
+        if (std::find(known.begin(), known.end(), f) == known.end()) {
+          std::string list;
+          for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
+          v.fail("fields", "unknown field '" + f + "' (known: " + list + ")");
+        }
+      }
+      v.finish();
+    }
     o.finish();
   }
   if (top.has("reference")) {

@@ -42,10 +42,26 @@ struct SolverSpec {
   double initialLoadFactor = 1.0;
 };
 
+// Point fields a VTU frame can carry (cell fields are always written).
+inline const std::vector<std::string>& vtuPointFieldNames() {
+  static const std::vector<std::string> n = {"displacement", "velocity", "acceleration", "reaction",
+                                             "applied_load"};
+  return n;
+}
+
+// The VTU time series ([output.vtu]); written only when a case asks for it.
+struct VtuSpec {
+  bool write = false;
+  int everySteps = 1;
+  double interval = 0.0;  // > 0: output times at multiples of this instead of every N steps
+  std::vector<std::string> fields;  // point fields (empty: all)
+};
+
 struct OutputSpec {
   int everySteps = 1;
   double interval = 0.0;  // > 0: output times at multiples of this instead of every N steps
   std::vector<ProbeSpec> probes;
+  VtuSpec vtu;
 };
 
 struct CaseSpec {

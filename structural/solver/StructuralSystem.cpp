@@ -51,6 +51,36 @@ void StructuralSystem::assemble(const EvalPoint& p, bool wantMatrix) {
   for (const auto& t : terms_) t->assemble(p, assembler_);
 }
 
+StructuralSystem::NodalForces StructuralSystem::nodalForces(const Eigen::VectorXd& x,
+                                                            const Eigen::VectorXd& v,
+                                                            const Eigen::VectorXd& a, double t,
+                                                            bool inertia) {
+  const long n = x.size();
+  NodalForces f;
+  Eigen::VectorXd full = Eigen::VectorXd::Zero(n), unloaded = Eigen::VectorXd::Zero(n);
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);
+  auto residualOver = [&](Eigen::VectorXd& out, const Eigen::VectorXd& acc, double load) {
+    EvalPoint p{x, v, acc, t};
+    p.inertia = inertia;
+    p.loadFactor = load;
+    assembler_.captureAllDofs(&out);
+    assembler_.begin(false);
+    for (const auto& term : terms_) term->assemble(p, assembler_);
+    assembler_.captureAllDofs(nullptr);
+  };
+  // r = f_int + M a - f_ext: the supports supply r at constrained dofs.
+  residualOver(full, a, 1.0);
+  f.reaction = Eigen::VectorXd::Zero(n);
+  for (long d = 0; d < n; ++d)
+    if (dofs_.eqOfDof(static_cast<int>(d)) < 0) f.reaction[d] = full[d];
+  // Loads are the load-factor-scaled part: f_ext = r(lambda = 0) - r(lambda = 1) at a = 0.
+  Eigen::VectorXd loaded = Eigen::VectorXd::Zero(n);
+  residualOver(loaded, zero, 1.0);
+  residualOver(unloaded, zero, 0.0);
+  f.applied = unloaded - loaded;
+  return f;
+}
+
 bool StructuralSystem::symmetric() const {
   return std::all_of(terms_.begin(), terms_.end(),
                      [](const auto& t) { return t->symmetricJacobian(); });

@@ -33,6 +33,15 @@ class StructuralSystem {
   bool onConverged(Eigen::VectorXd& x);
   bool crossNow(Eigen::VectorXd& x);
 
+  // Nodal forces over all dofs at a converged state (for output): the support reactions
+  // (the residual at constrained dofs, zero elsewhere) and the applied loads (gravity, pressure,
+  // drag: the part of the residual scaled by the load factor).
+  struct NodalForces {
+    Eigen::VectorXd reaction, applied;
+  };
+  NodalForces nodalForces(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
+                          const Eigen::VectorXd& a, double t, bool inertia);
+
   EnergyBreakdown energy(const Eigen::VectorXd& x, const Eigen::VectorXd& v) const;
   void commit(const Eigen::VectorXd& x);
   void revert();

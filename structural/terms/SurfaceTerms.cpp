@@ -198,19 +198,21 @@ void DragTerm::addSegment(int a, int b, const Vec3& wind, double c, const EvalPo
 void DragTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
   if (!p.inertia) return;  // drag needs motion: nothing in statics
   for (const auto& d : m_->drags) {
-    for (const auto& e : d.edges) addSegment(e[0], e[1], d.wind, d.coefficient, p, out);
+    // Drag is an applied load: scaled by the load factor like the others (1 in dynamics).
+    const double coef = d.coefficient * p.loadFactor;
+    for (const auto& e : d.edges) addSegment(e[0], e[1], d.wind, coef, p, out);
     for (const auto& c : m_->cables)
-      if (c.set == d.lineSet) addSegment(c.a, c.b, d.wind, d.coefficient, p, out);
+      if (c.set == d.lineSet) addSegment(c.a, c.b, d.wind, coef, p, out);
     for (size_t gi = 0; gi < m_->groups.size(); ++gi) {
       const auto& g = m_->groups[gi];
       if (g.set != d.lineSet) continue;
       for (int k = 0; k < g.numElements(); ++k) {
         const int s = groups_[gi]->sliderOfElement(k);
         if (s < 0) {
-          addSegment(g.chain[k], g.chain[k + 1], d.wind, d.coefficient, p, out);
+          addSegment(g.chain[k], g.chain[k + 1], d.wind, coef, p, out);
         } else {  // the two straight parts through the slider
-          addSegment(g.chain[k], g.sliders[s], d.wind, d.coefficient, p, out);
-          addSegment(g.sliders[s], g.chain[k + 1], d.wind, d.coefficient, p, out);
+          addSegment(g.chain[k], g.sliders[s], d.wind, coef, p, out);
+          addSegment(g.sliders[s], g.chain[k + 1], d.wind, coef, p, out);
         }
       }
     }

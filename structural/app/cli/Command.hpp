@@ -16,5 +16,7 @@ struct Command {
 };
 
 Command addRunCommand(CLI::App& app);
+Command addRenderCommand(CLI::App& app);
+Command addPlotCommand(CLI::App& app);
 
 }  // namespace chute::cli

@@ -1,0 +1,186 @@
+#include "SceneFrame.hpp"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "case/CaseSpec.hpp"
+#include "kernels/LineKernels.hpp"
+#include "terms/LineTerms.hpp"
+#include "terms/SurfaceTerms.hpp"
+
+namespace chute {
+
+namespace {
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// Cell fields, appended one cell at a time so every field stays aligned with the cells.
+struct CellFields {
+  FieldArray kind{"kind", 1, {}, true}, part{"part", 1, {}, true};
+  FieldArray axialForce{"axial_force", 1, {}}, axialStrain{"axial_strain", 1, {}};
+  FieldArray stress{"principal_stress", 2, {}}, strain{"principal_strain", 2, {}};
+  FieldArray wrinkling{"wrinkling_state", 1, {}, true}, pressure{"pressure", 1, {}};
+  FieldArray sliderGroup{"slider_group", 1, {}, true}, sliderS{"slider_material_coordinate", 1, {}};
+
+  void add(CellKind k, int partIndex, double N, double eps, const Eigen::Vector2d& S,
+           const Eigen::Vector2d& E, double wrinkle, double p, int group, double s) {
+    kind.values.push_back(static_cast<int>(k));
+    part.values.push_back(partIndex);
+    axialForce.values.push_back(N);
+    axialStrain.values.push_back(eps);
+    stress.values.insert(stress.values.end(), {S[0], S[1]});
+    strain.values.insert(strain.values.end(), {E[0], E[1]});
+    wrinkling.values.push_back(wrinkle);
+    pressure.values.push_back(p);
+    sliderGroup.values.push_back(group);
+    sliderS.values.push_back(s);
+  }
+  std::vector<FieldArray> take() {
+    return {std::move(kind),        std::move(part),     std::move(axialForce),
+            std::move(axialStrain), std::move(stress),   std::move(strain),
+            std::move(wrinkling),   std::move(pressure), std::move(sliderGroup),
+            std::move(sliderS)};
+  }
+};
+
+const Eigen::Vector2d kNaN2(kNaN, kNaN);
+
+void addCell(SceneFrame& f, CellShape shape, std::initializer_list<int> nodes) {
+  f.shapes.push_back(shape);
+  f.connectivity.insert(f.connectivity.end(), nodes.begin(), nodes.end());
+  f.offsets.push_back(static_cast<int>(f.connectivity.size()));
+}
+
+FieldArray vectorField(const std::string& name, const Eigen::VectorXd& v) {
+  return {name, 3, std::vector<double>(v.data(), v.data() + v.size())};
+}
+}  // namespace
+
+const FieldArray* SceneFrame::cellField(const std::string& name) const {
+  for (const auto& a : cellData)
+    if (a.name == name) return &a;
+  return nullptr;
+}
+
+const FieldArray* SceneFrame::pointField(const std::string& name) const {
+  for (const auto& a : pointData)
+    if (a.name == name) return &a;
+  return nullptr;
+}
+
+const std::vector<std::string>& FrameFields::names() {
+  return vtuPointFieldNames();
+}
+
+void FrameFields::select(const std::vector<std::string>& chosen) {
+  displacement = velocity = acceleration = reaction = appliedLoad = false;
+  for (const auto& c : chosen) {
+    if (c == "displacement")
+      displacement = true;
+    else if (c == "velocity")
+      velocity = true;
+    else if (c == "acceleration")
+      acceleration = true;
+    else if (c == "reaction")
+      reaction = true;
+    else if (c == "applied_load")
+      appliedLoad = true;
+    else
+      throw std::invalid_argument("unknown field '" + c + "'");
+  }
+}
+
+SceneFrame buildFrame(StructuralSystem& sys, const DynamicState& s, const FrameFields& fields,
+                      bool inertia) {
+  const Model& m = sys.model();
+  SceneFrame f;
+  f.t = s.t;
+  f.points.assign(s.x.data(), s.x.data() + s.x.size());
+  auto at = [&](int n) { return Vec3(s.x.segment<3>(3 * n)); };
+
+  // Parts: line sets, then membrane sets, then the point masses.
+  for (const auto& ls : m.lineSets) f.partNames.push_back(ls.name);
+  const int membranePart0 = static_cast<int>(f.partNames.size());
+  for (const auto& ms : m.membraneSets) f.partNames.push_back(ms.name);
+  const int massPart = static_cast<int>(f.partNames.size());
+  f.partNames.push_back("point_masses");
+
+  CellFields c;
+  for (const auto& e : m.cables) {
+    const auto& mat = m.materials[e.material];
+    const auto r = kernels::cableForce(at(e.a), at(e.b), e.L, mat, false);
+    addCell(f, CellShape::Line, {e.a, e.b});
+    c.add(mat.tensionOnly ? CellKind::Cable : CellKind::Truss, e.set, r.axialForce, r.strain, kNaN2,
+          kNaN2, -1, kNaN, -1, kNaN);
+  }
+  for (size_t g = 0; g < m.groups.size(); ++g) {
+    const auto& def = m.groups[g];
+    const auto& st = sys.slidingGroups()[g]->state();
+    const auto& mat = m.materials[def.material];
+    for (int k = 0; k < def.numElements(); ++k) {
+      const int a = def.chain[k], b = def.chain[k + 1];
+      const int sl = st.sliderOfElement(k);
+      if (sl < 0) {
+        const auto r = kernels::cableForce(at(a), at(b), def.refLength[k], mat, false);
+        addCell(f, CellShape::Line, {a, b});
+        c.add(CellKind::SlidingInactive, def.set, r.axialForce, r.strain, kNaN2, kNaN2, -1, kNaN,
+              static_cast<int>(g), kNaN);
+        continue;
+      }
+      const int node = def.sliders[sl];
+      const auto r = kernels::slidingForce(at(a), at(b), at(node), def.refLength[k], mat, false);
+      const double sMat = st.materialCoordinate(sl, s.x);
+      for (const auto& part : {std::array<int, 2>{a, node}, std::array<int, 2>{node, b}}) {
+        addCell(f, CellShape::Line, {part[0], part[1]});
+        c.add(CellKind::SlidingActivePart, def.set, r.axialForce, r.strain, kNaN2, kNaN2, -1, kNaN,
+              static_cast<int>(g), sMat);
+      }
+    }
+  }
+  if (!m.membranes.empty()) {
+    // Pressure on each element now: the sum of the loads on its set, with per-element factors.
+    std::vector<double> pressure(m.membranes.size(), 0.0);
+    for (const auto& load : m.pressures) {
+      long k = 0;
+      for (size_t e = 0; e < m.membranes.size(); ++e) {
+        if (m.membranes[e].set != load.set) continue;
+        const double factor = load.elementFactor.empty() ? 1.0 : load.elementFactor[k];
+        pressure[e] += load.at(s.t) * factor;
+        ++k;
+      }
+    }
+    const auto* mt = sys.membranes();
+    for (size_t e = 0; e < m.membranes.size(); ++e) {
+      const auto& el = m.membranes[e];
+      if (el.numNodes == 3)
+        addCell(f, CellShape::Triangle, {el.nodes[0], el.nodes[1], el.nodes[2]});
+      else
+        addCell(f, CellShape::Quad, {el.nodes[0], el.nodes[1], el.nodes[2], el.nodes[3]});
+      const auto& st = mt->elementStates()[e];
+      c.add(CellKind::Membrane, membranePart0 + el.set, kNaN, kNaN, st.principalStress,
+            st.principalStrain, static_cast<int>(st.state), pressure[e], -1, kNaN);
+    }
+  }
+  for (int n = 0; n < m.numNodes(); ++n) {
+    if (m.pointMass[n] <= 0.0) continue;
+    addCell(f, CellShape::Vertex, {n});
+    c.add(CellKind::PointMass, massPart, kNaN, kNaN, kNaN2, kNaN2, -1, kNaN, -1, kNaN);
+  }
+  f.cellData = c.take();
+
+  if (fields.displacement) {
+    Eigen::VectorXd u(s.x.size());
+    for (int n = 0; n < m.numNodes(); ++n) u.segment<3>(3 * n) = at(n) - m.X[n];
+    f.pointData.push_back(vectorField("displacement", u));
+  }
+  if (fields.velocity) f.pointData.push_back(vectorField("velocity", s.v));
+  if (fields.acceleration) f.pointData.push_back(vectorField("acceleration", s.a));
+  if (fields.reaction || fields.appliedLoad) {
+    const auto forces = sys.nodalForces(s.x, s.v, s.a, s.t, inertia);
+    if (fields.reaction) f.pointData.push_back(vectorField("reaction", forces.reaction));
+    if (fields.appliedLoad) f.pointData.push_back(vectorField("applied_load", forces.applied));
+  }
+  return f;
+}
+
+}  // namespace chute

@@ -1,0 +1,62 @@
+#pragma once
+// One output time of a run as plain arrays (no VTK here): the current geometry as cells, and the
+// point and cell fields the VTU files carry (interfaces.md, "Output directory of a run").
+//  - lines: cables and trusses as two-node cells; an inactive sliding element likewise; an active
+//    sliding element as its two straight parts through the slider;
+//  - membranes: triangles and quadrilaterals; point masses: vertices.
+// Floating fields that do not apply to a cell (axial force of a membrane) are NaN; integer-valued
+// ones are -1.
+#include <string>
+#include <vector>
+
+#include "solver/GeneralizedAlpha.hpp"
+#include "solver/StructuralSystem.hpp"
+
+namespace chute {
+
+struct FieldArray {
+  std::string name;
+  int components = 1;
+  std::vector<double> values;
+  bool integer = false;  // integer-valued (codes and indices): written as Int32  // components per
+                         // point or cell, interleaved
+};
+
+// VTK cell type codes (vtkCellType.h), kept here so this file needs no VTK.
+enum class CellShape : int { Vertex = 1, Line = 3, Triangle = 5, Quad = 9 };
+
+// Element kind codes of the "kind" cell field.
+enum class CellKind : int {
+  Cable = 1,
+  Truss = 2,
+  SlidingInactive = 3,
+  SlidingActivePart = 4,
+  Membrane = 5,
+  PointMass = 6
+};
+
+struct SceneFrame {
+  double t = 0.0;
+  std::vector<double> points;  // current positions, 3 per node
+  std::vector<CellShape> shapes;
+  std::vector<int> connectivity, offsets;  // offsets: end of each cell in connectivity
+  std::vector<FieldArray> pointData, cellData;
+  std::vector<std::string> partNames;  // the "part" cell field indexes this list
+  int numCells() const { return static_cast<int>(shapes.size()); }
+  const FieldArray* cellField(const std::string& name) const;
+  const FieldArray* pointField(const std::string& name) const;
+};
+
+struct FrameFields {
+  bool displacement = true, velocity = true, acceleration = true;
+  bool reaction = true, appliedLoad = true;  // need extra residual evaluations
+  // The names accepted in a case file's output.vtu.fields (all on by default).
+  static const std::vector<std::string>& names();
+  void select(const std::vector<std::string>& chosen);  // throws std::invalid_argument
+};
+
+// Builds frames of a system; the system's terms hold the element states it reports.
+SceneFrame buildFrame(StructuralSystem& sys, const DynamicState& s, const FrameFields& fields,
+                      bool inertia);
+
+}  // namespace chute

@@ -1,0 +1,65 @@
+#include "render/VirtualDisplay.hpp"
+
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+
+namespace chute::render {
+
+VirtualDisplay::VirtualDisplay() {
+  if (const char* d = std::getenv("DISPLAY"); d && *d) {
+    display_ = d;
+    return;
+  }
+  // Xvfb picks a free display itself and writes its number to -displayfd when it is ready.
+  int fds[2];
+  if (::pipe2(fds, O_CLOEXEC) != 0) throw std::runtime_error("cannot start Xvfb: pipe failed");
+  pid_ = ::fork();
+  if (pid_ < 0) throw std::runtime_error("cannot start Xvfb: fork failed");
+  if (pid_ == 0) {
+    ::dup2(fds[1], 3);  // dup2 clears close-on-exec on the copy
+    const int devnull = ::open("/dev/null", O_RDWR);
+    if (devnull >= 0) ::dup2(devnull, 1), ::dup2(devnull, 2);
+    ::execlp("Xvfb", "Xvfb", "-displayfd", "3", "-screen", "0", "3840x2160x24", "-nolisten", "tcp",
+             static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  ::close(fds[1]);
+  std::string number;
+  pollfd p{fds[0], POLLIN, 0};
+  char buf[32];
+  while (number.find('\n') == std::string::npos) {
+    if (::poll(&p, 1, 20000) <= 0) break;  // Xvfb starts in well under a second
+    const ssize_t n = ::read(fds[0], buf, sizeof buf);
+    if (n <= 0) break;
+    number.append(buf, static_cast<size_t>(n));
+  }
+  ::close(fds[0]);
+  while (!number.empty() && (number.back() == '\n' || number.back() == ' ')) number.pop_back();
+  if (number.empty()) {
+    ::kill(pid_, SIGTERM);
+    ::waitpid(pid_, nullptr, 0);
+    pid_ = -1;
+    throw std::runtime_error(
+        "no DISPLAY and Xvfb could not be started (install the Debian package xvfb)");
+  }
+  display_ = ":" + number;
+  ::setenv("DISPLAY", display_.c_str(), 1);
+}
+
+VirtualDisplay::~VirtualDisplay() {
+  if (pid_ <= 0) return;
+  ::kill(pid_, SIGTERM);
+  ::waitpid(pid_, nullptr, 0);
+  ::unsetenv("DISPLAY");
+}
+
+}  // namespace chute::render

@@ -1,0 +1,57 @@
+// `chute render RUN_DIR [--times t1,t2 | --all] [--view side|below|iso] [--color FIELD]
+//  [--compare OTHER_RUN_DIR] [--size WxH] [--out DIR]`: PNG snapshots, off-screen.
+#include <fmt/core.h>
+
+#include <cstdio>
+#include <memory>
+#include <stdexcept>
+
+#include "app/cli/Command.hpp"
+#include "render/SnapshotRenderer.hpp"
+
+namespace chute::cli {
+
+namespace {
+bool parseSize(const std::string& s, int& w, int& h) {
+  return std::sscanf(s.c_str(), "%dx%d", &w, &h) == 2;
+}
+}  // namespace
+
+Command addRenderCommand(CLI::App& app) {
+  struct Args {
+    render::SnapshotOptions o;
+    std::string size = "1280x720";
+    bool quiet = false;
+  };
+  auto a = std::make_shared<Args>();
+  auto* cmd = app.add_subcommand("render", "render PNG snapshots of a run's VTU series");
+  cmd->add_option("run_dir", a->o.runDir, "output directory of a run (holds <case>.pvd)")
+      ->required();
+  cmd->add_option("--times", a->o.times, "times to show (nearest frames; default: the last)")
+      ->delimiter(',');
+  cmd->add_flag("--all", a->o.allFrames, "every frame of the series");
+  cmd->add_option("--view", a->o.view, "side, below or iso")->default_val("iso");
+  cmd->add_option("--color", a->o.color, "point or cell field (vectors by magnitude)")
+      ->default_val("displacement");
+  cmd->add_option("--compare", a->o.compareDir, "a second run shown side by side");
+  cmd->add_option("--size", a->size, "image size WxH")->default_val("1280x720");
+  cmd->add_option("--out", a->o.outDir, "directory for the PNG files (default RUN_DIR/snapshots)");
+  cmd->add_flag("--quiet", a->quiet, "do not list the files written");
+  return {cmd, [a] {
+            if (!parseSize(a->size, a->o.width, a->o.height)) {
+              fmt::print(stderr, "chute: --size: expected WxH, got '{}'\n", a->size);
+              return kExitBadInput;
+            }
+            if (a->o.outDir.empty()) a->o.outDir = a->o.runDir + "/snapshots";
+            try {
+              for (const auto& f : render::renderSnapshots(a->o))
+                if (!a->quiet) fmt::print("{}\n", f);
+            } catch (const std::runtime_error& e) {
+              fmt::print(stderr, "chute: render: {}\n", e.what());
+              return kExitBadInput;
+            }
+            return 0;
+          }};
+}
+
+}  // namespace chute::cli
