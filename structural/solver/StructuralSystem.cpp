@@ -58,7 +58,6 @@ StructuralSystem::NodalForces StructuralSystem::nodalForces(const Eigen::VectorX
   const long n = x.size();
   NodalForces f;
   Eigen::VectorXd full = Eigen::VectorXd::Zero(n), unloaded = Eigen::VectorXd::Zero(n);
-  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);
   auto residualOver = [&](Eigen::VectorXd& out, const Eigen::VectorXd& acc, double load) {
     EvalPoint p{x, v, acc, t};
     p.inertia = inertia;
@@ -73,11 +72,9 @@ StructuralSystem::NodalForces StructuralSystem::nodalForces(const Eigen::VectorX
   f.reaction = Eigen::VectorXd::Zero(n);
   for (long d = 0; d < n; ++d)
     if (dofs_.eqOfDof(static_cast<int>(d)) < 0) f.reaction[d] = full[d];
-  // Loads are the load-factor-scaled part: f_ext = r(lambda = 0) - r(lambda = 1) at a = 0.
-  Eigen::VectorXd loaded = Eigen::VectorXd::Zero(n);
-  residualOver(loaded, zero, 1.0);
-  residualOver(unloaded, zero, 0.0);
-  f.applied = unloaded - loaded;
+  // Loads are the load-factor-scaled part: f_ext = r(lambda = 0) - r(lambda = 1).
+  residualOver(unloaded, a, 0.0);
+  f.applied = unloaded - full;
   return f;
 }
 
