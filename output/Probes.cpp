@@ -1,5 +1,8 @@
 #include "Probes.hpp"
 
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <stdexcept>
 
 #include "kernels/LineKernels.hpp"
@@ -103,6 +106,35 @@ CsvWriter::CsvWriter(const std::string& path, const std::vector<std::string>& co
   for (const auto& c : columns) std::fprintf(f_, ",%s", c.c_str());
   std::fputc('\n', f_);
   std::fflush(f_);
+}
+
+CsvWriter::CsvWriter(const std::string& path, const std::vector<std::string>& columns,
+                     double resumeAfter, std::vector<double>& times,
+                     std::vector<std::vector<double>>& rows) {
+  std::string header = "t";
+  for (const auto& c : columns) header += "," + c;
+  std::vector<std::string> kept;
+  if (std::ifstream in(path); in) {
+    std::string line;
+    if (std::getline(in, line) && line != header)
+      throw std::runtime_error(path + ": its columns are not this case's probes");
+    while (std::getline(in, line)) {
+      std::vector<double> values;
+      std::stringstream ss(line);
+      for (std::string cell; std::getline(ss, cell, ',');) values.push_back(std::stod(cell));
+      if (values.empty() || values.size() != columns.size() + 1 || values[0] > resumeAfter) break;
+      times.push_back(values[0]);
+      rows.emplace_back(values.begin() + 1, values.end());
+      kept.push_back(line);
+    }
+  }
+  const std::string tmp = path + ".tmp";
+  f_ = std::fopen(tmp.c_str(), "w");
+  if (!f_) throw std::runtime_error("cannot write " + tmp);
+  std::fprintf(f_, "%s\n", header.c_str());
+  for (const auto& l : kept) std::fprintf(f_, "%s\n", l.c_str());
+  std::fflush(f_);
+  std::filesystem::rename(tmp, path);
 }
 
 CsvWriter::~CsvWriter() {

@@ -28,6 +28,10 @@ class ProbeSet {
 class CsvWriter {
  public:
   CsvWriter(const std::string& path, const std::vector<std::string>& columns);
+  // Continues the file of a restarted run: rows after resumeAfter are dropped; the rows kept
+  // are returned through times and rows (as written: 15 significant digits).
+  CsvWriter(const std::string& path, const std::vector<std::string>& columns, double resumeAfter,
+            std::vector<double>& times, std::vector<std::vector<double>>& rows);
   ~CsvWriter();
   CsvWriter(const CsvWriter&) = delete;
   CsvWriter& operator=(const CsvWriter&) = delete;

@@ -34,6 +34,11 @@ constexpr const char* kHeader =
     "  <Collection>\n";
 constexpr const char* kFooter = "  </Collection>\n</VTKFile>\n";
 
+std::string entryLine(double t, const std::string& file) {
+  return fmt::format("    <DataSet timestep=\"{:.17g}\" group=\"\" part=\"0\" file=\"{}\"/>\n", t,
+                     file);
+}
+
 void writeAllAt(int fd, const std::string& text, long offset, const std::string& path) {
   const char* p = text.data();
   size_t left = text.size();
@@ -83,13 +88,37 @@ VtuSeries::VtuSeries(std::string dir, std::string name)
     if (f.size() == prefix.size() + 10 && f.starts_with(prefix) && f.ends_with(".vtu"))
       std::filesystem::remove(e.path());
   }
+  start({});
+}
+
+VtuSeries::VtuSeries(std::string dir, std::string name, double resumeAfter)
+    : dir_(std::move(dir)), name_(std::move(name)), vtk_(std::make_unique<Vtk>()) {
+  std::filesystem::create_directories(dir_);
+  std::vector<PvdEntry> kept;
+  if (std::filesystem::exists(pvdPath())) {
+    for (const auto& e : readPvd(pvdPath())) {
+      if (e.t <= resumeAfter)
+        kept.push_back(e);
+      else
+        std::filesystem::remove(std::filesystem::path(dir_) / e.file);
+    }
+  }
+  frames_ = static_cast<int>(kept.size());
+  start(kept);
+}
+
+void VtuSeries::start(const std::vector<PvdEntry>& kept) {
   const std::string path = pvdPath();
-  std::filesystem::remove(path);
-  fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd_ < 0) throw std::runtime_error("cannot create " + path + ": " + std::strerror(errno));
-  const std::string start = std::string(kHeader) + kFooter;
-  writeAllAt(fd_, start, 0, path);
-  footerAt_ = static_cast<long>(std::strlen(kHeader));
+  std::string text = kHeader;
+  for (const auto& e : kept) text += entryLine(e.t, e.file);
+  footerAt_ = static_cast<long>(text.size());
+  text += kFooter;
+  // A new file: written whole under a temporary name, then renamed over the old collection.
+  const std::string tmp = path + ".tmp";
+  fd_ = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd_ < 0) throw std::runtime_error("cannot create " + tmp + ": " + std::strerror(errno));
+  writeAllAt(fd_, text, 0, tmp);
+  std::filesystem::rename(tmp, path);
   auto& w = vtk_->writer;
   w->SetDataModeToAppended();
   w->EncodeAppendedDataOff();  // raw binary
@@ -107,8 +136,7 @@ VtuSeries::~VtuSeries() {
 
 void VtuSeries::appendEntry(double t, const std::string& file) {
   // One write: the new entry followed by the closing tags, at the old closing tags.
-  const std::string entry = fmt::format(
-      "    <DataSet timestep=\"{:.17g}\" group=\"\" part=\"0\" file=\"{}\"/>\n", t, file);
+  const std::string entry = entryLine(t, file);
   writeAllAt(fd_, entry + kFooter, footerAt_, pvdPath());
   footerAt_ += static_cast<long>(entry.size());
 }

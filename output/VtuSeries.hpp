@@ -12,10 +12,21 @@
 
 namespace chute {
 
+// One frame of a .pvd collection: its time and file (relative to the .pvd).
+struct PvdEntry {
+  double t = 0.0;
+  std::string file;
+};
+// Reads a .pvd collection, frames in order.
+std::vector<PvdEntry> readPvd(const std::string& path);
+
 class VtuSeries {
  public:
   // Starts a series `<dir>/<name>.pvd`; an existing collection of that name is replaced.
   VtuSeries(std::string dir, std::string name);
+  // Continues the series of a restarted run: frames after resumeAfter are dropped (collection
+  // entries and files), so no output time appears twice.
+  VtuSeries(std::string dir, std::string name, double resumeAfter);
   ~VtuSeries();
   VtuSeries(const VtuSeries&) = delete;
   VtuSeries& operator=(const VtuSeries&) = delete;
@@ -25,6 +36,7 @@ class VtuSeries {
   std::string pvdPath() const { return dir_ + "/" + name_ + ".pvd"; }
 
  private:
+  void start(const std::vector<PvdEntry>& kept);
   void appendEntry(double t, const std::string& file);
   std::string dir_, name_;
   int fd_ = -1;
@@ -33,12 +45,5 @@ class VtuSeries {
   struct Vtk;
   std::unique_ptr<Vtk> vtk_;  // writer objects kept across frames
 };
-
-// Reads a .pvd collection: (time, file path relative to the .pvd) of each frame, in order.
-struct PvdEntry {
-  double t = 0.0;
-  std::string file;
-};
-std::vector<PvdEntry> readPvd(const std::string& path);
 
 }  // namespace chute

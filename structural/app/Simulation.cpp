@@ -1,10 +1,13 @@
 #include "app/Simulation.hpp"
 
+#include <fmt/core.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -15,6 +18,7 @@
 #include "Probes.hpp"
 #include "SceneFrame.hpp"
 #include "VtuSeries.hpp"
+#include "app/Checkpoint.hpp"
 #include "solver/GeneralizedAlpha.hpp"
 #include "terms/LineTerms.hpp"
 #include "verification/HenckyReference.hpp"
@@ -117,6 +121,40 @@ class Progress {
 
 }  // namespace
 
+namespace {
+// Set by SIGINT / SIGTERM while a run handles them: the run stops after the step under way,
+// writes a checkpoint and leaves valid output.
+volatile std::sig_atomic_t gStopRequested = 0;
+extern "C" void requestStop(int) {
+  gStopRequested = 1;
+}
+
+class SignalGuard {
+ public:
+  explicit SignalGuard(bool on) : on_(on) {
+    if (!on_) return;
+    gStopRequested = 0;
+    struct sigaction sa {};
+    sa.sa_handler = requestStop;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, &oldInt_);
+    sigaction(SIGTERM, &sa, &oldTerm_);
+  }
+  ~SignalGuard() {
+    if (!on_) return;
+    sigaction(SIGINT, &oldInt_, nullptr);
+    sigaction(SIGTERM, &oldTerm_, nullptr);
+  }
+  SignalGuard(const SignalGuard&) = delete;
+  SignalGuard& operator=(const SignalGuard&) = delete;
+
+ private:
+  bool on_;
+  struct sigaction oldInt_ {
+  }, oldTerm_{};
+};
+}  // namespace
+
 RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
   const auto wall0 = std::chrono::steady_clock::now();
   RunResult r;
@@ -135,19 +173,36 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
   ProbeSet probes(m, spec.output.probes);
   r.columns = probes.columns();
 
+  std::optional<Checkpoint> restart;
+  if (!options.restartFile.empty()) {
+    restart = readCheckpoint(options.restartFile);
+    if (restart->caseName != spec.name || restart->modelHash != modelHash(m) ||
+        restart->state.x.size() != 3 * m.numNodes() ||
+        restart->active.size() != sys.slidingGroups().size())
+      throw std::runtime_error(options.restartFile + ": a checkpoint of another case or model");
+    if (sv.type == "static") throw std::runtime_error("static runs cannot be restarted");
+  }
+  const bool write = !options.outDir.empty();
   std::unique_ptr<CsvWriter> csv;
-  if (!options.outDir.empty()) {
+  if (write) {
     ScopedTimer timer(sys.timings().output);
     std::filesystem::create_directories(options.outDir);
-    csv = std::make_unique<CsvWriter>(options.outDir + "/probes.csv", r.columns);
+    const std::string path = options.outDir + "/probes.csv";
+    if (restart)
+      csv = std::make_unique<CsvWriter>(path, r.columns, restart->state.t, r.times, r.rows);
+    else
+      csv = std::make_unique<CsvWriter>(path, r.columns);
   }
   // The VTU series only when the case asks for it: no VTK work otherwise.
   const auto& vtuSpec = spec.output.vtu;
   std::unique_ptr<VtuSeries> vtu;
   FrameFields fields;
-  if (vtuSpec.write && !options.outDir.empty()) {
+  if (vtuSpec.write && write) {
     ScopedTimer timer(sys.timings().output);
-    vtu = std::make_unique<VtuSeries>(options.outDir, spec.name);
+    if (restart)
+      vtu = std::make_unique<VtuSeries>(options.outDir, spec.name, restart->state.t);
+    else
+      vtu = std::make_unique<VtuSeries>(options.outDir, spec.name);
     if (!vtuSpec.fields.empty()) fields.select(vtuSpec.fields);
   }
   const bool inertia = sv.type != "static";
@@ -174,6 +229,7 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
   };
 
   Progress progress(options.progress);
+  SignalGuard signals(options.handleSignals);
   if (sv.type == "static") {
     sys.updateState(state.x);
     sys.commit(state.x);
@@ -185,12 +241,54 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
     record(state);
     writeVtu(state);
   } else {
-    integrator.computeInitialAcceleration(state);
-    sys.commit(state.x);
-    record(state);
-    writeVtu(state);
     double dt = sv.dt, eventStep = 0.0;
     int successesSinceCut = 0;
+    if (restart) {
+      const Checkpoint& c = *restart;
+      state = c.state;
+      sys.updateState(state.x);
+      for (size_t g = 0; g < c.active.size(); ++g)
+        sys.slidingGroups()[g]->state().restore(c.active[g], c.handovers[g], state.x);
+      if (c.linearSolverLU) integrator.linearSolver().useLU();
+      dt = c.dt, eventStep = c.eventStep, successesSinceCut = c.successesSinceCut;
+      probeClock.index = c.probeClockIndex, vtuClock.index = c.vtuClockIndex;
+      vtuLast = c.vtuLast;
+      r.steps = c.steps, r.rejectedSteps = c.rejectedSteps, r.eventRetries = c.eventRetries;
+      r.newtonIterations = c.newtonIterations, r.maxNewtonInStep = c.maxNewtonInStep;
+      r.energyInitial = c.energyInitial, r.energyMaxDrift = c.energyMaxDrift;
+      r.kineticMax = c.kineticMax;
+    } else {
+      integrator.computeInitialAcceleration(state);
+      sys.commit(state.x);
+      record(state);
+      writeVtu(state);
+    }
+    auto checkpoint = [&] {
+      if (!write) return;
+      ScopedTimer timer(sys.timings().output);
+      Checkpoint c;
+      c.caseName = spec.name;
+      c.modelHash = modelHash(m);
+      c.state = state;
+      c.dt = dt, c.eventStep = eventStep, c.successesSinceCut = successesSinceCut;
+      c.linearSolverLU =
+          integrator.linearSolver().kind() == LinearSolver::Kind::Umfpack && sys.symmetric();
+      c.probeClockIndex = probeClock.index, c.vtuClockIndex = vtuClock.index;
+      c.vtuLast = vtuLast;
+      for (const auto* g : sys.slidingGroups()) {
+        std::vector<int> act;
+        for (size_t s = 0; s < g->state().def().sliders.size(); ++s)
+          act.push_back(g->state().committedActiveElement(static_cast<int>(s)));
+        c.active.push_back(act);
+        c.handovers.push_back(g->state().committedHandovers());
+      }
+      c.steps = r.steps, c.rejectedSteps = r.rejectedSteps, c.eventRetries = r.eventRetries;
+      c.newtonIterations = r.newtonIterations, c.maxNewtonInStep = r.maxNewtonInStep;
+      c.energyInitial = r.energyInitial, c.energyMaxDrift = r.energyMaxDrift;
+      c.kineticMax = r.kineticMax;
+      writeCheckpoint(options.outDir + "/checkpoint.cbor", c);
+      ++r.checkpoints;
+    };
     const double tEnd = sv.tEnd;
     while (state.t < tEnd - 1e-12 * sv.dt) {
       // The next stop: the end or the next output time. A step that would leave a sliver of
@@ -215,9 +313,10 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
         successesSinceCut = 0;
         if (dt < sv.dtMin) {
           r.status = "diverged";
-          r.reason = "step rejected at t = " + std::to_string(state.t) +
-                     " with dt = " + std::to_string(h) + " (" + rep.failure +
-                     "); dt would fall below dt_min";
+          r.reason = fmt::format(
+              "step rejected at t = {:.9g} with dt = {:.3g} ({}); dt would fall below dt_min = "
+              "{:.3g}",
+              state.t, h, rep.failure, sv.dtMin);
           break;
         }
         continue;
@@ -230,8 +329,17 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
       const bool last = state.t >= tEnd - 1e-12 * sv.dt;
       if (probeClock.due(state.t, r.steps, sv.dt) || last) record(state);
       if (vtuClock.due(state.t, r.steps, sv.dt) || last) writeVtu(state);
+      if (options.checkpointEvery > 0 && r.steps % options.checkpointEvery == 0 && !last)
+        checkpoint();
       progress.update(r.steps, state.t, tEnd, h, rep.iterations, r.newtonPerStep(),
                       r.rejectedSteps);
+      if (gStopRequested && !last) {
+        r.status = "interrupted";
+        r.reason = fmt::format("stopped by a signal at t = {:.9g}; restart with --restart {}",
+                               state.t, write ? options.outDir + "/checkpoint.cbor" : "(none)");
+        checkpoint();
+        break;
+      }
     }
     progress.update(r.steps, state.t, tEnd, dt, 0, r.newtonPerStep(), r.rejectedSteps, true);
     progress.finish();
@@ -256,7 +364,7 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
     r.referenceTime =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - ref0).count();
   }
-  if (!options.outDir.empty()) writeSummary(options.outDir + "/summary.json", spec, r);
+  if (write) writeSummary(options.outDir + "/summary.json", spec, r);
   return r;
 }
 
@@ -299,7 +407,8 @@ void writeSummary(const std::string& path, const CaseSpec& spec, const RunResult
       {"search", spec.solver.search == SliderSearch::NearestLength ? "nearest_length"
                                                                    : "material_coordinate"}};
   j["sliding_handovers"] = r.handovers;
-  j["output"] = {{"probe_rows", r.times.size()}, {"vtu_frames", r.vtuFrames}};
+  j["output"] = {
+      {"probe_rows", r.times.size()}, {"vtu_frames", r.vtuFrames}, {"checkpoints", r.checkpoints}};
   if (!spec.units.empty()) j["units"] = spec.units;
   j["energy"] = {
       {"initial", r.energyInitial}, {"max_drift", r.energyMaxDrift}, {"max_kinetic", r.kineticMax}};

@@ -3,6 +3,7 @@
 // reference, summary.json. Used by `chute run` and by the case tests.
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "case/CaseSpec.hpp"
@@ -14,6 +15,15 @@ struct RunOptions {
   std::string outDir;     // empty: write nothing
   bool progress = false;  // one updating status line on stderr
   bool verboseNewton = false;
+  long checkpointEvery = 0;    // steps between checkpoints (outDir/checkpoint.cbor); 0: none
+  std::string restartFile;     // continue from this checkpoint
+  bool handleSignals = false;  // SIGINT / SIGTERM: checkpoint, stop, leave valid output
+
+  static RunOptions writingTo(std::string dir) {
+    RunOptions o;
+    o.outDir = std::move(dir);
+    return o;
+  }
 };
 
 struct ReferenceError {
@@ -24,7 +34,7 @@ struct ReferenceError {
 };
 
 struct RunResult {
-  std::string status = "completed";  // or "diverged"
+  std::string status = "completed";  // or "diverged", "interrupted"
   std::string reason;
   long steps = 0, rejectedSteps = 0, eventRetries = 0, newtonIterations = 0;
   int maxNewtonInStep = 0;
@@ -35,6 +45,7 @@ struct RunResult {
   long nonZeros = 0, symbolicAnalyses = 0;
   std::vector<long> handovers;  // per sliding group
   int vtuFrames = 0;
+  long checkpoints = 0;
   double energyInitial = 0.0, energyMaxDrift = 0.0, kineticMax = 0.0;
   std::vector<std::string> columns;
   std::vector<double> times;

@@ -172,6 +172,16 @@ void SlidingGroupState::commit(const Eigen::VectorXd& x) {
   handoversCommitted_ = handoversTrial_;
 }
 
+void SlidingGroupState::restore(const std::vector<int>& active, long handovers,
+                                const Eigen::VectorXd& x) {
+  if (active.size() != trial_.size())
+    throw std::out_of_range("checkpoint: wrong number of sliders in group " + def_->name);
+  for (size_t s = 0; s < active.size(); ++s) setActiveElement(static_cast<int>(s), active[s]);
+  std::fill(handoverAtCommit_.begin(), handoverAtCommit_.end(), 0);
+  handoversTrial_ = handovers;
+  commit(x);
+}
+
 void SlidingGroupState::revert() {
   trial_ = committed_;
   std::fill(pendingHandover_.begin(), pendingHandover_.end(), 0);

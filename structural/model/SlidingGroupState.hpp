@@ -46,8 +46,11 @@ class SlidingGroupState {
   int activeElement(int slider) const { return trial_[slider]; }
   int committedActiveElement(int slider) const { return committed_[slider]; }
   void setActiveElement(int slider, int element);  // restart / checkpoint restore
-  bool isActive(int element) const;                // active for some slider (trial state)
-  int sliderOfElement(int element) const;          // -1 if inactive
+  // Restores a committed state saved from committedActiveElement() and committedHandovers()
+  // at converged positions x (what commit(x) derives from x is derived again).
+  void restore(const std::vector<int>& active, long handovers, const Eigen::VectorXd& x);
+  bool isActive(int element) const;        // active for some slider (trial state)
+  int sliderOfElement(int element) const;  // -1 if inactive
 
   // Reference arc length from the chain's first node to the slider (uniform strain in the
   // active element: the slider splits its reference length as l1 : l2).

@@ -73,6 +73,7 @@ class GeneralizedAlpha {
 
   const GeneralizedAlphaParams& params() const { return p_; }
   const LinearSolver& linearSolver() const { return linear_; }
+  LinearSolver& linearSolver() { return linear_; }
 
  private:
   // crossInPlace: a passage is crossed within the solve (static) instead of cutting the step.

@@ -1,5 +1,7 @@
 #include "solver/LinearSolver.hpp"
 
+#include <algorithm>
+
 namespace chute {
 
 LinearSolver::LinearSolver(bool preferCholesky, Timings& timings)
@@ -31,7 +33,12 @@ bool LinearSolver::factorize(const SparseMatrix& A) {
   }
   if (!umfpack_) umfpack_ = std::make_unique<Eigen::UmfPackLU<SparseMatrix>>();
   if (!analysed_) {
-    umfpack_->analyzePattern(A);
+    // UMFPACK's symbolic analysis looks at the values too. Analyse the pattern with unit values,
+    // so the ordering depends on the pattern alone: a restarted run then factorises exactly as
+    // the run it continues (bit for bit), whatever matrix it meets first.
+    SparseMatrix pattern = A;
+    std::fill(pattern.valuePtr(), pattern.valuePtr() + pattern.nonZeros(), 1.0);
+    umfpack_->analyzePattern(pattern);
     analysed_ = true;
     ++analyses_;
   }

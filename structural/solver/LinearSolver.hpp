@@ -26,6 +26,10 @@ class LinearSolver {
   bool solve(const Eigen::VectorXd& b, Eigen::VectorXd& x);
 
   Kind kind() const { return kind_; }
+  // LU from now on (a restart of a run whose Cholesky fell back to LU).
+  void useLU() {
+    if (kind_ != Kind::Umfpack) kind_ = Kind::Umfpack, analysed_ = false;
+  }
   std::string kindName() const { return kind_ == Kind::Cholmod ? "cholmod" : "umfpack"; }
   long analyses() const { return analyses_; }
 

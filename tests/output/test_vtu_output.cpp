@@ -48,7 +48,7 @@ std::string casePath(const std::string& name) {
 TEST(VtuSeries, PulleyEveryStepReadsBackWithTimesArraysAndCells) {
   const auto dir = freshDir("pulley");
   const CaseSpec spec = readCase(casePath("pulley"), {"output.vtu.write=true", "solver.t_end=0.5"});
-  const auto r = runCase(spec, RunOptions{dir.string()});
+  const auto r = runCase(spec, RunOptions::writingTo(dir.string()));
   ASSERT_EQ(r.status, "completed");
   const auto frames = readPvd((dir / "pulley.pvd").string());
   // Every step plus the initial state.
@@ -99,7 +99,7 @@ TEST(VtuSeries, PulleyEveryStepReadsBackWithTimesArraysAndCells) {
 TEST(VtuSeries, StaticMembraneReactionsBalanceTheAppliedPressure) {
   const auto dir = freshDir("hencky");
   const CaseSpec spec = readCase(casePath("hencky"), {"membranes.0.rings=4"});
-  const auto r = runCase(spec, RunOptions{dir.string()});
+  const auto r = runCase(spec, RunOptions::writingTo(dir.string()));
   ASSERT_EQ(r.status, "completed");
   const auto frames = readPvd((dir / "hencky.pvd").string());
   ASSERT_EQ(frames.size(), 1u);  // the converged state
@@ -155,7 +155,7 @@ TEST(VtuSeries, NoSeriesUnlessTheCaseAsksForOne) {
   const auto dir = freshDir("none");
   const CaseSpec spec = readCase(casePath("bead_1"), {"solver.t_end=0.05"});
   ASSERT_FALSE(spec.output.vtu.write);
-  const auto r = runCase(spec, RunOptions{dir.string()});
+  const auto r = runCase(spec, RunOptions::writingTo(dir.string()));
   ASSERT_EQ(r.status, "completed");
   EXPECT_EQ(r.vtuFrames, 0);
   for (const auto& e : fs::directory_iterator(dir)) {
@@ -169,7 +169,7 @@ TEST(VtuSeries, FrameCostStaysSmall) {
   // per-array processor-count queries once made it 30 ms). bench/output_cost.py has the ratios.
   const auto dir = freshDir("cost");
   const CaseSpec spec = readCase(casePath("bead_5"), {"output.vtu.write=true"});
-  const auto r = runCase(spec, RunOptions{dir.string()});
+  const auto r = runCase(spec, RunOptions::writingTo(dir.string()));
   ASSERT_EQ(r.status, "completed");
   const double perFrame = r.timings.output / std::max(1, r.vtuFrames);
   std::printf(

@@ -7,8 +7,9 @@
 
 namespace chute::cli {
 
-constexpr int kExitBadInput = 2;   // case file, mesh or command line wrong: nothing written
-constexpr int kExitRunFailed = 3;  // the run stopped early: last good state written
+constexpr int kExitBadInput = 2;     // case file, mesh or command line wrong: nothing written
+constexpr int kExitRunFailed = 3;    // the run stopped early: last good state written
+constexpr int kExitInterrupted = 4;  // SIGINT/SIGTERM: checkpoint and valid output written
 
 struct Command {
   CLI::App* sub = nullptr;   // the CLI11 subcommand (owned by the application)

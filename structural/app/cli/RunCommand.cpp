@@ -18,6 +18,8 @@ struct RunArgs {
   std::string caseFile, outDir;
   std::vector<std::string> sets;
   bool quiet = false, verboseNewton = false;
+  long checkpointEvery = 0;
+  std::string restart;
 };
 
 int runCase(const RunArgs& a) {
@@ -32,7 +34,16 @@ int runCase(const RunArgs& a) {
   opt.outDir = a.outDir.empty() ? "out/" + spec.name : a.outDir;
   opt.progress = !a.quiet;
   opt.verboseNewton = a.verboseNewton;
-  const auto r = chute::runCase(spec, opt);
+  opt.checkpointEvery = a.checkpointEvery;
+  opt.restartFile = a.restart;
+  opt.handleSignals = true;
+  RunResult r;
+  try {
+    r = chute::runCase(spec, opt);
+  } catch (const std::runtime_error& e) {  // a checkpoint that does not fit, an unwritable dir
+    fmt::print(stderr, "chute: {}\n", e.what());
+    return kExitBadInput;
+  }
   if (!a.quiet) {
     fmt::print(
         "{}: {} at t = {:.6g}: {} steps, {} rejected, {:.2f} Newton iterations/step, "
@@ -46,7 +57,7 @@ int runCase(const RunArgs& a) {
   }
   if (r.status != "completed") {
     fmt::print(stderr, "chute: {}: {}\n", spec.name, r.reason);
-    return kExitRunFailed;
+    return r.status == "interrupted" ? kExitInterrupted : kExitRunFailed;
   }
   return 0;
 }
@@ -62,6 +73,10 @@ Command addRunCommand(CLI::App& app) {
       ->take_all();
   run->add_flag("--quiet", a->quiet, "no progress or report on the terminal");
   run->add_flag("--newton-log", a->verboseNewton, "print the residual of every Newton iteration");
+  run->add_option("--checkpoint-every", a->checkpointEvery,
+                  "write OUT/checkpoint.cbor every N steps (and on SIGINT/SIGTERM)")
+      ->check(CLI::PositiveNumber);
+  run->add_option("--restart", a->restart, "continue a run from its checkpoint, bit for bit");
   return {run, [a] { return runCase(*a); }};
 }
 

@@ -1,0 +1,63 @@
+#!/usr/bin/env python3
+"""Cost of the VTU series: each case run without VTU and with a frame at every step (median of
+N runs each, in one sitting), the output share of the run and the slowdown. Writes
+bench/results/output_cost.csv and prints a table.
+
+    python3 bench/output_cost.py [--runs 5]
+"""
+import argparse, csv, json, os, statistics, subprocess, tempfile
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+CHUTE = os.path.join(ROOT, "build", "bin", "chute")
+
+# (case, settings that make every step an output time)
+CASES = [
+    ("pulley", ["output.vtu.every=1"]),
+    ("bead_5", ["output.vtu.every=1"]),
+    ("airbag", ["output.vtu.interval=1.25e-4", "output.interval=1.25e-4"]),
+]
+
+
+def run(case, sets, runs):
+    walls, outs, frames, steps = [], [], 0, 0
+    for _ in range(runs):
+        with tempfile.TemporaryDirectory() as out:
+            cmd = [CHUTE, "run", os.path.join(ROOT, "cases", case + ".toml"), "--out", out, "--quiet"]
+            for s in sets:
+                cmd += ["--set", s]
+            subprocess.run(cmd, check=True)
+            s = json.load(open(os.path.join(out, "summary.json")))
+            walls.append(s["wall_time"]["total"])
+            outs.append(s["wall_time"]["output"])
+            frames, steps = s["output"]["vtu_frames"], s["steps"]
+    return statistics.median(walls), statistics.median(outs), frames, steps
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--runs", type=int, default=5)
+    args = ap.parse_args()
+    rows = []
+    for case, every in CASES:
+        base_wall, base_out, _, steps = run(case, ["output.vtu.write=false"], args.runs)
+        wall, out, frames, _ = run(case, ["output.vtu.write=true"] + every, args.runs)
+        rows.append({
+            "case": case, "steps": steps, "frames": frames,
+            "wall_without_vtu_s": round(base_wall, 4), "wall_with_vtu_s": round(wall, 4),
+            "output_s": round(out, 4), "ms_per_frame": round(1e3 * (out - base_out) / max(1, frames), 3),
+            "us_per_step_without": round(1e6 * base_wall / max(1, steps), 1),
+            "output_share_pct": round(100 * out / wall, 1),
+            "slowdown_pct": round(100 * (wall - base_wall) / base_wall, 1),
+        })
+        print(rows[-1], flush=True)
+    os.makedirs(os.path.join(ROOT, "bench", "results"), exist_ok=True)
+    path = os.path.join(ROOT, "bench", "results", "output_cost.csv")
+    with open(path, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
+        w.writeheader()
+        w.writerows(rows)
+    print("wrote", path)
+
+
+if __name__ == "__main__":
+    main()
