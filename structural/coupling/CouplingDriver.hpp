@@ -20,7 +20,7 @@ enum class Relaxation { Constant, Aitken };
 struct CouplingSettings {
   CouplingScheme scheme = CouplingScheme::Implicit;
   Relaxation relaxation = Relaxation::Aitken;
-  double omega = 0.5;  // constant relaxation factor; Aitken's initial one in every window
+  double omega = 0.5;       // constant relaxation factor; Aitken's initial one in every window
   double tolerance = 1e-8;  // relative residual |p~ - p| / |p~| that ends a window
   int maxIterations = 100;  // per window; more is a failure
   double window = 0.0;      // time-window size (0: the case's solver.dt)

@@ -45,8 +45,8 @@ CouplingInterface::CouplingInterface(CaseSpec spec, const std::vector<std::strin
   ns.nominalStep = sv.dt;
   ns.lengthScale = modelSize(m);
   integrator_ = std::make_unique<GeneralizedAlpha>(
-      *sys_, sv.rhoInf,
-      sv.integrator == "bossak" ? AlphaScheme::Bossak : AlphaScheme::ChungHulbert, ns);
+      *sys_, sv.rhoInf, sv.integrator == "bossak" ? AlphaScheme::Bossak : AlphaScheme::ChungHulbert,
+      ns);
   // preCICE initialize(): the initial state at rest (or moving as the case prescribes), its
   // consistent acceleration under the loads known now (none from the flow yet).
   state_ = integrator_->initialState();

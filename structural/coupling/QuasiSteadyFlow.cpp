@@ -4,8 +4,7 @@
 
 namespace chute::coupling {
 
-double QuasiSteadyFlowLaw::pressure(const Vec3& A, const Vec3& vf, const Vec3& af,
-                                    double t) const {
+double QuasiSteadyFlowLaw::pressure(const Vec3& A, const Vec3& vf, const Vec3& af, double t) const {
   const double area = A.norm();
   if (area == 0.0) return stagnation(t);
   const Vec3 n = A / area;
@@ -64,8 +63,8 @@ void QuasiSteadyPressureTerm::assembleFace(int f, const EvalPoint& p, SystemAsse
   const double dpdvn = -p.loadFactor * law_.airDensity * law_.normalDragCoefficient * std::abs(vn);
   const double dpdan = -p.loadFactor * law_.airDensity * law_.addedMassLength;
   const Eigen::Matrix3d dndA = (Eigen::Matrix3d::Identity() - n * n.transpose()) / area;
-  const Eigen::Matrix<double, 1, 3 * N> dpdx =
-      (dpdvn * (vf - law_.wind) + dpdan * af).transpose() * dndA * kernels::areaVectorJacobian<N>(x);
+  const Eigen::Matrix<double, 1, 3 * N> dpdx = (dpdvn * (vf - law_.wind) + dpdan * af).transpose() *
+                                               dndA * kernels::areaVectorJacobian<N>(x);
   Eigen::Matrix<double, 1, 3 * N> dpdv, dpda;
   for (int i = 0; i < N; ++i) {
     dpdv.template segment<3>(3 * i) = (dpdvn / N) * n.transpose();

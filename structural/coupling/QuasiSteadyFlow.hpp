@@ -24,9 +24,9 @@
 namespace chute::coupling {
 
 struct QuasiSteadyFlowLaw {
-  double stagnationPressure = 0.0;  // q
-  double rampTime = 0.0;            // T_ramp (0: q from the start)
-  double airDensity = 1.2;          // rho_air
+  double stagnationPressure = 0.0;     // q
+  double rampTime = 0.0;               // T_ramp (0: q from the start)
+  double airDensity = 1.2;             // rho_air
   double normalDragCoefficient = 1.0;  // C_n
   double addedMassLength = 0.0;        // L_a
   Vec3 wind = Vec3::Zero();            // w

@@ -53,9 +53,8 @@ Eigen::VectorXd WetSurface::faceAreaVectors(const Eigen::VectorXd& x) const {
   for (int f = 0; f < numFaces(); ++f) {
     const auto& fv = faceVertices[f];
     auto at = [&](int i) -> Vec3 { return x.segment<3>(3 * node[fv[i]]); };
-    out.segment<3>(3 * f) = faceSize[f] == 3
-                                ? kernels::areaVector<3>({at(0), at(1), at(2)})
-                                : kernels::areaVector<4>({at(0), at(1), at(2), at(3)});
+    out.segment<3>(3 * f) = faceSize[f] == 3 ? kernels::areaVector<3>({at(0), at(1), at(2)})
+                                             : kernels::areaVector<4>({at(0), at(1), at(2), at(3)});
   }
   return out;
 }

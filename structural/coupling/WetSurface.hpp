@@ -13,8 +13,8 @@
 namespace chute::coupling {
 
 struct WetSurface {
-  std::vector<int> node;     // model node id of each vertex (ascending)
-  std::vector<int> element;  // model membrane element of each face
+  std::vector<int> node;                         // model node id of each vertex (ascending)
+  std::vector<int> element;                      // model membrane element of each face
   std::vector<std::array<int, 4>> faceVertices;  // vertex indices; -1 pads a triangle
   std::vector<int> faceSize;                     // 3 (triangle) or 4 (quadrilateral)
   std::vector<int> sets;                         // the membrane sets it covers

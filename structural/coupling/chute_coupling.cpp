@@ -154,8 +154,8 @@ int chute_coupling_set_vertex_pressures(chute_coupling* h, const double* p) {
                  [&](CouplingInterface& s) { s.setVertexPressures(copyIn(p, s.numVertices())); });
 }
 int chute_coupling_set_vertex_forces(chute_coupling* h, const double* f) {
-  return guarded(
-      h, [&](CouplingInterface& s) { s.setVertexForces(copyIn(f, 3L * s.numVertices())); });
+  return guarded(h,
+                 [&](CouplingInterface& s) { s.setVertexForces(copyIn(f, 3L * s.numVertices())); });
 }
 int chute_coupling_time(const chute_coupling* h, double* t) {
   return guarded(h, [&](CouplingInterface& s) {

@@ -21,10 +21,10 @@ extern "C" {
 
 enum chute_status {
   CHUTE_OK = 0,
-  CHUTE_ERROR_INPUT = 1,    /* bad case file, argument or array size */
-  CHUTE_ERROR_SOLVER = 2,   /* the structure could not advance (step below dt_min) */
-  CHUTE_ERROR_STATE = 3,    /* e.g. restoring without a saved checkpoint */
-  CHUTE_ERROR_INTERNAL = 4  /* anything else */
+  CHUTE_ERROR_INPUT = 1,   /* bad case file, argument or array size */
+  CHUTE_ERROR_SOLVER = 2,  /* the structure could not advance (step below dt_min) */
+  CHUTE_ERROR_STATE = 3,   /* e.g. restoring without a saved checkpoint */
+  CHUTE_ERROR_INTERNAL = 4 /* anything else */
 };
 
 typedef struct chute_coupling chute_coupling; /* opaque handle */

@@ -66,16 +66,16 @@ int couple(const CoupleArgs& a) {
     csv = std::make_unique<std::ofstream>(a.outDir + "/coupling.csv");
     *csv << "t,iterations,residual,apex_z,mean_pressure\n";
   }
-  const double mass = spec.model.membraneMaterials.empty()
-                          ? 0.0
-                          : spec.model.membraneMaterials[0].density *
-                                spec.model.membraneMaterials[0].thickness;
+  const double mass =
+      spec.model.membraneMaterials.empty()
+          ? 0.0
+          : spec.model.membraneMaterials[0].density * spec.model.membraneMaterials[0].thickness;
   if (!a.quiet)
     fmt::print(
         "{}: {} coupling, {} relaxation (omega {}), {} faces, {} vertices; flow: q = {} Pa, "
         "rho_air = {}, C_n = {}, added mass rho_air L_a = {:.3g} kg/m^2 (fabric {:.3g} kg/m^2)\n",
-        spec.name, a.scheme, a.relaxation, a.omega, structure->numFaces(),
-        structure->numVertices(), a.q, a.airDensity, a.cn, a.airDensity * a.addedMass, mass);
+        spec.name, a.scheme, a.relaxation, a.omega, structure->numFaces(), structure->numVertices(),
+        a.q, a.airDensity, a.cn, a.airDensity * a.addedMass, mass);
   long windows = 0;
   const auto rep = runCoupled(
       *structure, [&](const InterfaceData& d) { return flow.facePressures(d); }, cs,
@@ -84,9 +84,10 @@ int couple(const CoupleArgs& a) {
         const double z = structure->state().x[3 * apexNode + 2] - spec.model.X[apexNode].z();
         const double pm = structure->loads().facePressures().mean();
         if (!a.quiet)
-          fmt::print("  window {:4d}  t = {:.5f}  sub-iterations {:3d}  residual {:.3e}  "
-                     "apex {:+.5f} m  mean p {:.3f} Pa\n",
-                     windows, w.t, w.iterations, w.residual, z, pm);
+          fmt::print(
+              "  window {:4d}  t = {:.5f}  sub-iterations {:3d}  residual {:.3e}  "
+              "apex {:+.5f} m  mean p {:.3f} Pa\n",
+              windows, w.t, w.iterations, w.residual, z, pm);
         if (csv) *csv << fmt::format("{},{},{},{},{}\n", w.t, w.iterations, w.residual, z, pm);
       });
   const auto& c = structure->counters();
@@ -112,7 +113,8 @@ Command addCoupleCommand(CLI::App& app) {
   cmd->add_option("case", a->caseFile, "case file (TOML), dynamic, with membranes")->required();
   cmd->add_option("--scheme", a->scheme, "explicit (staggered) or implicit (sub-iterated)")
       ->check(CLI::IsMember({"explicit", "implicit"}));
-  cmd->add_option("--relaxation", a->relaxation, "under-relaxation of the pressure: constant|aitken")
+  cmd->add_option("--relaxation", a->relaxation,
+                  "under-relaxation of the pressure: constant|aitken")
       ->check(CLI::IsMember({"constant", "aitken"}));
   cmd->add_option("--omega", a->omega, "constant factor, or Aitken's initial one (default 0.5)")
       ->check(CLI::Range(1e-6, 1.0));

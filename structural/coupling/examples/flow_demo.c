@@ -17,21 +17,21 @@
 #include "chute_coupling.h"
 
 static int failures = 0;
-#define CHECK(cond, ...)                  \
-  do {                                    \
-    if (!(cond)) {                        \
+#define CHECK(cond, ...)                       \
+  do {                                         \
+    if (!(cond)) {                             \
       fprintf(stderr, "FAILED: " __VA_ARGS__); \
-      fprintf(stderr, "\n");              \
-      ++failures;                         \
-    }                                     \
+      fprintf(stderr, "\n");                   \
+      ++failures;                              \
+    }                                          \
   } while (0)
-#define CALL(h, expr)                                                              \
-  do {                                                                             \
-    int status_ = (expr);                                                          \
-    if (status_ != CHUTE_OK) {                                                     \
+#define CALL(h, expr)                                                                        \
+  do {                                                                                       \
+    int status_ = (expr);                                                                    \
+    if (status_ != CHUTE_OK) {                                                               \
       fprintf(stderr, "%s failed (%d): %s\n", #expr, status_, chute_coupling_last_error(h)); \
-      exit(1);                                                                     \
-    }                                                                              \
+      exit(1);                                                                               \
+    }                                                                                        \
   } while (0)
 
 typedef struct {
@@ -149,8 +149,8 @@ int main(int argc, char** argv) {
     CALL(h, chute_coupling_displacements(h, u));
     double uz = 0;
     for (int v = 0; v < f.nv; ++v) uz = fabs(u[3 * v + 2]) > fabs(uz) ? u[3 * v + 2] : uz;
-    printf("window %3d  t = %.5f  sub-iterations %2d  residual %.2e  max |u_z| %.6f m\n", w + 1,
-           t, k + 1, res, uz);
+    printf("window %3d  t = %.5f  sub-iterations %2d  residual %.2e  max |u_z| %.6f m\n", w + 1, t,
+           k + 1, res, uz);
   }
   printf("%ld structural solves over %d windows (%.2f per window); %s\n", total, windows,
          (double)total / windows, failures ? "CHECKS FAILED" : "all checks passed");

@@ -68,8 +68,8 @@ TEST(CouplingKernels, NodalPressureTangentMatchesFDAndUniformValuesGiveTheFacePr
         y0, 1e-6);
     worstTangent = std::max(worstTangent, chute::testing::relativeError(l.dForce, fd));
     // Uniform nodal values: the face-pressure kernel's force (exact integration of both).
-    const auto u = kernels::pressureLoadNodal<N>(
-        unstack<N>(y0), Eigen::Matrix<double, N, 1>::Constant(3.0), false);
+    const auto u = kernels::pressureLoadNodal<N>(unstack<N>(y0),
+                                                 Eigen::Matrix<double, N, 1>::Constant(3.0), false);
     const auto s = kernels::pressureLoad<N>(unstack<N>(y0), 3.0, false);
     worstUniform = std::max(worstUniform, chute::testing::relativeError(u.force, s.force));
     // The area vector is the total of a unit pressure's force; its Jacobian against FD.
@@ -212,9 +212,10 @@ t_end = 1e-3
   const double dJ = (Eigen::MatrixXd(caseSys.matrix()) - Eigen::MatrixXd(coupledSys.matrix()))
                         .cwiseAbs()
                         .maxCoeff();
-  std::printf("case-file pressure vs the same face pressures supplied by coupling: max |dR| %.1e, "
-              "max |dJ| %.1e\n",
-              dr, dJ);
+  std::printf(
+      "case-file pressure vs the same face pressures supplied by coupling: max |dR| %.1e, "
+      "max |dJ| %.1e\n",
+      dr, dJ);
   EXPECT_EQ(dr, 0.0);
   EXPECT_EQ(dJ, 0.0);
 }
@@ -299,10 +300,11 @@ TEST(CoupledRun, AitkenNeedsFewerSubIterationsThanConstantRelaxation) {
     ASSERT_TRUE(rep.converged) << rep.failure;
     total[k] = rep.iterations();
     last[k] = structure.state().x.norm();
-    std::printf("%s relaxation (omega %.2f): %ld sub-iterations over %zu windows (%.2f per "
-                "window), last window's residual %.2e\n",
-                k == 0 ? "constant" : "Aitken", cs.omega, total[k], rep.windows.size(),
-                rep.iterationsPerWindow(), rep.windows.back().residual);
+    std::printf(
+        "%s relaxation (omega %.2f): %ld sub-iterations over %zu windows (%.2f per "
+        "window), last window's residual %.2e\n",
+        k == 0 ? "constant" : "Aitken", cs.omega, total[k], rep.windows.size(),
+        rep.iterationsPerWindow(), rep.windows.back().residual);
   }
   EXPECT_LT(total[1], total[0]);
   EXPECT_NEAR(last[0], last[1], 1e-8 * last[0]);  // the same solution
@@ -380,24 +382,25 @@ dofs = "xyz"
     s.advance(window);
     const WindowCheckpoint b = s.snapshot();
     ++compared;
-    const bool equal = a.state.t == b.state.t && a.state.x == b.state.x &&
-                       a.state.v == b.state.v && a.state.a == b.state.a && a.dt == b.dt &&
-                       a.groups[0].committedActiveElement(0) ==
-                           b.groups[0].committedActiveElement(0) &&
-                       a.groups[0].materialCoordinate(0, a.state.x) ==
-                           b.groups[0].materialCoordinate(0, b.state.x) &&
-                       a.groups[0].committedHandovers() == b.groups[0].committedHandovers() &&
-                       a.membranes.size() == b.membranes.size() && reverted;
+    const bool equal =
+        a.state.t == b.state.t && a.state.x == b.state.x && a.state.v == b.state.v &&
+        a.state.a == b.state.a && a.dt == b.dt &&
+        a.groups[0].committedActiveElement(0) == b.groups[0].committedActiveElement(0) &&
+        a.groups[0].materialCoordinate(0, a.state.x) ==
+            b.groups[0].materialCoordinate(0, b.state.x) &&
+        a.groups[0].committedHandovers() == b.groups[0].committedHandovers() &&
+        a.membranes.size() == b.membranes.size() && reverted;
     for (size_t e = 0; e < a.membranes.size() && equal; ++e)
       allEqual &= a.membranes[e].state == b.membranes[e].state &&
                   a.membranes[e].principalStress == b.membranes[e].principalStress;
     allEqual &= equal;
     if (b.groups[0].committedActiveElement(0) != before) {
       ++handoverWindows;
-      std::printf("window ending t = %.3f: slider handed over %d -> %d inside it; repeated "
-                  "window identical: %s (attempt with other loads reverted: %s)\n",
-                  s.time(), before, b.groups[0].committedActiveElement(0),
-                  equal ? "yes" : "NO", reverted ? "yes" : "NO");
+      std::printf(
+          "window ending t = %.3f: slider handed over %d -> %d inside it; repeated "
+          "window identical: %s (attempt with other loads reverted: %s)\n",
+          s.time(), before, b.groups[0].committedActiveElement(0), equal ? "yes" : "NO",
+          reverted ? "yes" : "NO");
     }
   }
   std::printf("%d windows repeated after restore, all bit for bit: %s; %d with a hand-over\n",
@@ -412,9 +415,10 @@ TEST(CouplingInterfaceApi, SizesGeometryErrorsAndDroppedCasePressure) {
   EXPECT_TRUE(s.spec().model.pressures.empty());  // the flow owns the wet surface's pressure
   const Eigen::VectorXd A = s.faceAreas();
   const double total = A.sum(), disk = 3.14159265358979 * 1.0 * 1.0;
-  std::printf("wet surface: %d vertices, %d faces, area %.6f (polygon of the unit disk; pi = "
-              "%.6f)\n",
-              s.numVertices(), s.numFaces(), total, disk);
+  std::printf(
+      "wet surface: %d vertices, %d faces, area %.6f (polygon of the unit disk; pi = "
+      "%.6f)\n",
+      s.numVertices(), s.numFaces(), total, disk);
   EXPECT_LT(total, disk);
   EXPECT_GT(total, 0.9 * disk);
   EXPECT_NEAR(std::abs(s.faceNormals()[2]), 1.0, 1e-15);
