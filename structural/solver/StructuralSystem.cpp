@@ -7,7 +7,8 @@
 
 namespace chute {
 
-StructuralSystem::StructuralSystem(const Model& model, SliderSearch search)
+StructuralSystem::StructuralSystem(const Model& model, SliderSearch search,
+                                   std::vector<std::unique_ptr<Term>> extraTerms)
     : model_(&model), dofs_(model), assembler_(dofs_) {
   // Only what the scene uses: a term exists only if the model has something for it.
   if (!model.cables.empty()) terms_.push_back(std::make_unique<CableTerm>(model));
@@ -29,6 +30,7 @@ StructuralSystem::StructuralSystem(const Model& model, SliderSearch search)
     for (auto* g : groups_) states.push_back(&g->state());
     terms_.push_back(std::make_unique<DragTerm>(model, states));
   }
+  for (auto& t : extraTerms) terms_.push_back(std::move(t));
 
   std::vector<std::vector<int>> cliques;
   for (const auto& t : terms_) t->addCouplings(cliques);

@@ -17,7 +17,10 @@ class MembraneTerm;
 
 class StructuralSystem {
  public:
-  StructuralSystem(const Model& model, SliderSearch search);
+  // extraTerms: terms the model does not describe (loads supplied by a coupled flow solver);
+  // they join the sparsity pattern like the others.
+  StructuralSystem(const Model& model, SliderSearch search,
+                   std::vector<std::unique_ptr<Term>> extraTerms = {});
 
   const Model& model() const { return *model_; }
   const DofMap& dofs() const { return dofs_; }
@@ -55,6 +58,7 @@ class StructuralSystem {
   const std::vector<SlidingGroupTerm*>& slidingGroups() const { return groups_; }
   // The membrane term (nullptr without membranes).
   const MembraneTerm* membranes() const { return membranes_; }
+  MembraneTerm* membranes() { return membranes_; }
 
   Timings& timings() { return timings_; }
   const Timings& timings() const { return timings_; }
