@@ -19,5 +19,6 @@ struct Command {
 Command addRunCommand(CLI::App& app);
 Command addRenderCommand(CLI::App& app);
 Command addPlotCommand(CLI::App& app);
+Command addMeshCommand(CLI::App& app);
 
 }  // namespace chute::cli
