@@ -82,11 +82,16 @@ namespace {
 
 int nodesOfType(int type) {
   switch (type) {
-    case 15: return 1;  // point
-    case 1: return 2;   // 2-node line
-    case 2: return 3;   // 3-node triangle
-    case 3: return 4;   // 4-node quadrangle
-    default: return -1;
+    case 15:
+      return 1;  // point
+    case 1:
+      return 2;  // 2-node line
+    case 2:
+      return 3;  // 3-node triangle
+    case 3:
+      return 4;  // 4-node quadrangle
+    default:
+      return -1;
   }
 }
 
@@ -177,6 +182,8 @@ void writeCurrentMesh(const std::string& file, const std::map<std::string, NodeV
     gmsh::option::setNumber("Mesh.MshFileVersion", 4.1);
     gmsh::option::setNumber("Mesh.Binary", 0);
     gmsh::write(file);
+    gmsh::option::setNumber("PostProcessing.SaveMesh", 0);  // the views only, after the mesh
+    gmsh::option::setNumber("PostProcessing.SaveInterpolationMatrices", 0);
     std::string model;
     gmsh::model::getCurrent(model);
     for (const auto& [name, values] : views) {

@@ -22,8 +22,9 @@ void ParachuteSpec::validate() const {
   if (ventDiameter < 0.0 || ventDiameter >= diameter)
     bad("--vent-diameter", "must be in [0, diameter)");
   if (!(lineLength > diameter / 2))
-    bad("--line-length", "must exceed the canopy radius (the flat pattern's lines run from the "
-                         "skirt to the confluence on the axis)");
+    bad("--line-length",
+        "must exceed the canopy radius (the flat pattern's lines run from the "
+        "skirt to the confluence on the axis)");
   if (lineElements < 1) bad("--line-elements", "must be at least 1");
   if (!(elementSize > 0.0) || elementSize > diameter / 2)
     bad("--element-size", "must be in (0, diameter / 2]");
@@ -138,7 +139,9 @@ GeneratedParachute generateParachute(const ParachuteSpec& spec, const std::strin
           payloadPts.push_back(geo::addPoint(sx * b[0], sy * b[1], zTop - level * b[2], h));
         }
       for (int c = 0; c < 4; ++c) risers.push_back(geo::addLine(confluence, payloadPts[c]));
-      auto bar = [&](int a, int bb) { boxBars.push_back(geo::addLine(payloadPts[a], payloadPts[bb])); };
+      auto bar = [&](int a, int bb) {
+        boxBars.push_back(geo::addLine(payloadPts[a], payloadPts[bb]));
+      };
       for (int level = 0; level < 2; ++level)
         for (int c = 0; c < 4; ++c) bar(4 * level + c, 4 * level + (c + 1) % 4);  // rims
       for (int c = 0; c < 4; ++c) bar(c, 4 + c);                                  // posts
@@ -174,8 +177,7 @@ GeneratedParachute generateParachute(const ParachuteSpec& spec, const std::strin
     gmsh::option::setNumber("Mesh.MeshSizeMax", h);
     gmsh::option::setNumber("Mesh.Algorithm", spec.meshAlgorithm);
     gmsh::model::mesh::generate(2);
-    out.meshSeconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    out.meshSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     out.mesh = currentMesh();
 
     // Figures: canopy area against the analytic flat area, line lengths against L.

@@ -46,11 +46,11 @@ struct ParachuteSpec {
 };
 
 struct GeneratedParachute {
-  GmshMesh mesh;        // reference geometry and groups (views: the start, unless flat and plain)
+  GmshMesh mesh;  // reference geometry and groups (views: the start, unless flat and plain)
   double canopyArea = 0.0, flatArea = 0.0;  // meshed and analytic pi (R^2 - r^2)
   double maxLineLengthError = 0.0;          // max |meshed length - L| over the lines
   std::size_t triangles = 0;
-  double meshSeconds = 0.0;  // gmsh geometry + 2-D meshing
+  double meshSeconds = 0.0;      // gmsh geometry + 2-D meshing
   double maxStartStretch = 0.0;  // largest principal stretch of a canopy element at the start
   std::array<int, 4> linesPerGrommet{0, 0, 0, 0};
 };
@@ -59,6 +59,8 @@ struct GeneratedParachute {
 GeneratedParachute generateParachute(const ParachuteSpec& spec, const std::string& msh);
 
 // Which grommet (0..3) line j of n runs through: the lines in four consecutive groups.
-inline int grommetOfLine(int j, int n) { return 4 * j / n; }
+inline int grommetOfLine(int j, int n) {
+  return 4 * j / n;
+}
 
 }  // namespace chute::mesh

@@ -16,9 +16,9 @@
 namespace chute::mesh {
 
 struct StartConfiguration {
-  NodeVectors displacement;   // node tag -> start minus reference
-  double maxStretch = 0.0;    // largest principal stretch of a canopy triangle (<= 1)
-  double axialFactor = 1.0;   // c of the folded map
+  NodeVectors displacement;  // node tag -> start minus reference
+  double maxStretch = 0.0;   // largest principal stretch of a canopy triangle (<= 1)
+  double axialFactor = 1.0;  // c of the folded map
 };
 
 StartConfiguration parachuteStart(const ParachuteSpec& spec, const GmshMesh& mesh);

@@ -53,8 +53,8 @@ const mesh::MeshGroup& MeshImport::group(TomlTable& t, const std::string& key, i
   const std::string name = t.string(key);
   const mesh::MeshGroup* g = mesh.group(name, dim);
   if (!g)
-    t.fail(key, "no physical group '" + name + "' in " + file + " (groups: " + mesh.groupList() +
-                    ")");
+    t.fail(key,
+           "no physical group '" + name + "' in " + file + " (groups: " + mesh.groupList() + ")");
   if (g->dim != dim)
     t.fail(key, "physical group '" + name + "' in " + file + " is " + roleOfDim(g->dim) +
                     "; this needs " + roleOfDim(dim));
@@ -82,9 +82,8 @@ std::unique_ptr<MeshImport> importMesh(Model& m, TomlTable t, const std::string&
     if (it == imp->mesh.views.end()) {
       std::string list;
       for (const auto& [name, v] : imp->mesh.views) list += (list.empty() ? "" : ", ") + name;
-      t.fail("initial_displacement", "no 3-component NodeData view '" + view + "' in " +
-                                         imp->file + " (views: " +
-                                         (list.empty() ? "none" : list) + ")");
+      t.fail("initial_displacement", "no 3-component NodeData view '" + view + "' in " + imp->file +
+                                         " (views: " + (list.empty() ? "none" : list) + ")");
     }
     start = &it->second;
   }
@@ -115,8 +114,8 @@ std::unique_ptr<MeshImport> importMesh(Model& m, TomlTable t, const std::string&
     if (g.dim == 0 && ids.size() == 1) {
       auto it = m.nodeByName.find(g.name);
       if (it != m.nodeByName.end() && it->second != ids[0])
-        t.fail("file", "physical point '" + g.name + "' of " + imp->file +
-                           " has the name of another node");
+        t.fail("file",
+               "physical point '" + g.name + "' of " + imp->file + " has the name of another node");
       m.nodeByName[g.name] = ids[0];
       if (m.nodeName[ids[0]].rfind("mesh.", 0) == 0) m.nodeName[ids[0]] = g.name;
     }

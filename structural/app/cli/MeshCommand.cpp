@@ -42,8 +42,9 @@ Command addMeshCommand(CLI::App& app) {
   p->add_option("--slider", s.sliderSide, "slider: side of the square (grommets at the corners)");
   p->add_option("--slider-divisions", s.sliderDivisions, "quads along a slider edge")
       ->default_val(1);
-  p->add_option("--payload-mass", s.payloadMass, "payload mass (at the confluence, the riser's "
-                                                  "end or the box corners)");
+  p->add_option("--payload-mass", s.payloadMass,
+                "payload mass (at the confluence, the riser's "
+                "end or the box corners)");
   p->add_option("--payload-box", a->box, "payload box edge lengths a,b,c (braced trusses)")
       ->delimiter(',')
       ->expected(3);
@@ -52,7 +53,8 @@ Command addMeshCommand(CLI::App& app) {
   p->add_option("--riser-elements", s.riserElements, "elements per riser")->default_val(1);
   p->add_option("--start", s.start, "start configuration: flat or folded")->default_val("flat");
   p->add_option("--bundle-radius", s.bundleRadius, "folded: packed canopy radius (default D/40)");
-  p->add_option("--slider-drop", s.sliderDrop, "slider below the skirt at the start (default L/20)");
+  p->add_option("--slider-drop", s.sliderDrop,
+                "slider below the skirt at the start (default L/20)");
   p->add_option("--line-slack", s.lineSlack, "start slack of the longest line (fraction)")
       ->default_val(0.005);
   p->add_option("--out", a->out, "output mesh (.msh, format 4.1)")->required();
@@ -81,10 +83,11 @@ Command addMeshCommand(CLI::App& app) {
               fmt::print("{}: {} nodes, {} canopy triangles, {} groups, meshed in {:.2f} s\n",
                          a->out, g.mesh.nodeTags.size(), g.triangles, g.mesh.groups.size(),
                          g.meshSeconds);
-              fmt::print("  canopy area {:.6g} (flat pattern {:.6g}, {:+.3f} %), line length error "
-                         "{:.2e}, start stretch <= {:.6f}\n",
-                         g.canopyArea, g.flatArea, 100 * (g.canopyArea / g.flatArea - 1),
-                         g.maxLineLengthError, g.maxStartStretch);
+              fmt::print(
+                  "  canopy area {:.6g} (flat pattern {:.6g}, {:+.3f} %), line length error "
+                  "{:.2e}, start stretch <= {:.6f}\n",
+                  g.canopyArea, g.flatArea, 100 * (g.canopyArea / g.flatArea - 1),
+                  g.maxLineLengthError, g.maxStartStretch);
               if (!a->caseFile.empty()) fmt::print("  case: {}\n", a->caseFile);
             }
             return 0;
