@@ -17,7 +17,7 @@ void ParachuteSpec::validate() const {
   auto bad = [](const std::string& option, const std::string& why) {
     throw std::invalid_argument(option + ": " + why);
   };
-  if (gores < 4) bad("--gores", "needs at least 4 gores");
+  if (gores < 4) bad("--gores", "give at least 4 gores");
   if (!(diameter > 0.0)) bad("--diameter", "must be positive");
   if (ventDiameter < 0.0 || ventDiameter >= diameter)
     bad("--vent-diameter", "must be in [0, diameter)");

@@ -21,7 +21,7 @@
 namespace chute::mesh {
 
 struct ParachuteSpec {
-  int gores = 28;
+  int gores = 0;              // gores and suspension lines (>= 4)
   double diameter = 0.0;      // nominal (flat) diameter D
   double ventDiameter = 0.0;  // 0: no vent (gores meet at the apex)
   double lineLength = 0.0;    // skirt to confluence, > D / 2

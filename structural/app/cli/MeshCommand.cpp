@@ -8,6 +8,8 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <toml.hpp>
+#include <vector>
 
 #include "GmshSession.hpp"
 #include "ParachuteCaseWriter.hpp"
@@ -16,27 +18,66 @@
 
 namespace chute::cli {
 
+namespace {
+
+// Options from a TOML parameter file (key = option name without "--"), for the options the
+// command line did not give. Returns an error message ("file:line: key: reason") or "".
+std::string applyParameterFile(CLI::App& cmd, const std::string& file) {
+  toml::value root;
+  try {
+    root = toml::parse(file);
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  for (const auto& [key, value] : root.as_table()) {
+    CLI::Option* opt = nullptr;
+    try {
+      opt = cmd.get_option("--" + key);
+    } catch (const CLI::OptionNotFound&) {
+    }
+    const std::string where = file + ":" + std::to_string(value.location().line()) + ": " + key;
+    if (!opt || key == "config") return where + ": not an option of chute mesh parachute";
+    if (opt->count() > 0) continue;  // the command line wins
+    std::vector<std::string> results;
+    if (value.is_array()) {
+      for (const auto& v : value.as_array())
+        results.push_back(v.is_string() ? v.as_string().str : toml::format(v));
+    } else {
+      results.push_back(value.is_string() ? value.as_string().str : toml::format(value));
+    }
+    try {
+      for (const auto& r : results) opt->add_result(r);
+      opt->run_callback();
+    } catch (const CLI::Error& e) {
+      return where + ": " + e.what();
+    }
+  }
+  return "";
+}
+
+}  // namespace
+
 Command addMeshCommand(CLI::App& app) {
   struct Args {
     mesh::ParachuteSpec spec;
     mesh::ParachuteCaseOptions caseOptions;
     std::vector<double> box;
-    std::string out, caseFile;
+    std::string out, caseFile, config;
     bool quiet = false;
   };
   auto a = std::make_shared<Args>();
   auto* mesh = app.add_subcommand("mesh", "build meshes with gmsh");
   mesh->require_subcommand(1);
   auto* p = mesh->add_subcommand("parachute", "flat circular canopy, lines, slider and payload");
-  p->set_config("--config", "", "read these options from a TOML file (key = option name)");
+  p->add_option("--config", a->config,
+                "parameter file (TOML): option = value, names without '--'; the command line wins");
   auto& s = a->spec;
-  p->add_option("--gores", s.gores, "number of gores (and suspension lines)")->required();
-  p->add_option("--diameter", s.diameter, "nominal (flat) diameter of the canopy")->required();
+  p->add_option("--gores", s.gores, "number of gores (and suspension lines)");
+  p->add_option("--diameter", s.diameter, "nominal (flat) diameter of the canopy");
   p->add_option("--vent-diameter", s.ventDiameter, "vent diameter (0: none)")->default_val(0.0);
-  p->add_option("--line-length", s.lineLength, "suspension line length, skirt to confluence")
-      ->required();
+  p->add_option("--line-length", s.lineLength, "suspension line length, skirt to confluence");
   p->add_option("--line-elements", s.lineElements, "elements per line")->default_val(8);
-  p->add_option("--element-size", s.elementSize, "canopy mesh size")->required();
+  p->add_option("--element-size", s.elementSize, "canopy mesh size");
   p->add_option("--mesh-algorithm", s.meshAlgorithm, "gmsh Mesh.Algorithm (6, 5, 8 quads)")
       ->default_val(6);
   p->add_option("--slider", s.sliderSide, "slider: side of the square (grommets at the corners)");
@@ -57,7 +98,7 @@ Command addMeshCommand(CLI::App& app) {
                 "slider below the skirt at the start (default L/20)");
   p->add_option("--line-slack", s.lineSlack, "start slack of the longest line (fraction)")
       ->default_val(0.005);
-  p->add_option("--out", a->out, "output mesh (.msh, format 4.1)")->required();
+  p->add_option("--out", a->out, "output mesh (.msh, format 4.1)");
   p->add_option("--case", a->caseFile, "also write a case file that runs the mesh");
   p->add_option("--pressure", a->caseOptions.pressure, "case: canopy pressure (ramped)");
   p->add_option("--t-end", a->caseOptions.tEnd, "case: end time")->default_val(0.02);
@@ -65,6 +106,16 @@ Command addMeshCommand(CLI::App& app) {
   p->add_flag("--quiet", a->quiet, "print nothing");
   return {mesh, [a, p] {
             if (!*p) return kExitBadInput;
+            if (!a->config.empty()) {
+              if (const std::string e = applyParameterFile(*p, a->config); !e.empty()) {
+                fmt::print(stderr, "chute: mesh parachute: {}\n", e);
+                return kExitBadInput;
+              }
+            }
+            if (a->out.empty()) {
+              fmt::print(stderr, "chute: mesh parachute: --out: give the .msh file to write\n");
+              return kExitBadInput;
+            }
             if (!a->box.empty()) a->spec.payloadBox = {a->box[0], a->box[1], a->box[2]};
             mesh::GeneratedParachute g;
             try {
