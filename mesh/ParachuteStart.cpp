@@ -63,7 +63,7 @@ StartConfiguration parachuteStart(const ParachuteSpec& spec, const GmshMesh& m) 
       tri(e[0], e[1], e[2]);
       if (e.size() == 4) tri(e[0], e[2], e[3]);
     }
-    out.maxStretch = worst;
+    out.maxStretch = folded ? worst : 1.0;  // flat: the identity (worst is round-off about 1)
     if (worst <= 1.0 || !folded) break;
     if (attempt > 200) throw std::runtime_error("folded start: could not pack the canopy");
     c *= 0.995;
