@@ -11,6 +11,7 @@
 
 #include "StructuredMeshes.hpp"
 #include "case/CaseSpec.hpp"
+#include "case/MeshGroups.hpp"
 #include "case/TomlTable.hpp"
 
 namespace chute {
@@ -419,6 +420,8 @@ CaseSpec readCase(const std::string& file, const std::vector<std::string>& overr
       m.addNode(nodes.vec3(name), name);
     }
   }
+  std::unique_ptr<MeshImport> mesh;  // [mesh]: a gmsh mesh whose physical groups entries map
+  if (top.has("mesh")) mesh = importMesh(m, top.table("mesh"), file);
   if (top.has("materials")) {
     TomlTable mats = top.table("materials");
     for (const auto& name : mats.keys()) {
@@ -433,10 +436,13 @@ CaseSpec readCase(const std::string& file, const std::vector<std::string>& overr
     }
   }
   int i = 0;
-  for (auto& t : top.tables("cables")) readCable(m, t, i++);
+  for (auto& t : top.tables("cables"))
+    t.has("group") ? readMeshCables(m, mesh.get(), t, i++) : readCable(m, t, i++);
   i = 0;
-  for (auto& t : top.tables("sliding_groups")) readSlidingGroup(m, t, i++);
-  for (auto& t : top.tables("membranes")) readMembranes(m, t);
+  for (auto& t : top.tables("sliding_groups"))
+    t.has("group") ? readMeshSlidingGroup(m, mesh.get(), t, i++) : readSlidingGroup(m, t, i++);
+  for (auto& t : top.tables("membranes"))
+    t.has("group") ? readMeshMembranes(m, mesh.get(), t) : readMembranes(m, t);
   if (m.numNodes() == 0) top.fail("nodes", "the case has no nodes (no [nodes] and no meshes)");
   {
     std::set<std::string> names;
@@ -445,6 +451,10 @@ CaseSpec readCase(const std::string& file, const std::vector<std::string>& overr
         top.fail(s.sliding ? "sliding_groups" : "cables", "duplicate set name '" + s.name + "'");
   }
   for (auto& t : top.tables("point_masses")) {
+    if (t.has("group")) {
+      readMeshPointMasses(m, mesh.get(), t);
+      continue;
+    }
     const int n = nodeRef(m, t, "node", t.string("node"));
     m.pointMass[n] += t.positive("mass");
     t.finish();
@@ -511,7 +521,9 @@ CaseSpec readCase(const std::string& file, const std::vector<std::string>& overr
     }
     for (auto& t : l.tables("drag")) {
       DragLoadDef d;
-      if (t.has("edge")) {
+      if (t.has("group")) {
+        d.edges = meshEdges(mesh.get(), t);  // the 2-node elements of a 1-D physical group
+      } else if (t.has("edge")) {
         // Edges between consecutive nodes of a node set (e.g. "bag.xmax", a disk's "rim").
         const std::string edge = t.string("edge");
         auto it = m.nodeSets.find(edge);
@@ -642,6 +654,7 @@ CaseSpec readCase(const std::string& file, const std::vector<std::string>& overr
     r.finish();
     c.reference = ref;
   }
+  if (mesh) holdUnusedMeshNodes(m, *mesh);
   top.finish();
   return c;
 }

@@ -20,5 +20,6 @@ Command addRunCommand(CLI::App& app);
 Command addRenderCommand(CLI::App& app);
 Command addPlotCommand(CLI::App& app);
 Command addCoupleCommand(CLI::App& app);
+Command addMeshCommand(CLI::App& app);
 
 }  // namespace chute::cli
