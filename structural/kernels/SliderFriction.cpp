@@ -1,5 +1,6 @@
 #include "kernels/SliderFriction.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -46,11 +47,14 @@ double xOverSin(double x) {
 WrapAngle wrapAngle(const Vec3& x1, const Vec3& x2, const Vec3& x3, double L) {
   const double r = kApexFraction * L;
   const PartLength p1 = partLength(x3 - x1, r), p2 = partLength(x3 - x2, r);
-  // FR3: beta = acos(-c), c = g1 . g2 with g_i = d l_i / d x3 (the unit vectors from the ends
-  // to the slider away from the apex): parallel parts c = 1, beta = pi; a straight cable beta = 0.
-  const double c = p1.gradient.dot(p2.gradient);
-  const double u = std::clamp(-c, -1.0, 1.0);
-  const double b = std::acos(u);
+  // FR3: beta is the angle between g1 and -g2, g_i = d l_i / d x3 (the unit vectors from the
+  // ends to the slider away from the apex): parallel parts beta = pi, a straight cable beta = 0.
+  // atan2 keeps it accurate near 0 and pi, where acos of the cosine u would not.
+  const Vec3& a = p1.gradient;
+  const Vec3& bv = p2.gradient;
+  const double na = a.norm(), nb = bv.norm();
+  const double u = -a.dot(bv) / (na * nb);
+  const double b = std::atan2(a.cross(bv).norm(), -a.dot(bv));
   const double t0 = kWrapApexAngle;
   double beta, dBetaDu;
   if (b < t0) {  // FR4: C1 quadratic within t0 of beta = 0
@@ -64,13 +68,15 @@ WrapAngle wrapAngle(const Vec3& x1, const Vec3& x2, const Vec3& x3, double L) {
     beta = b;
     dBetaDu = -1.0 / std::sin(b);
   }
-  const double dBetaDc = -dBetaDu;
+  // du/da = -b / (|a||b|) - u a / |a|^2, and likewise for b; then through d g_i / d x = H_i.
+  const Vec3 dUda = -bv / (na * nb) - u * a / (na * na);
+  const Vec3 dUdb = -a / (na * nb) - u * bv / (nb * nb);
+  const Vec3 h1 = p1.hessian * (dBetaDu * dUda), h2 = p2.hessian * (dBetaDu * dUdb);
   WrapAngle w;
   w.beta = beta;
-  const Vec3 h1g2 = p1.hessian * p2.gradient, h2g1 = p2.hessian * p1.gradient;
-  w.gradient.segment<3>(0) = -dBetaDc * h1g2;
-  w.gradient.segment<3>(3) = -dBetaDc * h2g1;
-  w.gradient.segment<3>(6) = dBetaDc * (h1g2 + h2g1);
+  w.gradient.segment<3>(0) = -h1;  // d_1 = x3 - x1
+  w.gradient.segment<3>(3) = -h2;
+  w.gradient.segment<3>(6) = h1 + h2;
   return w;
 }
 
