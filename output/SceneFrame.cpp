@@ -43,9 +43,9 @@ struct CellFields {
     sliderS.values.push_back(s);
   }
   std::vector<FieldArray> take() {
-    return {std::move(kind),        std::move(part),     std::move(axialForce),
-            std::move(axialStrain), std::move(stress),   std::move(strain),
-            std::move(wrinkling),   std::move(pressure), std::move(sliderGroup),
+    return {std::move(kind),        std::move(part),        std::move(axialForce),
+            std::move(axialStrain), std::move(stress),      std::move(strain),
+            std::move(wrinkling),   std::move(pressure),    std::move(sliderGroup),
             std::move(sliderS),     std::move(sliderStick), std::move(sliderRatio)};
   }
 };

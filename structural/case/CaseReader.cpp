@@ -19,7 +19,8 @@ std::vector<std::string> ProbeSpec::columns() const {
   if (kind == "node_position") q = {"x", "y", "z"};
   if (kind == "node_velocity") q = {"vx", "vy", "vz"};
   if (kind == "slider") q = {"s", "element"};
-  if (kind == "slider_friction") q = {"state", "slip_rate", "tension_ratio", "wrap_angle", "N1", "N2"};
+  if (kind == "slider_friction")
+    q = {"state", "slip_rate", "tension_ratio", "wrap_angle", "N1", "N2"};
   if (kind == "energy") q = {"kinetic", "strain", "gravity", "total"};
   if (kind == "line_force") q = {"N", "strain"};
   if (kind == "membrane_stress") q = {"S1", "S2"};

@@ -31,10 +31,10 @@ PartForce partForce(double l, double Li, const LineMaterial& mat) {
   if (p.strain < 0.0 && mat.tensionOnly) Eeff = mat.E * mat.compressionStiffnessRatio;
   if (p.strain == 0.0 && mat.tensionOnly) Eeff = 0.0;  // as uniformStrainPolyline: slack
   const double EA = Eeff * mat.area;
-  p.N = EA * p.strain * l / Li;                                  // FR2
-  p.dNdl = EA / Li * (p.strain + l * l / Li2);                   // FR9
-  p.dNdLi = EA * l * (Li2 - 3.0 * l * l) / (2.0 * Li2 * Li2);    // FR9
-  p.energy = 0.5 * EA * Li * p.strain * p.strain;                // FR1
+  p.N = EA * p.strain * l / Li;                                // FR2
+  p.dNdl = EA / Li * (p.strain + l * l / Li2);                 // FR9
+  p.dNdLi = EA * l * (Li2 - 3.0 * l * l) / (2.0 * Li2 * Li2);  // FR9
+  p.energy = 0.5 * EA * Li * p.strain * p.strain;              // FR1
   return p;
 }
 
@@ -80,8 +80,8 @@ WrapAngle wrapAngle(const Vec3& x1, const Vec3& x2, const Vec3& x3, double L) {
   return w;
 }
 
-FrictionSlidingResult frictionSlidingForce(const Vec3& x1, const Vec3& x2, const Vec3& x3,
-                                           double L, double sStart, const LineMaterial& mat,
+FrictionSlidingResult frictionSlidingForce(const Vec3& x1, const Vec3& x2, const Vec3& x3, double L,
+                                           double sStart, const LineMaterial& mat,
                                            const SliderFrictionLaw& law, double dt, bool locked,
                                            bool withTangent) {
   const double r = kApexFraction * L;

@@ -32,7 +32,7 @@ struct SliderFrictionLaw {
     return muStatic > 0.0 || muDynamic > 0.0 || oneWay != 0 ||
            lockAt < std::numeric_limits<double>::infinity();
   }
-  double mu(double slipRate) const;       // FR7
+  double mu(double slipRate) const;        // FR7
   double dMuDRate(double slipRate) const;  // d mu / d|v|
 };
 
@@ -44,22 +44,22 @@ inline constexpr double kWrapApexAngle = 1e-6;
 enum class SliderStick : int { Stick = 0, SlipPlus = 1, SlipMinus = -1 };
 
 struct FrictionSlidingResult {
-  double s = 0.0;                  // reference length of part 1 (the split)
-  double l1 = 0.0, l2 = 0.0;       // current part lengths (regularised at the apex)
+  double s = 0.0;             // reference length of part 1 (the split)
+  double l1 = 0.0, l2 = 0.0;  // current part lengths (regularised at the apex)
   double strain1 = 0.0, strain2 = 0.0;
-  double N1 = 0.0, N2 = 0.0;       // part forces (FR2)
-  double wrapAngle = 0.0;          // beta (FR3-FR4)
-  double energy = 0.0;             // W1 + W2 at the split s
+  double N1 = 0.0, N2 = 0.0;  // part forces (FR2)
+  double wrapAngle = 0.0;     // beta (FR3-FR4)
+  double energy = 0.0;        // W1 + W2 at the split s
   SliderStick state = SliderStick::Stick;
   int localIterations = 0;
-  Vec9 force;                      // f = N1 D1 + N2 D2 (FR2)
-  Mat9 stiffness;                  // algorithmic tangent (FR9-FR10)
+  Vec9 force;      // f = N1 D1 + N2 D2 (FR2)
+  Mat9 stiffness;  // algorithmic tangent (FR9-FR10)
 };
 
 // x1, x2: element end nodes, x3: slider. L: element reference length. sStart: split at the start
 // of the step. dt: step length (<= 0: static, slip rate taken as 0). locked: t >= lockAt.
-FrictionSlidingResult frictionSlidingForce(const Vec3& x1, const Vec3& x2, const Vec3& x3,
-                                           double L, double sStart, const LineMaterial& mat,
+FrictionSlidingResult frictionSlidingForce(const Vec3& x1, const Vec3& x2, const Vec3& x3, double L,
+                                           double sStart, const LineMaterial& mat,
                                            const SliderFrictionLaw& law, double dt, bool locked,
                                            bool withTangent);
 

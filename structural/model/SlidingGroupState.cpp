@@ -108,6 +108,12 @@ double SlidingGroupState::passageFraction(const Eigen::VectorXd& x, const Eigen:
           pendingHandover_[s] = end == 0 ? -1 : +1;
         continue;
       }
+      // A slider with friction within the arrival radius has arrived: its short part is a
+      // stiff spring (E A / L_i) and Newton's path may graze the node; the converged state is
+      // handed over by arriveAtNodes() instead of cutting the step ever shorter.
+      if (hasFriction(static_cast<int>(s)) &&
+          d.norm() <= kernels::kArrivalFraction * def_->refLength[k])
+        continue;
       const double dDelta = d.dot(delta);
       // The part flips direction, (d + delta) . d < 0: the update passes the node, closest at
       // the fraction -d.delta / |delta|^2.
@@ -212,10 +218,9 @@ double SlidingGroupState::materialCoordinate(int slider, const Eigen::VectorXd& 
 }
 
 double SlidingGroupState::uniformSplit(int slider, int element, const Eigen::VectorXd& x) const {
-  return kernels::sliderReferenceOffset(nodePos(x, def_->chain[element]),
-                                        nodePos(x, def_->chain[element + 1]),
-                                        nodePos(x, def_->sliders[slider]),
-                                        def_->refLength[element]);
+  return kernels::sliderReferenceOffset(
+      nodePos(x, def_->chain[element]), nodePos(x, def_->chain[element + 1]),
+      nodePos(x, def_->sliders[slider]), def_->refLength[element]);
 }
 
 void SlidingGroupState::initSplits(const Eigen::VectorXd& x) {

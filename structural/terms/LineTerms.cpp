@@ -118,10 +118,9 @@ kernels::FrictionSlidingResult frictionElement(const Model& m, const SlidingGrou
   const auto& g = st.def();
   const int k = st.activeElement(s);
   const auto* law = g.frictionOf(s);
-  return kernels::frictionSlidingForce(pos(x, g.chain[k]), pos(x, g.chain[k + 1]),
-                                       pos(x, g.sliders[s]), g.refLength[k], st.splitStart(s),
-                                       m.materials[g.material], *law, dt, t >= law->lockAt,
-                                       withTangent);
+  return kernels::frictionSlidingForce(
+      pos(x, g.chain[k]), pos(x, g.chain[k + 1]), pos(x, g.sliders[s]), g.refLength[k],
+      st.splitStart(s), m.materials[g.material], *law, dt, t >= law->lockAt, withTangent);
 }
 
 // Slack parts of the friction element: the Jacobian-only spring of addSlackTangent, per part.
@@ -174,8 +173,8 @@ SlidingGroupTerm::ActiveParts SlidingGroupTerm::activeParts(int element,
     const auto c = kernels::cableForce(x1, x2, g.refLength[element], mat, false);
     return {c.axialForce, c.strain, c.axialForce, c.strain};
   }
-  const auto r = kernels::slidingForce(x1, x2, pos(x, g.sliders[s]), g.refLength[element], mat,
-                                       false);
+  const auto r =
+      kernels::slidingForce(x1, x2, pos(x, g.sliders[s]), g.refLength[element], mat, false);
   return {r.axialForce, r.strain, r.axialForce, r.strain};
 }
 

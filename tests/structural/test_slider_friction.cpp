@@ -43,8 +43,8 @@ FrictionSlidingResult evalAt(const Eigen::VectorXd& v, const ElementGeometry& su
 }
 
 // Tangent vs central differences of the force; every perturbed point must stay in `state`.
-double tangentError(const ElementGeometry& su, double sStart, const SliderFrictionLaw& law, double dt,
-                    bool locked, SliderStick state) {
+double tangentError(const ElementGeometry& su, double sStart, const SliderFrictionLaw& law,
+                    double dt, bool locked, SliderStick state) {
   const Eigen::VectorXd x0 = su.pack();
   const auto r0 = evalAt(x0, su, sStart, law, dt, locked, true);
   EXPECT_EQ(r0.state, state);
@@ -140,9 +140,10 @@ TEST(SliderFriction, SlipSatisfiesCapstanAndTangentMatchesFD) {
     const double lo = v.state == SliderStick::SlipPlus ? r.N2 : r.N1;
     const double capstan = std::abs(hi / lo / std::exp(mu * r.wrapAngle) - 1.0);
     const double err = tangentError(su, v.sStart, law, dt, false, v.state);
-    std::printf("%s: s %.6f -> %.6f in %d local iterations, |ratio / exp(mu beta) - 1| = %.1e, "
-                "tangent vs FD %.2e\n",
-                v.name, v.sStart, r.s, r.localIterations, capstan, err);
+    std::printf(
+        "%s: s %.6f -> %.6f in %d local iterations, |ratio / exp(mu beta) - 1| = %.1e, "
+        "tangent vs FD %.2e\n",
+        v.name, v.sStart, r.s, r.localIterations, capstan, err);
     EXPECT_LT(capstan, 1e-12);
     EXPECT_LT(err, 1e-6);
   }
