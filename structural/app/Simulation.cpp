@@ -247,8 +247,10 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
       const Checkpoint& c = *restart;
       state = c.state;
       sys.updateState(state.x);
-      for (size_t g = 0; g < c.active.size(); ++g)
+      for (size_t g = 0; g < c.active.size(); ++g) {
         sys.slidingGroups()[g]->state().restore(c.active[g], c.handovers[g], state.x);
+        if (g < c.splits.size()) sys.slidingGroups()[g]->state().restoreSplits(c.splits[g]);
+      }
       if (c.linearSolverLU) integrator.linearSolver().useLU();
       dt = c.dt, eventStep = c.eventStep, successesSinceCut = c.successesSinceCut;
       probeClock.index = c.probeClockIndex, vtuClock.index = c.vtuClockIndex;
@@ -281,6 +283,10 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
           act.push_back(g->state().committedActiveElement(static_cast<int>(s)));
         c.active.push_back(act);
         c.handovers.push_back(g->state().committedHandovers());
+        std::vector<double> splits;
+        for (size_t s = 0; s < g->state().def().sliders.size(); ++s)
+          splits.push_back(g->state().friction(static_cast<int>(s)).s);
+        c.splits.push_back(splits);
       }
       c.steps = r.steps, c.rejectedSteps = r.rejectedSteps, c.eventRetries = r.eventRetries;
       c.newtonIterations = r.newtonIterations, c.maxNewtonInStep = r.maxNewtonInStep;
