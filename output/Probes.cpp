@@ -59,7 +59,8 @@ std::pair<double, double> lineForce(const Model& m, const StructuralSystem& sys,
 }
 }  // namespace
 
-std::vector<double> ProbeSet::evaluate(const StructuralSystem& sys, const DynamicState& s) const {
+std::vector<double> ProbeSet::evaluate(const StructuralSystem& sys, const DynamicState& s,
+                                       const EnergyBreakdown& e) const {
   std::vector<double> out;
   for (const auto& p : probes_) {
     if (p.kind == "node_position" || p.kind == "node_velocity") {
@@ -70,7 +71,6 @@ std::vector<double> ProbeSet::evaluate(const StructuralSystem& sys, const Dynami
       out.push_back(st.materialCoordinate(p.slider, s.x));
       out.push_back(st.activeElement(p.slider));
     } else if (p.kind == "energy") {
-      const auto e = sys.energy(s.x, s.v);
       out.insert(out.end(), {e.kinetic, e.strain, e.gravity, e.total()});
     } else if (p.kind == "membrane_stress") {
       // Principal second Piola-Kirchhoff stresses averaged over the elements at the node.

@@ -56,6 +56,14 @@ class StructuralSystem {
   // The membrane term (nullptr without membranes).
   const MembraneTerm* membranes() const { return membranes_; }
 
+  // Work done so far, per kind of term (kernel evaluations, searches, energies, output frames).
+  WorkCounters work() const {
+    WorkCounters w = assembler_.work();
+    w.energy = energyEvaluations_;
+    return w;
+  }
+  WorkCounters& workCounters() { return assembler_.work(); }  // output code counts its frames
+
   Timings& timings() { return timings_; }
   const Timings& timings() const { return timings_; }
 
@@ -67,6 +75,7 @@ class StructuralSystem {
   MembraneTerm* membranes_ = nullptr;
   SystemAssembler assembler_;
   Timings timings_;
+  mutable long energyEvaluations_ = 0;
 };
 
 }  // namespace chute
