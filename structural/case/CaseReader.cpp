@@ -1,6 +1,7 @@
 // Case file -> CaseSpec. The schema is documented in README.md ("Case files").
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -79,7 +80,14 @@ void applyOverride(toml::value& root, const std::string& file, const std::string
     std::istringstream in("v = " + text);
     parsed = toml::parse(in, "--set " + path).as_table().at("v");
   } catch (const std::exception& e) {
-    throw CaseError("--set " + assignment + ": not a TOML value: " + e.what());
+    // A bare word is a string (--set solver.mass=consistent), as a user types it in a shell.
+    const bool bareWord =
+        !text.empty() && std::isalpha(static_cast<unsigned char>(text[0])) &&
+        text.find_first_not_of(
+            "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-.") ==
+            std::string::npos;
+    if (!bareWord) throw CaseError("--set " + assignment + ": not a TOML value: " + e.what());
+    parsed = toml::value(text);
   }
   if (parsed.is_table() || parsed.is_array())
     throw CaseError("--set " + assignment + ": only scalars can be set");
