@@ -90,10 +90,10 @@ TEST(Stress, StiffnessFromOneThousandToOneTrillionTimesTheLoad) {
   std::vector<StressRun> runs;
   for (int e = 3; e <= 12; e += 3) {
     const double E = std::pow(10.0, e + 4);  // A = 1e-3 ft^2, W = 10 lbf
-    runs.push_back(run("bead_5 EA/W = 1e" + std::to_string(e), "bead_5",
-                       {"materials.rope.E=" + num(E),
-                        "sliding_groups.0.prestrain=" + num(std::pow(10.0, -e)),
-                        "solver.rho_inf=1"}));
+    runs.push_back(
+        run("bead_5 EA/W = 1e" + std::to_string(e), "bead_5",
+            {"materials.rope.E=" + num(E), "sliding_groups.0.prestrain=" + num(std::pow(10.0, -e)),
+             "solver.rho_inf=1"}));
   }
   printTable(runs);
   for (const auto& s : runs) {
@@ -109,8 +109,8 @@ TEST(Stress, TimeStepFromTenMicrosecondsToATenthOfASecond) {
     const double dt = std::pow(10.0, e);
     const double tEnd = std::min(4.0, 2000 * dt);
     runs.push_back(run("bead_5 dt = 1e" + std::to_string(e), "bead_5",
-                       {"solver.dt=" + num(dt), "solver.t_end=" + num(tEnd), "output.interval=" + num(dt),
-                        "solver.rho_inf=1"}));
+                       {"solver.dt=" + num(dt), "solver.t_end=" + num(tEnd),
+                        "output.interval=" + num(dt), "solver.rho_inf=1"}));
   }
   printTable(runs);
   for (const auto& s : runs) expectBounded(s, 2e-2);
@@ -122,7 +122,7 @@ TEST(Stress, CableCyclingSlackAndTaut) {
   printTable({s});
   expectBounded(s, 2e-2);
   const int col = static_cast<int>(std::find(s.r.columns.begin(), s.r.columns.end(), "tension.N") -
-                                    s.r.columns.begin());
+                                   s.r.columns.begin());
   int tautPhases = 0;
   bool taut = false;
   for (const auto& row : s.r.rows) {
