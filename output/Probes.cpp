@@ -56,7 +56,8 @@ std::pair<double, double> lineForce(const Model& m, const StructuralSystem& sys,
 }
 }  // namespace
 
-std::vector<double> ProbeSet::evaluate(const StructuralSystem& sys, const DynamicState& s) const {
+std::vector<double> ProbeSet::evaluate(const StructuralSystem& sys, const DynamicState& s,
+                                       const EnergyBreakdown& e) const {
   std::vector<double> out;
   for (const auto& p : probes_) {
     if (p.kind == "node_position" || p.kind == "node_velocity") {
@@ -80,7 +81,6 @@ std::vector<double> ProbeSet::evaluate(const StructuralSystem& sys, const Dynami
       out.push_back(parts.N1);
       out.push_back(parts.N2);
     } else if (p.kind == "energy") {
-      const auto e = sys.energy(s.x, s.v);
       out.insert(out.end(), {e.kinetic, e.strain, e.gravity, e.total()});
     } else if (p.kind == "membrane_stress") {
       // Principal second Piola-Kirchhoff stresses averaged over the elements at the node.

@@ -100,6 +100,7 @@ void FrameFields::select(const std::vector<std::string>& chosen) {
 SceneFrame buildFrame(StructuralSystem& sys, const DynamicState& s, const FrameFields& fields,
                       bool inertia) {
   const Model& m = sys.model();
+  ++sys.workCounters().sceneFrames;
   SceneFrame f;
   f.t = s.t;
   f.points.assign(s.x.data(), s.x.data() + s.x.size());

@@ -41,6 +41,8 @@ int StructuralSystem::updateState(const Eigen::VectorXd& x) {
   if (groups_.empty()) return 0;  // no sliding search without sliding groups
   ScopedTimer timer(timings_.search);
   ++timings_.searches;
+  for (const auto* g : groups_)
+    assembler_.work().sliderSearch += static_cast<long>(g->state().def().sliders.size());
   int changes = 0;
   for (const auto& t : terms_) changes += t->updateState(x);
   return changes;
@@ -104,6 +106,7 @@ bool StructuralSystem::onConverged(Eigen::VectorXd& x) {
 }
 
 EnergyBreakdown StructuralSystem::energy(const Eigen::VectorXd& x, const Eigen::VectorXd& v) const {
+  ++energyEvaluations_;
   EnergyBreakdown e;
   for (const auto& t : terms_) t->addEnergy(x, v, e);
   return e;

@@ -60,6 +60,14 @@ class StructuralSystem {
   const MembraneTerm* membranes() const { return membranes_; }
   MembraneTerm* membranes() { return membranes_; }
 
+  // Work done so far, per kind of term (kernel evaluations, searches, energies, output frames).
+  WorkCounters work() const {
+    WorkCounters w = assembler_.work();
+    w.energy = energyEvaluations_;
+    return w;
+  }
+  WorkCounters& workCounters() { return assembler_.work(); }  // output code counts its frames
+
   Timings& timings() { return timings_; }
   const Timings& timings() const { return timings_; }
 
@@ -71,6 +79,7 @@ class StructuralSystem {
   MembraneTerm* membranes_ = nullptr;
   SystemAssembler assembler_;
   Timings timings_;
+  mutable long energyEvaluations_ = 0;
 };
 
 }  // namespace chute

@@ -51,10 +51,12 @@ void assembleCable(const Model& m, int a, int b, double L, int material, const E
   const auto& mat = m.materials[material];
   const bool wantJ = out.wantMatrix();
   const auto res = kernels::cableForce(pos(p.x, a), pos(p.x, b), L, mat, wantJ);
+  ++out.work().lineElastic;
   Vec6 r = res.force;
   Mat6 J = p.cx * res.stiffness;
   if (wantJ) addSlackTangent<2>(res, mat, L, {0, 1}, p.cx, J);
   if (mat.density > 0.0) {
+    ++out.work().lineMass;
     if (p.inertia) {
       const Mat6 M = kernels::cableMass(L, mat, m.massKind);
       r += M * gather2(p.a, a, b);
@@ -192,6 +194,7 @@ void SlidingGroupTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
     const int n3 = g.sliders[s];
     const double L = g.refLength[k];
     const Vec3 x1 = pos(p.x, n1), x2 = pos(p.x, n2), x3 = pos(p.x, n3);
+    ++out.work().sliding;
     Vec9 r;
     Mat9 J;
     if (g.frictionOf(s)) {  // capstan friction, lock or one-way flow (docs/friction.md)
@@ -207,6 +210,7 @@ void SlidingGroupTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
       if (wantJ) addSlackTangent<3>(res, mat, L, {0, 2, 1}, p.cx, J);  // path 1 -> slider -> 2
     }
     if (mat.density > 0.0) {
+      ++out.work().lineMass;
       if (p.inertia) {
         const auto in =
             kernels::slidingInertia(x1, x2, x3, gather3(p.a, n1, n2, n3), L, mat, m_->massKind);
@@ -252,11 +256,15 @@ void SlidingGroupTerm::addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd
 }
 
 // ---- PointMassTerm ---------------------------------------------------------------------------
+PointMassTerm::PointMassTerm(const Model& m) : m_(&m) {
+  for (int n = 0; n < m.numNodes(); ++n)
+    if (m.pointMass[n] != 0.0) nodes_.push_back(n);
+}
+
 void PointMassTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
   const bool wantJ = out.wantMatrix();
-  for (int n = 0; n < m_->numNodes(); ++n) {
+  for (int n : nodes_) {
     const double mass = m_->pointMass[n];
-    if (mass == 0.0) continue;
     Eigen::Matrix<double, 3, 1> r = Eigen::Matrix<double, 3, 1>::Zero();
     Eigen::Matrix3d J = Eigen::Matrix3d::Zero();
     if (p.inertia) {
@@ -264,15 +272,15 @@ void PointMassTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
       J += p.ca * mass * Eigen::Matrix3d::Identity();
     }
     r -= p.loadFactor * mass * m_->gravity;
+    ++out.work().pointMass;
     out.add<1>({n}, r, wantJ ? &J : nullptr);
   }
 }
 
 void PointMassTerm::addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
                               EnergyBreakdown& e) const {
-  for (int n = 0; n < m_->numNodes(); ++n) {
+  for (int n : nodes_) {
     const double mass = m_->pointMass[n];
-    if (mass == 0.0) continue;
     e.kinetic += 0.5 * mass * v.segment<3>(3 * n).squaredNorm();
     e.gravity -= mass * m_->gravity.dot(x.segment<3>(3 * n));
   }

@@ -72,7 +72,7 @@ class SlidingGroupTerm final : public Term {
 
 class PointMassTerm final : public Term {
  public:
-  explicit PointMassTerm(const Model& m) : m_(&m) {}
+  explicit PointMassTerm(const Model& m);
   const char* name() const override { return "point_masses"; }
   void addCouplings(std::vector<std::vector<int>>&) const override {}
   void assemble(const EvalPoint& p, SystemAssembler& out) override;
@@ -81,6 +81,7 @@ class PointMassTerm final : public Term {
 
  private:
   const Model* m_;
+  std::vector<int> nodes_;  // the nodes with a point mass (not every node of a canopy mesh)
 };
 
 }  // namespace chute
