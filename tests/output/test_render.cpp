@@ -133,7 +133,7 @@ TEST(Plot, OverlaysRunsAndAReferenceCurve) {
 
 TEST(ParaView, OpensTheSeriesWithItsOwnReader) {
   if (std::system("command -v pvpython > /dev/null 2>&1") != 0)
-    GTEST_SKIP() << "ParaView's pvpython is not installed (Debian package paraview): skipped";
+    GTEST_SKIP() << "ParaView's pvpython is not installed (Debian packages paraview, python3-paraview): skipped";
   const auto dir = smallRun("paraview");
   const auto script = dir / "check.py";
   {
