@@ -57,6 +57,10 @@ class Term {
   // Static equilibrium: the update reached a kink (the fraction passageFraction gave); make the
   // discrete change now. Returns whether anything changed.
   virtual bool crossNow(Eigen::VectorXd& /*x*/) { return false; }
+  // Round-off floor of a Newton update at the last assembly (length units): a very short, stiff
+  // part (a slider with friction next to a node, docs/friction.md FR16) computes its force from
+  // positions that carry round-off, so no update resolves positions finer than this. 0: none.
+  virtual double displacementFloor() const { return 0.0; }
   virtual void commit(const Eigen::VectorXd& /*x*/) {}  // x: the converged positions
   virtual void revert() {}
 };

@@ -120,7 +120,8 @@ NewtonReport GeneralizedAlpha::newton(Eigen::VectorXd& x, double tol, MakePoint&
     }
     x += dx;
     onUpdate();
-    if (lastChanges == 0 && un <= tol) {
+    // Not below what round-off lets the assembled forces resolve (a stiff short part, FR16).
+    if (lastChanges == 0 && un <= std::max(tol, sys_->displacementFloor())) {
       if (sys_->onConverged(x)) onUpdate();  // moved by a negligible amount onto an event
       rep.converged = true;
       return rep;

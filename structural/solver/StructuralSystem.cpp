@@ -99,6 +99,12 @@ bool StructuralSystem::crossNow(Eigen::VectorXd& x) {
   return changed;
 }
 
+double StructuralSystem::displacementFloor() const {
+  double f = 0.0;
+  for (const auto& t : terms_) f = std::max(f, t->displacementFloor());
+  return f;
+}
+
 bool StructuralSystem::onConverged(Eigen::VectorXd& x) {
   bool changed = false;
   for (const auto& t : terms_) changed |= t->onConverged(x);

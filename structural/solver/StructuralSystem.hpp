@@ -35,6 +35,7 @@ class StructuralSystem {
   double passageFraction(const Eigen::VectorXd& x, const Eigen::VectorXd& dx);
   bool onConverged(Eigen::VectorXd& x);
   bool crossNow(Eigen::VectorXd& x);
+  double displacementFloor() const;  // the largest of the terms' (Term::displacementFloor)
 
   // Nodal forces over all dofs at a converged state (for output): the support reactions
   // (the residual at constrained dofs, zero elsewhere) and the applied loads (gravity, pressure,
