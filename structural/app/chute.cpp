@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "app/cli/Command.hpp"
+#include "case/CaseError.hpp"
 
 int main(int argc, char** argv) {
   using namespace chute::cli;
@@ -23,6 +24,9 @@ int main(int argc, char** argv) {
   try {
     for (const auto& c : commands)
       if (*c.sub) return c.run();
+  } catch (const chute::CaseError& e) {  // bad input found outside the case reader
+    fmt::print(stderr, "chute: {}\n", e.what());
+    return kExitBadInput;
   } catch (const std::exception& e) {
     fmt::print(stderr, "chute: {}\n", e.what());
     return 1;
