@@ -33,6 +33,21 @@ namespace {
 // Largest model a case may generate (nodes): a typo in a count must give an error, not exhaust
 // memory. About 0.3 GB of model data; meshes this size come from a mesh file, not a count.
 constexpr long kMaxNodes = 1000000;
+// Largest coordinate or length a case may give: squared distances must not overflow.
+constexpr double kMaxLength = 1e100;
+
+// A coordinate triple within +-kMaxLength (required, or `fallback` when absent).
+Vec3 point(TomlTable& t, const std::string& key, const Vec3* fallback = nullptr) {
+  const Vec3 x = fallback ? t.vec3(key, *fallback) : t.vec3(key);
+  if (x.cwiseAbs().maxCoeff() > kMaxLength) t.fail(key, "coordinates beyond +-1e100");
+  return x;
+}
+// A positive length up to kMaxLength.
+double length(TomlTable& t, const std::string& key) {
+  const double x = t.positive(key);
+  if (x > kMaxLength) t.fail(key, "lengths beyond 1e100");
+  return x;
+}
 
 // toml11 reports a syntax error over several lines (message, source line, caret); chute reports
 // bad input in one: "file:line: malformed TOML: message (annotation)".
@@ -202,6 +217,8 @@ int materialRef(const Model& m, TomlTable& t) {
 std::string setName(const Model& m, TomlTable& t, const std::string& fallback) {
   const std::string name = fallback.empty() ? t.string("name") : t.string("name", fallback);
   if (name.empty()) t.fail("name", "cannot be empty");
+  // Generated nodes and node sets are named "<name>.<...>": a dot would make names ambiguous.
+  if (name.find('.') != std::string::npos) t.fail("name", "cannot contain '.'");
   for (const auto& s : m.lineSets)
     if (s.name == name)
       t.fail("name", "duplicate name: '" + name + "' is already a " +
@@ -336,7 +353,7 @@ void readSlidingGroup(Model& m, TomlTable t, int index) {
         t.fail("active", "slider '" + m.nodeName[sliders[s]] +
                              "' is not on the path: give its initially active element");
       const double sArc = arc[it - path.begin()];
-      k = std::clamp(static_cast<int>(std::floor(sArc / h)), 0, static_cast<int>(n - 1));
+      k = static_cast<int>(std::clamp(std::floor(sArc / h), 0.0, static_cast<double>(n - 1)));
     }
     // The slider must lie on its active element: l = l1 + l2 equals the element's current
     // length (1 + prestrain) L up to round-off.
@@ -399,6 +416,15 @@ void readMembranes(Model& m, TomlTable t) {
   if (set.prestrain <= -1.0) t.fail("prestrain", "must be > -1");
   const int setId = static_cast<int>(m.membraneSets.size());
   const std::string kind = t.choice("mesh", "disk", {"disk", "rectangle", "elements"});
+  const std::vector<std::string> diskKeys = {"center", "radius", "rings"},
+                                 rectangleKeys = {"corner", "size", "divisions", "element"},
+                                 elementKeys = {"triangles", "quads"};
+  if (kind != "disk") t.notUsed(diskKeys, "with mesh = \"" + kind + "\"");
+  if (kind != "rectangle") t.notUsed(rectangleKeys, "with mesh = \"" + kind + "\"");
+  if (kind != "elements") t.notUsed(elementKeys, "with mesh = \"" + kind + "\"");
+  if (kind == "disk" || !t.has("bulge"))
+    t.notUsed({"bulge_centre", "bulge_extent"},
+              kind == "disk" ? "with mesh = \"disk\"" : "without bulge");
   if (kind == "elements") {
     // Explicit elements over named nodes: triangles = [["a", "b", "c"], ...], quads likewise.
     auto& all = m.nodeSets[set.name];
@@ -432,14 +458,16 @@ void readMembranes(Model& m, TomlTable t) {
     if (all.empty())
       t.fail("mesh", "an \"elements\" mesh needs triangles = [...] or quads = [...]");
   } else if (kind == "disk") {
-    const Vec3 centre = t.vec3("center", Vec3::Zero());
-    const double radius = t.positive("radius");
+    const Vec3 origin = Vec3::Zero();
+    const Vec3 centre = point(t, "center", &origin);
+    const double radius = length(t, "radius");
     const long rings = t.integer("rings", 8, 1, kMaxNodes);
     checkNodeBudget(m, t, "rings", 1 + 3 * rings * (rings + 1));
     mesh::addDisk(m, set.name, setId, material, centre, radius, static_cast<int>(rings));
   } else {
-    const Vec3 corner = t.vec3("corner", Vec3::Zero());
-    const Vec3 size = t.vec3("size");
+    const Vec3 origin = Vec3::Zero();
+    const Vec3 corner = point(t, "corner", &origin);
+    const Vec3 size = point(t, "size");
     if (size.x() <= 0 || size.y() <= 0) t.fail("size", "needs positive x and y extents");
     const auto div = t.integers("divisions");
     if (div.size() != 2 || div[0] < 1 || div[1] < 1) t.fail("divisions", "expected [nx, ny] >= 1");
@@ -454,6 +482,7 @@ void readMembranes(Model& m, TomlTable t) {
   // around bulge_centre [x, y] within bulge_extent [ax, ay] (disk: bulge (1 - r^2/R^2)).
   if (t.has("bulge")) {
     const double h = t.number("bulge");
+    if (std::abs(h) > kMaxLength) t.fail("bulge", "lengths beyond 1e100");
     const auto& nodes = m.nodeSets[set.name];
     if (kind == "disk") {
       const Vec3 c = m.X[m.nodeId(set.name + ".center")];
@@ -461,8 +490,8 @@ void readMembranes(Model& m, TomlTable t) {
       for (int n : nodes) R = std::max(R, (m.X[n] - c).norm());
       for (int n : nodes) m.u0[n].z() += h * (1.0 - (m.X[n] - c).squaredNorm() / (R * R));
     } else {
-      const Vec3 c = t.vec3("bulge_centre");
-      const Vec3 ext = t.vec3("bulge_extent");
+      const Vec3 c = point(t, "bulge_centre");
+      const Vec3 ext = point(t, "bulge_extent");
       if (ext.x() <= 0.0 || ext.y() <= 0.0)
         t.fail("bulge_extent", "needs positive x and y extents");
       for (int n : nodes) {
@@ -502,7 +531,13 @@ ProbeSpec readProbe(const Model& m, TomlTable t) {
   p.kind = t.choice("kind", "node_position",
                     {"node_position", "node_velocity", "slider", "energy", "line_force",
                      "membrane_stress", "wrinkling"});
-  if (p.kind == "node_position" || p.kind == "node_velocity" || p.kind == "membrane_stress") {
+  const std::string why = "by a probe of kind \"" + p.kind + "\"";
+  const bool atNode =
+      p.kind == "node_position" || p.kind == "node_velocity" || p.kind == "membrane_stress";
+  if (!atNode) t.notUsed({"node"}, why);
+  if (p.kind != "slider") t.notUsed({"group", "slider"}, why);
+  if (p.kind != "line_force") t.notUsed({"set", "element"}, why);
+  if (atNode) {
     p.node = nodeRef(m, t, "node", t.string("node", p.name));
   } else if (p.kind == "slider") {
     const std::string g = t.string("group");
@@ -562,7 +597,7 @@ CaseSpec readCaseFromString(const std::string& text, const std::string& file,
     for (const auto& name : names) {
       if (name.empty()) nodes.fail(name, "a node name cannot be empty");
       if (name.find('.') != std::string::npos) nodes.fail(name, "node names cannot contain '.'");
-      m.addNode(nodes.vec3(name), name);
+      m.addNode(point(nodes, name), name);
     }
   }
   if (top.has("materials")) {
@@ -689,6 +724,9 @@ CaseSpec readCaseFromString(const std::string& text, const std::string& file,
       if (sv.rhoInf < 0.0 || sv.rhoInf > 1.0) s.fail("rho_inf", "must be in [0, 1]");
       sv.dtMin = s.positive("dt_min", sv.dt * 1e-6);
       if (sv.dtMin > sv.dt) s.fail("dt_min", "must not exceed dt");
+    } else {
+      s.notUsed({"dt", "t_end", "rho_inf", "integrator", "mass_damping", "dt_min"},
+                "by static runs (type = \"static\")");
     }
     sv.loadSteps = static_cast<int>(s.integer("load_steps", 1, 1, 1000000));
     sv.initialLoadFactor = s.positive("initial_load_factor", 0.0 + 1.0);

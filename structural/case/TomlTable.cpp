@@ -237,6 +237,14 @@ std::vector<TomlTable> TomlTable::tables(const std::string& key) {
   return out;
 }
 
+void TomlTable::notUsed(const std::vector<std::string>& keys, const std::string& why) const {
+  const auto& t = table_->as_table();
+  for (const auto& key : keys) {
+    auto it = t.find(key);
+    if (it != t.end()) failAt(it->second, key, "not used " + why);
+  }
+}
+
 void TomlTable::finish(const std::vector<std::string>& known) const {
   asked_.insert(known.begin(), known.end());
   finish();

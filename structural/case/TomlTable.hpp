@@ -43,6 +43,9 @@ class TomlTable {
   // Every key of this table (for tables whose keys are names, such as [nodes]).
   std::vector<std::string> keys() const;
 
+  // Fails for the first of `keys` present: keys of the schema that this table's choices leave
+  // unused ("not used <why>", e.g. why = "by static runs"), so they are not reported as unknown.
+  void notUsed(const std::vector<std::string>& keys, const std::string& why) const;
   // Throws for the first key present that was never asked for (with a did-you-mean).
   void finish() const;
   // The same, counting `known` as asked (checks a table's keys before reading it).

@@ -129,6 +129,7 @@ const char* kEmpty = "empty set";
 const char* kDegenerate = "degenerate element";
 const char* kSize = "size beyond the limit (memory)";
 const char* kSet = "--set path or value";
+const char* kUnused = "key the chosen variant does not use";
 
 std::vector<Row> rows() {
   const std::string fixedLine = "fixed = [\"a\", \"b\"]";
@@ -227,6 +228,28 @@ std::vector<Row> rows() {
        {},
        "solver.banana: unknown key",
        "banana"},
+      // ---- keys of the schema that the chosen variant does not use
+      {kUnused,
+       replaced("type = \"dynamic\"", "type = \"static\""),
+       {},
+       "solver.dt: not used by static runs (type = \"static\")",
+       "dt = 1.0e-3"},
+      {kUnused,
+       replaced("mesh = \"elements\"", "mesh = \"elements\"\nradius = 1.0"),
+       {},
+       "membranes[0].radius: not used with mesh = \"elements\"",
+       "radius = 1.0"},
+      {kUnused,
+       appended("[[output.probes]]\nname = \"E\"\nkind = \"energy\"\nnode = \"d\"\n"),
+       {},
+       "output.probes[1].node: not used by a probe of kind \"energy\"",
+       "node = \"d\""},
+      {kUnused,
+       appended("[[membranes]]\nname = \"sheet\"\nmaterial = \"film\"\nmesh = \"rectangle\"\n"
+                "size = [1.0, 1.0, 0.0]\ndivisions = [2, 2]\nbulge_extent = [0.5, 0.5, 0.0]\n"),
+       {},
+       "membranes[1].bulge_extent: not used without bulge",
+       "bulge_extent"},
       // ---- wrong types
       {kType,
        replaced("dt = 1.0e-3", "dt = \"1.0e-3\""),
@@ -442,6 +465,21 @@ std::vector<Row> rows() {
        {},
        "loads.drag[0].air_density: must be > 0",
        "air_density"},
+      {kRange,
+       replaced("b = [2.0, 0.0, 0.0]", "b = [2.0e200, 0.0, 0.0]"),
+       {},
+       "nodes.b: coordinates beyond +-1e100",
+       "b = [2.0e200"},
+      {kRange,
+       appended("[[membranes]]\nname = \"disk\"\nmaterial = \"film\"\nradius = 1e300\n"),
+       {},
+       "membranes[1].radius: lengths beyond 1e100",
+       "radius = 1e300"},
+      {kRange,
+       replaced("name = \"tether\"", "name = \"teth.er\""),
+       {},
+       "cables[0].name: cannot contain '.'",
+       "name = \"teth.er\""},
       // ---- NaN and Inf (TOML has nan and inf literals)
       {kNonFinite,
        replaced("dt = 1.0e-3", "dt = nan"),
