@@ -19,7 +19,9 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : kExitBadInput;
+    if (e.get_exit_code() == 0) return app.exit(e);              // --help
+    fmt::print(stderr, "chute: {} (chute --help)\n", e.what());  // bad input: one line, status 2
+    return kExitBadInput;
   }
   try {
     for (const auto& c : commands)

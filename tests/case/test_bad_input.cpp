@@ -1018,6 +1018,20 @@ TEST(BadInput, ChuteRunExitsTwoAndWritesNothing) {
     EXPECT_NE(text.find(c.fragment), std::string::npos) << text;
     EXPECT_FALSE(fs::exists(work / "out")) << "an output directory was created";
   }
+  // Command lines CLI11 rejects: one line too, status 2.
+  for (const std::string args : {"run", "run a.toml --checkpoint-every -3", "walk a.toml"}) {
+    const std::string line =
+        std::string(CHUTE_BINARY) + " " + args + " > /dev/null 2> " + (dir / "cli.err").string();
+    const int rc = std::system(line.c_str());
+    std::ifstream err(dir / "cli.err");
+    std::stringstream ss;
+    ss << err.rdbuf();
+    const std::string text = ss.str();
+    std::printf("  chute %-32s -> exit %d, stderr: %s", args.c_str(),
+                WIFEXITED(rc) ? WEXITSTATUS(rc) : -1, text.c_str());
+    EXPECT_EQ(WIFEXITED(rc) ? WEXITSTATUS(rc) : -1, 2);
+    EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 1) << text;
+  }
   // A missing case file.
   const std::string cmd = std::string(CHUTE_BINARY) + " run " + (dir / "none.toml").string() +
                           " --out " + (dir / "none_out").string() + " 2> " +
