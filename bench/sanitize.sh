@@ -20,12 +20,23 @@ cmake --build $B --parallel 2
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=0:strict_string_checks=1:detect_stack_use_after_return=1"
 export LSAN_OPTIONS="suppressions=$PWD/bench/lsan.supp:print_suppressions=0"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
+# Two passes. (1) Everything but the OpenGL tests, leak detection on. FrameCostStaysSmall is a
+# timing bound (ms per VTU frame) that an ASan build cannot meet: it is left out.
+# (2) The render and plot tests (they run `chute render|plot`, which loads Mesa's llvmpipe driver
+# through dlopen): Mesa's allocations are reported as leaks from an "<unknown module>" (the driver
+# is unloaded before the leak check), which no suppression can name, so this pass runs with leak
+# detection off; ASan's memory errors and UBSan stay on.
+GL='Render\.|Plot\.|ParaView\.'
 set +e
-(cd $B && ctest --output-on-failure --parallel 2 "$@") | tee $B/ctest.log
-rc=${PIPESTATUS[0]}
+(cd $B && ctest --output-on-failure --parallel 2 -E "$GL|FrameCostStaysSmall" "$@") | tee $B/ctest.log
+rc1=${PIPESTATUS[0]}
+(cd $B && ASAN_OPTIONS="$ASAN_OPTIONS:detect_leaks=0" ctest --output-on-failure --parallel 2 \
+  -R "$GL" "$@") | tee $B/ctest_gl.log
+rc2=${PIPESTATUS[0]}
 set -e
-summary=$(grep -E '^[0-9]+% tests passed' $B/ctest.log || echo "ctest did not finish")
-reports=$(grep -cE 'ERROR: (AddressSanitizer|LeakSanitizer)|runtime error:' $B/ctest.log || true)
+rc=$((rc1 | rc2))
+summary="$(grep -E '^[0-9]+% tests passed' $B/ctest.log || echo "ctest did not finish") (leaks checked); $(grep -E '^[0-9]+% tests passed' $B/ctest_gl.log || echo "GL ctest did not finish") (OpenGL tests, leaks not checked)"
+reports=$(cat $B/ctest.log $B/ctest_gl.log | grep -cE 'ERROR: (AddressSanitizer|LeakSanitizer)|runtime error:' || true)
 mkdir -p bench/results
 line="$(date -u +%Y-%m-%dT%H:%MZ) gcc ASan+UBSan ($FLAGS): $summary; sanitizer reports: $reports; $(($(date +%s) - start)) s incl. build"
 echo "$line"
