@@ -32,6 +32,7 @@ constexpr const char* kHeader =
     "<?xml version=\"1.0\"?>\n"
     "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
     "  <Collection>\n";
+constexpr size_t kCompressAbove = 64 * 1024;  // bytes of array data in a frame
 constexpr const char* kFooter = "  </Collection>\n</VTKFile>\n";
 
 std::string entryLine(double t, const std::string& file) {
@@ -122,8 +123,8 @@ void VtuSeries::start(const std::vector<PvdEntry>& kept) {
   auto& w = vtk_->writer;
   w->SetDataModeToAppended();
   w->EncodeAppendedDataOff();  // raw binary
-  // LZ4: VTK 9.1's zlib compressor allocates and clears large buffers for every array (~30 ms a
-  // frame measured on a 15-node scene); LZ4 costs no more than no compression at all.
+  // LZ4 for frames worth compressing (see write()): VTK 9.1's zlib compressor allocates and
+  // clears large buffers for every array (~30 ms a frame measured on a 15-node scene).
   w->SetCompressorTypeToLZ4();
   // Into memory, then one write: the XML writer otherwise makes hundreds of small writes and
   // seeks per file.
@@ -179,6 +180,15 @@ void VtuSeries::write(const SceneFrame& f) {
   const std::string file = fmt::format("{}_{:06d}.vtu", name_, frames_);
   const std::string path = dir_ + "/" + file;
   auto& w = vtk_->writer;
+  // LZ4 clears a 16 KiB state for every array it compresses: on a small frame that costs more
+  // than the bytes it saves (callgrind: a third of a pulley frame), so small frames go raw.
+  size_t rawBytes = f.points.size() * sizeof(double) + f.connectivity.size() * sizeof(vtkIdType);
+  for (const auto& a : f.pointData) rawBytes += a.values.size() * sizeof(double);
+  for (const auto& a : f.cellData) rawBytes += a.values.size() * sizeof(double);
+  if (rawBytes < kCompressAbove)
+    w->SetCompressorTypeToNone();
+  else
+    w->SetCompressorTypeToLZ4();
   w->SetFileName(path.c_str());
   w->SetInputData(grid);
   if (w->Write() != 1) throw std::runtime_error("cannot write " + path);

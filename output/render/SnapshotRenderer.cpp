@@ -268,7 +268,7 @@ std::vector<std::string> renderSnapshots(const SnapshotOptions& o) {
         bar->SetNumberOfLabels(5);
         bar->SetWidth(0.08 * runs.size());
         bar->SetHeight(0.6);
-        bar->SetPosition(1.0 - 0.1, 0.2);
+        bar->SetPosition(1.0 - 0.16, 0.2);  // room for a long centred title
         bar->GetTitleTextProperty()->SetColor(0.1, 0.1, 0.1);
         bar->GetLabelTextProperty()->SetColor(0.1, 0.1, 0.1);
         bar->UnconstrainedFontSizeOn();
