@@ -9,7 +9,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 SECONDS_PER_TARGET=${1:-120}
-TARGETS=(fuzz_case_reader)  # add fuzz_msh_reader when the gmsh reader lands (fuzz/CMakeLists.txt)
+TARGETS=(${FUZZ_TARGETS:-fuzz_case_reader fuzz_msh_reader})
 
 missing=()
 for p in clang libclang-rt-14-dev; do
@@ -40,6 +40,10 @@ for t in "${TARGETS[@]}"; do
         > "$seeds/set_$(basename "$f")"
     done
     dict=(-dict=fuzz/case.dict)
+  else  # fuzz_msh_reader: the example geometry meshed by gmsh, in ASCII msh 4.1 and 2.2
+    gmsh mesh/examples/flat_canopy.geo -2 -format msh41 -o "$seeds/flat_canopy41.msh" >/dev/null
+    gmsh mesh/examples/flat_canopy.geo -1 -format msh22 -o "$seeds/flat_canopy22.msh" >/dev/null
+    dict=()
   fi
   before=$(find $B/artifacts -type f | wc -l)
   log=$B/$t.log
