@@ -171,7 +171,8 @@ void applyOverride(toml::value& root, const std::string& file, const std::string
             std::string::npos;
     if (!bareWord)
       throw CaseError(where + ": " + path + ": not a TOML value: " + oneLine(e.what()));
-    parsed = toml::value(text);
+    std::istringstream quoted("v = \"" + text + "\"");  // keeps the --set as its origin
+    parsed = toml::parse(quoted, where).as_table().at("v");
   }
   if (parsed.is_table() || parsed.is_array())
     throw CaseError(where + ": " + path + ": only scalars can be set");
