@@ -18,7 +18,7 @@ struct CalculixOptions {
 };
 
 // The pressure face label of an M3D3 element whose load acts along its node-order normal.
-inline constexpr const char* kCalculixPressureFace = "P2";
+inline constexpr const char* kCalculixPressureFace = "P1";
 
 void writeCalculixInp(std::ostream& os, const PeerProblem& problem, const PeerParams& params,
                       const CalculixOptions& options);

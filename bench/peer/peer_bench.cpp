@@ -19,9 +19,15 @@ int main(int argc, char** argv) {
   std::string inpFile, csvFile;
   int runs = 1;
   CLI::App app{"issue 8 peer problem: chute run and CalculiX deck"};
-  app.add_option("--rings", p.rings, "disk rings")->check(CLI::PositiveNumber);
-  app.add_option("--stride", p.lineStride, "a line at every n-th rim node")
+  app.add_option("--rings", p.rings, "radial cells (quads) or disk rings (triangles)")
       ->check(CLI::PositiveNumber);
+  app.add_option("--square", p.square, "quads: cells along the central square's side (even)");
+  bool triangles = false, lineDensity = false;
+  app.add_flag("--triangles", triangles, "addDisk triangles (CalculiX M3D3) instead of quads");
+  app.add_flag("--line-density", lineDensity,
+               "distributed truss mass instead of point masses at the line nodes");
+  app.add_option("--stride", p.lineStride, "a line at every n-th rim node (0: no lines, rim fixed)")
+      ->check(CLI::Range(0, 1000000));
   app.add_option("--line-elements", p.lineElements, "trusses per line (even)");
   app.add_option("--dt", p.dt, "time step")->check(CLI::PositiveNumber);
   app.add_option("--steps", p.steps, "number of steps")->check(CLI::PositiveNumber);
@@ -38,8 +44,10 @@ int main(int argc, char** argv) {
   app.add_option("--write-inp", inpFile, "write the CalculiX deck here");
   app.add_option("--csv", csvFile, "write the probe displacements of the last chute run here");
   app.add_option("--runs", runs, "chute runs (0: only write the deck)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0, 1000000));
   CLI11_PARSE(app, argc, argv);
+  p.quads = !triangles;
+  p.lumpedLineMass = !lineDensity;
 
   const bench::PeerProblem problem = bench::buildPeerProblem(p);
   const Model& m = problem.spec.model;
@@ -56,6 +64,8 @@ int main(int argc, char** argv) {
   out["membranes"] = m.membranes.size();
   out["trusses"] = m.cables.size();
   out["lines"] = m.cables.size() / p.lineElements;
+  out["dofs"] = 3 * m.numNodes();
+  out["element"] = p.quads ? "quad" : "triangle";
   out["probe_nodes"] = {problem.probes.apex + 1, problem.probes.rim + 1,
                         problem.probes.lineMid + 1};
   std::vector<double> walls;
