@@ -21,7 +21,7 @@ struct PeerParams {
   int lineStride = 1;    // a line at every lineStride-th rim node
   int lineElements = 4;  // truss elements per line (even: a node at the line's midpoint)
   double radius = 1.0;   // m
-  double bulge = 0.2;    // cap height of the reference geometry, m
+  double bulge = 0.0;    // cap height of the reference geometry, m (0: flat; see README)
   double confluenceDepth = 2.0;  // confluence below the rim plane, m
   // Canopy fabric (SI units).
   double fabricE = 1.0e9, fabricNu = 0.3, fabricThickness = 1.0e-4, fabricDensity = 500.0;
