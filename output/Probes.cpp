@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -10,6 +11,10 @@
 #include "terms/SurfaceTerms.hpp"
 
 namespace chute {
+
+namespace {
+constexpr double kInf = std::numeric_limits<double>::infinity();
+}
 
 ProbeSet::ProbeSet(const Model& model, std::vector<ProbeSpec> probes)
     : model_(&model), probes_(std::move(probes)) {
@@ -43,23 +48,16 @@ std::pair<double, double> lineForce(const Model& m, const StructuralSystem& sys,
   for (size_t g = 0; g < m.groups.size(); ++g) {
     const auto& def = m.groups[g];
     if (def.set != set) continue;
-    const auto& st = sys.slidingGroups()[g]->state();
-    const int s = st.sliderOfElement(element);
-    const auto& mat = m.materials[def.material];
-    const Vec3 x1 = at(def.chain[element]), x2 = at(def.chain[element + 1]);
-    if (s < 0) {
-      const auto c = kernels::cableForce(x1, x2, def.refLength[element], mat, false);
-      return {c.axialForce, c.strain};
-    }
-    const auto a =
-        kernels::slidingForce(x1, x2, at(def.sliders[s]), def.refLength[element], mat, false);
-    return {a.axialForce, a.strain};
+    // Active elements with friction: part 1 (end 1 -> slider); see slider_friction for both.
+    const auto parts = sys.slidingGroups()[g]->activeParts(element, x);
+    return {parts.N1, parts.strain1};
   }
   throw std::logic_error("line_force probe: element not found");
 }
 }  // namespace
 
-std::vector<double> ProbeSet::evaluate(const StructuralSystem& sys, const DynamicState& s) const {
+std::vector<double> ProbeSet::evaluate(const StructuralSystem& sys, const DynamicState& s,
+                                       const EnergyBreakdown& e) const {
   std::vector<double> out;
   for (const auto& p : probes_) {
     if (p.kind == "node_position" || p.kind == "node_velocity") {
@@ -69,8 +67,20 @@ std::vector<double> ProbeSet::evaluate(const StructuralSystem& sys, const Dynami
       const auto& st = sys.slidingGroups()[p.group]->state();
       out.push_back(st.materialCoordinate(p.slider, s.x));
       out.push_back(st.activeElement(p.slider));
+    } else if (p.kind == "slider_friction") {
+      // Committed friction state (docs/friction.md); a frictionless slider reads as stuck-free:
+      // state 0, its (equal) part forces.
+      const auto& st = sys.slidingGroups()[p.group]->state();
+      const auto parts = sys.slidingGroups()[p.group]->activeParts(st.activeElement(p.slider), s.x);
+      const auto& f = st.friction(p.slider);
+      const bool fr = st.hasFriction(p.slider);
+      out.push_back(fr ? static_cast<double>(f.state) : 0.0);
+      out.push_back(fr ? f.slipRate : 0.0);
+      out.push_back(parts.N1 > 0.0 ? parts.N2 / parts.N1 : (parts.N2 > 0.0 ? kInf : 1.0));
+      out.push_back(fr ? f.wrapAngle : 0.0);
+      out.push_back(parts.N1);
+      out.push_back(parts.N2);
     } else if (p.kind == "energy") {
-      const auto e = sys.energy(s.x, s.v);
       out.insert(out.end(), {e.kinetic, e.strain, e.gravity, e.total()});
     } else if (p.kind == "membrane_stress") {
       // Principal second Piola-Kirchhoff stresses averaged over the elements at the node.

@@ -14,7 +14,9 @@ class ProbeSet {
  public:
   ProbeSet(const Model& model, std::vector<ProbeSpec> probes);
   std::vector<std::string> columns() const;
-  std::vector<double> evaluate(const StructuralSystem& sys, const DynamicState& s) const;
+  // energy: the system's energy at s (the run needs it anyway for its drift: evaluated once).
+  std::vector<double> evaluate(const StructuralSystem& sys, const DynamicState& s,
+                               const EnergyBreakdown& energy) const;
   const std::vector<ProbeSpec>& probes() const { return probes_; }
   // Offset of probe p's first column in an evaluate() row.
   int columnOffset(int p) const { return offset_[p]; }

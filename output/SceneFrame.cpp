@@ -21,9 +21,16 @@ struct CellFields {
   FieldArray stress{"principal_stress", 2, {}}, strain{"principal_strain", 2, {}};
   FieldArray wrinkling{"wrinkling_state", 1, {}, true}, pressure{"pressure", 1, {}};
   FieldArray sliderGroup{"slider_group", 1, {}, true}, sliderS{"slider_material_coordinate", 1, {}};
+  // Friction at sliders (docs/friction.md): 0 stick, +1 / -1 slip with the split growing /
+  // shrinking, NaN without friction; tension ratio N2 / N1 of the active element's parts.
+  FieldArray sliderStick{"slider_stick_state", 1, {}}, sliderRatio{"slider_tension_ratio", 1, {}};
 
   void add(CellKind k, int partIndex, double N, double eps, const Eigen::Vector2d& S,
-           const Eigen::Vector2d& E, double wrinkle, double p, int group, double s) {
+           const Eigen::Vector2d& E, double wrinkle, double p, int group, double s,
+           double stick = std::numeric_limits<double>::quiet_NaN(),
+           double ratio = std::numeric_limits<double>::quiet_NaN()) {
+    sliderStick.values.push_back(stick);
+    sliderRatio.values.push_back(ratio);
     kind.values.push_back(static_cast<int>(k));
     part.values.push_back(partIndex);
     axialForce.values.push_back(N);
@@ -36,10 +43,10 @@ struct CellFields {
     sliderS.values.push_back(s);
   }
   std::vector<FieldArray> take() {
-    return {std::move(kind),        std::move(part),     std::move(axialForce),
-            std::move(axialStrain), std::move(stress),   std::move(strain),
-            std::move(wrinkling),   std::move(pressure), std::move(sliderGroup),
-            std::move(sliderS)};
+    return {std::move(kind),        std::move(part),        std::move(axialForce),
+            std::move(axialStrain), std::move(stress),      std::move(strain),
+            std::move(wrinkling),   std::move(pressure),    std::move(sliderGroup),
+            std::move(sliderS),     std::move(sliderStick), std::move(sliderRatio)};
   }
 };
 
@@ -93,6 +100,7 @@ void FrameFields::select(const std::vector<std::string>& chosen) {
 SceneFrame buildFrame(StructuralSystem& sys, const DynamicState& s, const FrameFields& fields,
                       bool inertia) {
   const Model& m = sys.model();
+  ++sys.workCounters().sceneFrames;
   SceneFrame f;
   f.t = s.t;
   f.points.assign(s.x.data(), s.x.data() + s.x.size());
@@ -128,13 +136,17 @@ SceneFrame buildFrame(StructuralSystem& sys, const DynamicState& s, const FrameF
         continue;
       }
       const int node = def.sliders[sl];
-      const auto r = kernels::slidingForce(at(a), at(b), at(node), def.refLength[k], mat, false);
+      const auto parts = sys.slidingGroups()[g]->activeParts(k, s.x);
       const double sMat = st.materialCoordinate(sl, s.x);
-      for (const auto& part : {std::array<int, 2>{a, node}, std::array<int, 2>{node, b}}) {
-        addCell(f, CellShape::Line, {part[0], part[1]});
-        c.add(CellKind::SlidingActivePart, def.set, r.axialForce, r.strain, kNaN2, kNaN2, -1, kNaN,
-              static_cast<int>(g), sMat);
-      }
+      const bool friction = st.hasFriction(sl);
+      const double stick = friction ? static_cast<double>(st.friction(sl).state) : kNaN;
+      const double ratio = parts.N1 > 0.0 ? parts.N2 / parts.N1 : kNaN;
+      addCell(f, CellShape::Line, {a, node});
+      c.add(CellKind::SlidingActivePart, def.set, parts.N1, parts.strain1, kNaN2, kNaN2, -1, kNaN,
+            static_cast<int>(g), sMat, stick, ratio);
+      addCell(f, CellShape::Line, {node, b});
+      c.add(CellKind::SlidingActivePart, def.set, parts.N2, parts.strain2, kNaN2, kNaN2, -1, kNaN,
+            static_cast<int>(g), sMat, stick, ratio);
     }
   }
   if (!m.membranes.empty()) {

@@ -4,7 +4,7 @@
 set -euo pipefail
 PKGS=(
   build-essential cmake ninja-build pkg-config
-  libeigen3-dev libsuitesparse-dev
+  libeigen3-dev libsuitesparse-dev libopenblas0-pthread
   libvtk9-dev libgmsh-dev gmsh
   libtoml11-dev libfmt-dev nlohmann-json3-dev libcli11-dev
   libgtest-dev libgmock-dev xvfb xauth

@@ -64,6 +64,7 @@ void writeCheckpoint(const std::string& path, const Checkpoint& c) {
   j["vtu_last"] = c.vtuLast;
   j["active"] = c.active;
   j["handovers"] = c.handovers;
+  j["splits"] = c.splits;
   j["steps"] = c.steps;
   j["rejected_steps"] = c.rejectedSteps;
   j["event_retries"] = c.eventRetries;
@@ -106,6 +107,7 @@ Checkpoint readCheckpoint(const std::string& path) {
     c.vtuLast = j.at("vtu_last").get<double>();
     c.active = j.at("active").get<std::vector<std::vector<int>>>();
     c.handovers = j.at("handovers").get<std::vector<long>>();
+    if (j.contains("splits")) c.splits = j.at("splits").get<std::vector<std::vector<double>>>();
     c.steps = j.at("steps").get<long>();
     c.rejectedSteps = j.at("rejected_steps").get<long>();
     c.eventRetries = j.at("event_retries").get<long>();

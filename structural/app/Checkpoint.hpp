@@ -26,6 +26,9 @@ struct Checkpoint {
   // Sliding groups: committed active element per slider, and hand-overs so far.
   std::vector<std::vector<int>> active;
   std::vector<long> handovers;
+  // Committed split of each slider's active element (docs/friction.md; used by sliders with
+  // friction, derived from x for the others). Absent in older checkpoints: uniform splits.
+  std::vector<std::vector<double>> splits;
   // Counters of the run so far.
   long steps = 0, rejectedSteps = 0, eventRetries = 0, newtonIterations = 0;
   int maxNewtonInStep = 0;

@@ -219,10 +219,10 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
   DynamicState state = integrator.initialState();
   auto record = [&](const DynamicState& s) {
     ScopedTimer timer(sys.timings().output);
-    r.times.push_back(s.t);
-    r.rows.push_back(probes.evaluate(sys, s));
-    if (csv) csv->row(s.t, r.rows.back());
     const auto e = sys.energy(s.x, s.v);
+    r.times.push_back(s.t);
+    r.rows.push_back(probes.evaluate(sys, s, e));
+    if (csv) csv->row(s.t, r.rows.back());
     if (r.times.size() == 1) r.energyInitial = e.total();
     r.energyMaxDrift = std::max(r.energyMaxDrift, std::abs(e.total() - r.energyInitial));
     r.kineticMax = std::max(r.kineticMax, e.kinetic);
@@ -247,8 +247,10 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
       const Checkpoint& c = *restart;
       state = c.state;
       sys.updateState(state.x);
-      for (size_t g = 0; g < c.active.size(); ++g)
+      for (size_t g = 0; g < c.active.size(); ++g) {
         sys.slidingGroups()[g]->state().restore(c.active[g], c.handovers[g], state.x);
+        if (g < c.splits.size()) sys.slidingGroups()[g]->state().restoreSplits(c.splits[g]);
+      }
       if (c.linearSolverLU) integrator.linearSolver().useLU();
       dt = c.dt, eventStep = c.eventStep, successesSinceCut = c.successesSinceCut;
       probeClock.index = c.probeClockIndex, vtuClock.index = c.vtuClockIndex;
@@ -281,6 +283,10 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
           act.push_back(g->state().committedActiveElement(static_cast<int>(s)));
         c.active.push_back(act);
         c.handovers.push_back(g->state().committedHandovers());
+        std::vector<double> splits;
+        for (size_t s = 0; s < g->state().def().sliders.size(); ++s)
+          splits.push_back(g->state().friction(static_cast<int>(s)).s);
+        c.splits.push_back(splits);
       }
       c.steps = r.steps, c.rejectedSteps = r.rejectedSteps, c.eventRetries = r.eventRetries;
       c.newtonIterations = r.newtonIterations, c.maxNewtonInStep = r.maxNewtonInStep;
@@ -351,6 +357,9 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
   r.finalTime = state.t;
   r.vtuFrames = vtu ? vtu->frames() : 0;
   r.timings = sys.timings();
+  r.work = sys.work();
+  r.work.vtuSeries = vtu ? 1 : 0;
+  r.work.vtuFrames = r.vtuFrames;
   r.linearSolver = integrator.linearSolver().kindName();
   r.symbolicAnalyses = integrator.linearSolver().analyses();
   r.equations = sys.numEquations();
@@ -396,6 +405,19 @@ void writeSummary(const std::string& path, const CaseSpec& spec, const RunResult
                  {"factorisations", t.factorisations},
                  {"solves", t.solves},
                  {"symbolic_analyses", r.symbolicAnalyses}};
+  const auto& w = r.work;
+  j["work"] = {{"line_elastic_kernels", w.lineElastic},
+               {"sliding_kernels", w.sliding},
+               {"line_mass_kernels", w.lineMass},
+               {"point_mass_kernels", w.pointMass},
+               {"membrane_kernels", w.membrane},
+               {"pressure_kernels", w.pressure},
+               {"drag_kernels", w.drag},
+               {"slider_searches", w.sliderSearch},
+               {"energy_evaluations", w.energy},
+               {"scene_frames", w.sceneFrames},
+               {"vtu_series", w.vtuSeries},
+               {"vtu_frames", w.vtuFrames}};
   j["system"] = {
       {"equations", r.equations}, {"nonzeros", r.nonZeros}, {"linear_solver", r.linearSolver}};
   j["solver"] = {

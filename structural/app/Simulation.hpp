@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "assembly/WorkCounters.hpp"
 #include "case/CaseSpec.hpp"
 #include "solver/Timings.hpp"
 
@@ -40,6 +41,7 @@ struct RunResult {
   int maxNewtonInStep = 0;
   double finalTime = 0.0, wallTime = 0.0, referenceTime = 0.0;
   Timings timings;
+  WorkCounters work;  // kernel evaluations per kind of term, searches, output
   std::string linearSolver;
   int equations = 0;
   long nonZeros = 0, symbolicAnalyses = 0;

@@ -14,7 +14,8 @@ int main(int argc, char** argv) {
   CLI::App app{"chute: structural finite elements for parachute systems"};
   app.require_subcommand(1);
   const std::vector<Command> commands = {addRunCommand(app), addRenderCommand(app),
-                                         addPlotCommand(app)};
+                                         addPlotCommand(app), addCoupleCommand(app),
+                                         addMeshCommand(app)};
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

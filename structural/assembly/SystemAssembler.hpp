@@ -7,6 +7,7 @@
 #include <array>
 #include <vector>
 
+#include "assembly/WorkCounters.hpp"
 #include "model/Model.hpp"
 
 namespace chute {
@@ -48,6 +49,9 @@ class SystemAssembler {
   const SparseMatrix& matrix() const { return matrix_; }
   bool wantMatrix() const { return wantMatrix_; }
   long nonZeros() const { return matrix_.nonZeros(); }
+  // Terms count their kernel evaluations here.
+  WorkCounters& work() { return work_; }
+  const WorkCounters& work() const { return work_; }
 
  private:
   const DofMap* dofs_;
@@ -55,6 +59,7 @@ class SystemAssembler {
   Eigen::VectorXd residual_;
   bool wantMatrix_ = true;
   Eigen::VectorXd* full_ = nullptr;
+  WorkCounters work_;
 };
 
 }  // namespace chute

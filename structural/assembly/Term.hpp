@@ -18,6 +18,7 @@ struct EvalPoint {
   double cx = 1.0, cv = 0.0, ca = 0.0;
   bool inertia = true;      // false in static mode
   double loadFactor = 1.0;  // scales external loads (static load stepping)
+  double dt = 0.0;          // step length (0: static), for rate-dependent history (friction)
 };
 
 struct EnergyBreakdown {

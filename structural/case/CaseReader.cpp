@@ -11,6 +11,7 @@
 
 #include "StructuredMeshes.hpp"
 #include "case/CaseSpec.hpp"
+#include "case/MeshGroups.hpp"
 #include "case/TomlTable.hpp"
 
 namespace chute {
@@ -20,6 +21,8 @@ std::vector<std::string> ProbeSpec::columns() const {
   if (kind == "node_position") q = {"x", "y", "z"};
   if (kind == "node_velocity") q = {"vx", "vy", "vz"};
   if (kind == "slider") q = {"s", "element"};
+  if (kind == "slider_friction")
+    q = {"state", "slip_rate", "tension_ratio", "wrap_angle", "N1", "N2"};
   if (kind == "energy") q = {"kinetic", "strain", "gravity", "total"};
   if (kind == "line_force") q = {"N", "strain"};
   if (kind == "membrane_stress") q = {"S1", "S2"};
@@ -193,6 +196,23 @@ void readCable(Model& m, TomlTable t, int index) {
   }
 }
 
+// Friction, lock and one-way flow of a slider point (docs/friction.md): keys `friction =
+// {mu_static, mu_dynamic, slip_rate_scale}`, `lock_at`, `one_way = "+" | "-"` over `base`.
+kernels::SliderFrictionLaw readFrictionLaw(TomlTable& t, kernels::SliderFrictionLaw base) {
+  if (t.has("friction")) {
+    TomlTable f = t.table("friction");
+    base.muStatic = f.nonNegative("mu_static", 0.0);
+    base.muDynamic = f.nonNegative("mu_dynamic", base.muStatic);
+    base.slipRateScale = f.nonNegative("slip_rate_scale", 0.0);
+    if (base.muDynamic > base.muStatic)
+      f.fail("mu_dynamic", "must not exceed mu_static (the stick limit)");
+    f.finish();
+  }
+  if (t.has("lock_at")) base.lockAt = t.nonNegative("lock_at", 0.0);
+  if (t.has("one_way")) base.oneWay = t.choice("one_way", "+", {"+", "-"}) == "+" ? 1 : -1;
+  return base;
+}
+
 void readSlidingGroup(Model& m, TomlTable t, int index) {
   SlidingGroupDef g;
   g.name = t.string("name", "sliding_group" + std::to_string(index));
@@ -214,6 +234,15 @@ void readSlidingGroup(Model& m, TomlTable t, int index) {
   if (prestrain <= -1.0) t.fail("prestrain", "must be > -1");
   std::vector<long> active;
   if (t.has("active")) active = t.integers("active");
+  const auto groupLaw = readFrictionLaw(t, {});
+  g.friction.assign(sliders.size(), groupLaw);
+  for (auto& sp : t.tables("slider_points")) {
+    const int node = nodeRef(m, sp, "slider", sp.string("slider"));
+    auto it = std::find(sliders.begin(), sliders.end(), node);
+    if (it == sliders.end()) sp.fail("slider", "not a slider of this group");
+    g.friction[it - sliders.begin()] = readFrictionLaw(sp, groupLaw);
+    sp.finish();
+  }
   t.finish();
 
   std::vector<Vec3> geom;
@@ -372,10 +401,10 @@ ProbeSpec readProbe(const Model& m, TomlTable t) {
   p.name = t.string("name");
   p.kind = t.choice("kind", "node_position",
                     {"node_position", "node_velocity", "slider", "energy", "line_force",
-                     "membrane_stress", "wrinkling"});
+                     "membrane_stress", "wrinkling", "slider_friction"});
   if (p.kind == "node_position" || p.kind == "node_velocity" || p.kind == "membrane_stress") {
     p.node = nodeRef(m, t, "node", t.string("node", p.name));
-  } else if (p.kind == "slider") {
+  } else if (p.kind == "slider" || p.kind == "slider_friction") {
     const std::string g = t.string("group");
     for (size_t i = 0; i < m.groups.size(); ++i)
       if (m.groups[i].name == g) p.group = static_cast<int>(i);
@@ -419,6 +448,8 @@ CaseSpec readCase(const std::string& file, const std::vector<std::string>& overr
       m.addNode(nodes.vec3(name), name);
     }
   }
+  std::unique_ptr<MeshImport> mesh;  // [mesh]: a gmsh mesh whose physical groups entries map
+  if (top.has("mesh")) mesh = importMesh(m, top.table("mesh"), file);
   if (top.has("materials")) {
     TomlTable mats = top.table("materials");
     for (const auto& name : mats.keys()) {
@@ -433,10 +464,13 @@ CaseSpec readCase(const std::string& file, const std::vector<std::string>& overr
     }
   }
   int i = 0;
-  for (auto& t : top.tables("cables")) readCable(m, t, i++);
+  for (auto& t : top.tables("cables"))
+    t.has("group") ? readMeshCables(m, mesh.get(), t, i++) : readCable(m, t, i++);
   i = 0;
-  for (auto& t : top.tables("sliding_groups")) readSlidingGroup(m, t, i++);
-  for (auto& t : top.tables("membranes")) readMembranes(m, t);
+  for (auto& t : top.tables("sliding_groups"))
+    t.has("group") ? readMeshSlidingGroup(m, mesh.get(), t, i++) : readSlidingGroup(m, t, i++);
+  for (auto& t : top.tables("membranes"))
+    t.has("group") ? readMeshMembranes(m, mesh.get(), t) : readMembranes(m, t);
   if (m.numNodes() == 0) top.fail("nodes", "the case has no nodes (no [nodes] and no meshes)");
   {
     std::set<std::string> names;
@@ -445,6 +479,10 @@ CaseSpec readCase(const std::string& file, const std::vector<std::string>& overr
         top.fail(s.sliding ? "sliding_groups" : "cables", "duplicate set name '" + s.name + "'");
   }
   for (auto& t : top.tables("point_masses")) {
+    if (t.has("group")) {
+      readMeshPointMasses(m, mesh.get(), t);
+      continue;
+    }
     const int n = nodeRef(m, t, "node", t.string("node"));
     m.pointMass[n] += t.positive("mass");
     t.finish();
@@ -511,7 +549,9 @@ CaseSpec readCase(const std::string& file, const std::vector<std::string>& overr
     }
     for (auto& t : l.tables("drag")) {
       DragLoadDef d;
-      if (t.has("edge")) {
+      if (t.has("group")) {
+        d.edges = meshEdges(mesh.get(), t);  // the 2-node elements of a 1-D physical group
+      } else if (t.has("edge")) {
         // Edges between consecutive nodes of a node set (e.g. "bag.xmax", a disk's "rim").
         const std::string edge = t.string("edge");
         auto it = m.nodeSets.find(edge);
@@ -642,6 +682,7 @@ CaseSpec readCase(const std::string& file, const std::vector<std::string>& overr
     r.finish();
     c.reference = ref;
   }
+  if (mesh) holdUnusedMeshNodes(m, *mesh);
   top.finish();
   return c;
 }

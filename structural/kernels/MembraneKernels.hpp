@@ -86,6 +86,21 @@ template <int NumNodes>
 PressureLoad<NumNodes> pressureLoad(const std::array<Vec3, NumNodes>& x, double p,
                                     bool withTangent);
 
+// Follower pressure interpolated from nodal values p_j: f_i = int N_i (sum_j N_j p_j)
+// (x_,1 x x_,2) dxi, integrated exactly (triangle: edge-midpoint rule; quad: 2x2 Gauss), and its
+// derivative (the pressures are held fixed). Used for pressures a flow solver gives per vertex.
+template <int NumNodes>
+PressureLoad<NumNodes> pressureLoadNodal(const std::array<Vec3, NumNodes>& x,
+                                         const Eigen::Matrix<double, NumNodes, 1>& p,
+                                         bool withTangent);
+
+// Area vector of a face, int (x_,1 x x_,2) dxi = |A| n (exact for flat triangles and bilinear
+// quads: (1/2) (x1 - x0) x (x2 - x0), (1/2) (x2 - x0) x (x3 - x1)), and its derivative dA/dx.
+template <int NumNodes>
+Vec3 areaVector(const std::array<Vec3, NumNodes>& x);
+template <int NumNodes>
+Eigen::Matrix<double, 3, 3 * NumNodes> areaVectorJacobian(const std::array<Vec3, NumNodes>& x);
+
 // Drag on a line element of diameter d (formulation.md section 6):
 // f = -(1/2) rho_air Cd d l |v_n| v_n, v_n the air-relative velocity normal to the element, shared
 // equally by the two nodes. Returned as the residual contribution r = -f (per node: half), with

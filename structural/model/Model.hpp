@@ -9,6 +9,7 @@
 
 #include "kernels/LineKernels.hpp"
 #include "kernels/MembraneKernels.hpp"
+#include "kernels/SliderFriction.hpp"
 
 namespace chute {
 
@@ -36,6 +37,13 @@ struct SlidingGroupDef {
   std::vector<double> refLength;   // reference length of each element
   std::vector<int> sliders;        // slider node ids
   std::vector<int> initialActive;  // initially active element per slider
+  // Friction, lock and one-way flow per slider (docs/friction.md); empty: all frictionless.
+  std::vector<kernels::SliderFrictionLaw> friction;
+  const kernels::SliderFrictionLaw* frictionOf(int slider) const {
+    return static_cast<size_t>(slider) < friction.size() && friction[slider].frictional()
+               ? &friction[slider]
+               : nullptr;
+  }
   int numElements() const { return static_cast<int>(refLength.size()); }
 };
 

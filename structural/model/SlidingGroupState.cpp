@@ -18,7 +18,10 @@ SlidingGroupState::SlidingGroupState(const SlidingGroupDef& def)
       trial_(def.initialActive),
       committed_(def.initialActive),
       pendingHandover_(def.sliders.size(), 0),
-      handoverAtCommit_(def.sliders.size(), 0) {
+      handoverAtCommit_(def.sliders.size(), 0),
+      splitStart_(def.sliders.size(), 0.0),
+      frTrial_(def.sliders.size()),
+      frCommitted_(def.sliders.size()) {
   cumulativeRef_.assign(def.chain.size(), 0.0);
   for (int k = 0; k < def.numElements(); ++k)
     cumulativeRef_[k + 1] = cumulativeRef_[k] + def.refLength[k];
@@ -48,6 +51,7 @@ void SlidingGroupState::setActiveElement(int slider, int element) {
 }
 
 int SlidingGroupState::search(const Eigen::VectorXd& x, SliderSearch kind) {
+  if (!splitsInitialised_) initSplits(x);
   int changed = 0;
   const int nEl = def_->numElements();
   for (size_t s = 0; s < trial_.size(); ++s) {
@@ -82,6 +86,8 @@ int SlidingGroupState::search(const Eigen::VectorXd& x, SliderSearch kind) {
       handoversTrial_ += std::abs(best - trial_[s]);
       trial_[s] = best;
       ++changed;
+      // A new element starts with the uniform split (both parts at one strain).
+      splitStart_[s] = uniformSplit(static_cast<int>(s), best, x);
     }
   }
   return changed;
@@ -102,6 +108,12 @@ double SlidingGroupState::passageFraction(const Eigen::VectorXd& x, const Eigen:
           pendingHandover_[s] = end == 0 ? -1 : +1;
         continue;
       }
+      // A slider with friction within the arrival radius has arrived: its short part is a
+      // stiff spring (E A / L_i) and Newton's path may graze the node; the converged state is
+      // handed over by arriveAtNodes() instead of cutting the step ever shorter.
+      if (hasFriction(static_cast<int>(s)) &&
+          d.norm() <= kernels::kArrivalFraction * def_->refLength[k])
+        continue;
       const double dDelta = d.dot(delta);
       // The part flips direction, (d + delta) . d < 0: the update passes the node, closest at
       // the fraction -d.delta / |delta|^2.
@@ -153,14 +165,18 @@ bool SlidingGroupState::arriveAtNodes(const Model& model, Eigen::VectorXd& x, do
 }
 
 void SlidingGroupState::commit(const Eigen::VectorXd& x) {
+  if (!splitsInitialised_) initSplits(x);
   for (size_t s = 0; s < trial_.size(); ++s) {
     const int k = trial_[s] + handoverAtCommit_[s];
+    if (hasFriction(static_cast<int>(s))) splitStart_[s] = frTrial_[s].s;
     if (handoverAtCommit_[s] != 0 && k >= 0 && k < def_->numElements()) {
       handoversTrial_ += 1;
       trial_[s] = k;
+      splitStart_[s] = frTrial_[s].s = uniformSplit(static_cast<int>(s), k, x);
     }
     handoverAtCommit_[s] = 0;
   }
+  frCommitted_ = frTrial_;
   committed_ = trial_;
   for (int end = 0; end < 2; ++end) {
     committedDistance_[end].resize(trial_.size());
@@ -177,6 +193,7 @@ void SlidingGroupState::restore(const std::vector<int>& active, long handovers,
   if (active.size() != trial_.size())
     throw std::out_of_range("checkpoint: wrong number of sliders in group " + def_->name);
   for (size_t s = 0; s < active.size(); ++s) setActiveElement(static_cast<int>(s), active[s]);
+  initSplits(x);  // friction splits: uniform, unless restoreSplits() follows
   std::fill(handoverAtCommit_.begin(), handoverAtCommit_.end(), 0);
   handoversTrial_ = handovers;
   commit(x);
@@ -184,6 +201,8 @@ void SlidingGroupState::restore(const std::vector<int>& active, long handovers,
 
 void SlidingGroupState::revert() {
   trial_ = committed_;
+  frTrial_ = frCommitted_;
+  for (size_t s = 0; s < trial_.size(); ++s) splitStart_[s] = frCommitted_[s].s;
   std::fill(pendingHandover_.begin(), pendingHandover_.end(), 0);
   std::fill(handoverAtCommit_.begin(), handoverAtCommit_.end(), 0);
   handoversTrial_ = handoversCommitted_;
@@ -191,10 +210,38 @@ void SlidingGroupState::revert() {
 
 double SlidingGroupState::materialCoordinate(int slider, const Eigen::VectorXd& x) const {
   const int k = trial_[slider];
+  if (hasFriction(slider)) return cumulativeRef_[k] + splitStart_[slider];
   const double offset =
       kernels::sliderReferenceOffset(nodePos(x, def_->chain[k]), nodePos(x, def_->chain[k + 1]),
                                      nodePos(x, def_->sliders[slider]), def_->refLength[k]);
   return cumulativeRef_[k] + offset;
+}
+
+double SlidingGroupState::uniformSplit(int slider, int element, const Eigen::VectorXd& x) const {
+  return kernels::sliderReferenceOffset(
+      nodePos(x, def_->chain[element]), nodePos(x, def_->chain[element + 1]),
+      nodePos(x, def_->sliders[slider]), def_->refLength[element]);
+}
+
+void SlidingGroupState::initSplits(const Eigen::VectorXd& x) {
+  for (size_t s = 0; s < trial_.size(); ++s) {
+    splitStart_[s] = uniformSplit(static_cast<int>(s), committed_[s], x);
+    frTrial_[s] = frCommitted_[s] = FrictionState{};
+    frTrial_[s].s = frCommitted_[s].s = splitStart_[s];
+  }
+  splitsInitialised_ = true;
+}
+
+void SlidingGroupState::restoreSplits(const std::vector<double>& splits) {
+  if (splits.size() != trial_.size())
+    throw std::out_of_range("checkpoint: wrong number of slider splits in group " + def_->name);
+  for (size_t s = 0; s < splits.size(); ++s)
+    splitStart_[s] = frTrial_[s].s = frCommitted_[s].s = splits[s];
+}
+
+double SlidingGroupState::FrictionState::tensionRatio() const {
+  if (N1 <= 0.0 && N2 <= 0.0) return 1.0;
+  return N1 > 0.0 ? N2 / N1 : std::numeric_limits<double>::infinity();
 }
 
 }  // namespace chute

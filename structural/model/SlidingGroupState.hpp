@@ -60,6 +60,29 @@ class SlidingGroupState {
 
   long committedHandovers() const { return handoversCommitted_; }
 
+  // ---- friction history (docs/friction.md) -----------------------------------------------
+  // Sliders with friction, a lock or one-way flow carry the split s of their active element's
+  // reference length (part 1 = end 1 -> slider) as history; frictionless ones derive it from x.
+  struct FrictionState {
+    double s = 0.0;  // split: reference length of part 1 of the active element
+    kernels::SliderStick state = kernels::SliderStick::Stick;
+    double slipRate = 0.0;  // ds/dt over the last step (material length per time)
+    double N1 = 0.0, N2 = 0.0, wrapAngle = 0.0;
+    double tensionRatio() const;  // N2 / N1 (1 when both are slack)
+  };
+  bool hasFriction(int slider) const { return def_->frictionOf(slider) != nullptr; }
+  // The split at the start of the step (the stick predictor), for the trial active element.
+  double splitStart(int slider) const { return splitStart_[slider]; }
+  // Converged friction state of a slider at the end of the step, before commit(x).
+  void setConvergedFriction(int slider, const FrictionState& f) { frTrial_[slider] = f; }
+  const FrictionState& friction(int slider) const { return frCommitted_[slider]; }
+  // Restores committed splits saved from friction(s).s (checkpoints), after restore().
+  void restoreSplits(const std::vector<double>& splits);
+  // Splits start uniform at the first positions seen (search or commit).
+  void ensureSplits(const Eigen::VectorXd& x) {
+    if (!splitsInitialised_) initSplits(x);
+  }
+
  private:
   const SlidingGroupDef* def_;
   std::vector<int> trial_, committed_;
@@ -68,6 +91,13 @@ class SlidingGroupState {
   std::vector<int> handoverAtCommit_;  // same, applied when the step is committed
   std::vector<double> cumulativeRef_;  // reference arc length at each chain node
   long handoversTrial_ = 0, handoversCommitted_ = 0;
+  // Friction history: the split the step starts from, per slider (reset to the uniform split
+  // when the slider changes element), and the committed / converged-trial friction state.
+  double uniformSplit(int slider, int element, const Eigen::VectorXd& x) const;
+  void initSplits(const Eigen::VectorXd& x);
+  bool splitsInitialised_ = false;
+  std::vector<double> splitStart_;
+  std::vector<FrictionState> frTrial_, frCommitted_;
 };
 
 }  // namespace chute

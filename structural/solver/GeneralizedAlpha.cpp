@@ -137,7 +137,8 @@ struct OwnedPoint {
   double t, cx, cv, ca;
   bool inertia;
   double loadFactor;
-  EvalPoint point() const { return EvalPoint{x, v, a, t, cx, cv, ca, inertia, loadFactor}; }
+  double dt = 0.0;
+  EvalPoint point() const { return EvalPoint{x, v, a, t, cx, cv, ca, inertia, loadFactor, dt}; }
 };
 }  // namespace
 
@@ -178,7 +179,8 @@ NewtonReport GeneralizedAlpha::step(DynamicState& s, double dt) {
                       (1.0 - p.alphaF) * p.gamma / (p.beta * dt),
                       (1.0 - p.alphaM) / (p.beta * dt * dt),
                       true,
-                      1.0};
+                      1.0,
+                      dt};
   };
   newmark();
   double tol = newton_.tolDisplacement;
@@ -216,7 +218,8 @@ NewtonReport GeneralizedAlpha::solveStatic(DynamicState& s, int nSteps, double i
                         0.0,
                         0.0,
                         false,
-                        target};
+                        target,
+                        0.0};
     };
     const Eigen::VectorXd start = x;
     NewtonReport rep = newton(

@@ -7,7 +7,8 @@
 
 namespace chute {
 
-StructuralSystem::StructuralSystem(const Model& model, SliderSearch search)
+StructuralSystem::StructuralSystem(const Model& model, SliderSearch search,
+                                   std::vector<std::unique_ptr<Term>> extraTerms)
     : model_(&model), dofs_(model), assembler_(dofs_) {
   // Only what the scene uses: a term exists only if the model has something for it.
   if (!model.cables.empty()) terms_.push_back(std::make_unique<CableTerm>(model));
@@ -29,6 +30,7 @@ StructuralSystem::StructuralSystem(const Model& model, SliderSearch search)
     for (auto* g : groups_) states.push_back(&g->state());
     terms_.push_back(std::make_unique<DragTerm>(model, states));
   }
+  for (auto& t : extraTerms) terms_.push_back(std::move(t));
 
   std::vector<std::vector<int>> cliques;
   for (const auto& t : terms_) t->addCouplings(cliques);
@@ -39,6 +41,8 @@ int StructuralSystem::updateState(const Eigen::VectorXd& x) {
   if (groups_.empty()) return 0;  // no sliding search without sliding groups
   ScopedTimer timer(timings_.search);
   ++timings_.searches;
+  for (const auto* g : groups_)
+    assembler_.work().sliderSearch += static_cast<long>(g->state().def().sliders.size());
   int changes = 0;
   for (const auto& t : terms_) changes += t->updateState(x);
   return changes;
@@ -102,6 +106,7 @@ bool StructuralSystem::onConverged(Eigen::VectorXd& x) {
 }
 
 EnergyBreakdown StructuralSystem::energy(const Eigen::VectorXd& x, const Eigen::VectorXd& v) const {
+  ++energyEvaluations_;
   EnergyBreakdown e;
   for (const auto& t : terms_) t->addEnergy(x, v, e);
   return e;

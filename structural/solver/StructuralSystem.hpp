@@ -17,7 +17,10 @@ class MembraneTerm;
 
 class StructuralSystem {
  public:
-  StructuralSystem(const Model& model, SliderSearch search);
+  // extraTerms: terms the model does not describe (loads supplied by a coupled flow solver);
+  // they join the sparsity pattern like the others.
+  StructuralSystem(const Model& model, SliderSearch search,
+                   std::vector<std::unique_ptr<Term>> extraTerms = {});
 
   const Model& model() const { return *model_; }
   const DofMap& dofs() const { return dofs_; }
@@ -55,6 +58,15 @@ class StructuralSystem {
   const std::vector<SlidingGroupTerm*>& slidingGroups() const { return groups_; }
   // The membrane term (nullptr without membranes).
   const MembraneTerm* membranes() const { return membranes_; }
+  MembraneTerm* membranes() { return membranes_; }
+
+  // Work done so far, per kind of term (kernel evaluations, searches, energies, output frames).
+  WorkCounters work() const {
+    WorkCounters w = assembler_.work();
+    w.energy = energyEvaluations_;
+    return w;
+  }
+  WorkCounters& workCounters() { return assembler_.work(); }  // output code counts its frames
 
   Timings& timings() { return timings_; }
   const Timings& timings() const { return timings_; }
@@ -67,6 +79,7 @@ class StructuralSystem {
   MembraneTerm* membranes_ = nullptr;
   SystemAssembler assembler_;
   Timings timings_;
+  mutable long energyEvaluations_ = 0;
 };
 
 }  // namespace chute

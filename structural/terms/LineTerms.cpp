@@ -51,10 +51,12 @@ void assembleCable(const Model& m, int a, int b, double L, int material, const E
   const auto& mat = m.materials[material];
   const bool wantJ = out.wantMatrix();
   const auto res = kernels::cableForce(pos(p.x, a), pos(p.x, b), L, mat, wantJ);
+  ++out.work().lineElastic;
   Vec6 r = res.force;
   Mat6 J = p.cx * res.stiffness;
   if (wantJ) addSlackTangent<2>(res, mat, L, {0, 1}, p.cx, J);
   if (mat.density > 0.0) {
+    ++out.work().lineMass;
     if (p.inertia) {
       const Mat6 M = kernels::cableMass(L, mat, m.massKind);
       r += M * gather2(p.a, a, b);
@@ -102,8 +104,80 @@ void SlidingGroupTerm::addCouplings(std::vector<std::vector<int>>& cliques) cons
 }
 
 bool SlidingGroupTerm::symmetricJacobian() const {
-  const auto& mat = m_->materials[state_.def().material];
+  const auto& g = state_.def();
+  const auto& mat = m_->materials[g.material];
+  // Friction's algorithmic tangent is not symmetric (non-associated slip, docs/friction.md FR10).
+  for (size_t s = 0; s < g.sliders.size(); ++s)
+    if (g.frictionOf(static_cast<int>(s))) return false;
   return mat.density == 0.0;
+}
+
+namespace {
+// The friction element at positions x for slider s of group state st (docs/friction.md).
+kernels::FrictionSlidingResult frictionElement(const Model& m, const SlidingGroupState& st, int s,
+                                               const Eigen::VectorXd& x, double t, double dt,
+                                               bool withTangent) {
+  const auto& g = st.def();
+  const int k = st.activeElement(s);
+  const auto* law = g.frictionOf(s);
+  return kernels::frictionSlidingForce(
+      pos(x, g.chain[k]), pos(x, g.chain[k + 1]), pos(x, g.sliders[s]), g.refLength[k],
+      st.splitStart(s), m.materials[g.material], *law, dt, t >= law->lockAt, withTangent);
+}
+
+// Slack parts of the friction element: the Jacobian-only spring of addSlackTangent, per part.
+void addSlackPartTangents(const kernels::FrictionSlidingResult& res,
+                          const kernels::LineMaterial& mat, double L, double cx, Mat9& J) {
+  if (!mat.tensionOnly || mat.compressionStiffnessRatio > 0.0) return;
+  const Eigen::Matrix3d k = cx * kSlackTangent * mat.E * mat.area / L * Eigen::Matrix3d::Identity();
+  const double strain[2] = {res.strain1, res.strain2};
+  for (int part = 0; part < 2; ++part) {
+    if (strain[part] > 0.0) continue;
+    const int a = part, b = 2;  // end node, slider
+    J.block<3, 3>(3 * a, 3 * a) += k;
+    J.block<3, 3>(3 * b, 3 * b) += k;
+    J.block<3, 3>(3 * a, 3 * b) -= k;
+    J.block<3, 3>(3 * b, 3 * a) -= k;
+  }
+}
+}  // namespace
+
+void SlidingGroupTerm::commit(const Eigen::VectorXd& x) {
+  state_.ensureSplits(x);
+  const auto& g = state_.def();
+  for (size_t s = 0; s < g.sliders.size(); ++s) {
+    const int si = static_cast<int>(s);
+    if (!g.frictionOf(si)) continue;
+    const auto res = frictionElement(*m_, state_, si, x, lastT_, lastDt_, false);
+    SlidingGroupState::FrictionState f;
+    f.s = res.s;
+    f.state = res.state;
+    f.slipRate = lastDt_ > 0.0 ? (res.s - state_.splitStart(si)) / lastDt_ : 0.0;
+    f.N1 = res.N1;
+    f.N2 = res.N2;
+    f.wrapAngle = res.wrapAngle;
+    state_.setConvergedFriction(si, f);
+  }
+  state_.commit(x);
+}
+
+SlidingGroupTerm::ActiveParts SlidingGroupTerm::activeParts(int element,
+                                                            const Eigen::VectorXd& x) const {
+  const auto& g = state_.def();
+  const int s = state_.sliderOfElement(element);
+  if (s >= 0 && g.frictionOf(s)) {
+    const auto r = frictionElement(*m_, state_, s, x, lastT_, 0.0, false);
+    return {r.N1, r.strain1, r.N2, r.strain2};
+  }
+  const auto& mat = m_->materials[g.material];
+  const Vec3 x1 = pos(x, g.chain[element]), x2 = pos(x, g.chain[element + 1]);
+  if (s < 0) {
+    const auto c = kernels::cableForce(x1, x2, g.refLength[element], mat, false);
+    return {c.axialForce, c.strain, c.axialForce, c.strain};
+  }
+  const auto r =
+      kernels::slidingForce(x1, x2, pos(x, g.sliders[s]), g.refLength[element], mat, false);
+  return {r.axialForce, r.strain, r.axialForce, r.strain};
 }
 
 void SlidingGroupTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
@@ -120,11 +194,23 @@ void SlidingGroupTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
     const int n3 = g.sliders[s];
     const double L = g.refLength[k];
     const Vec3 x1 = pos(p.x, n1), x2 = pos(p.x, n2), x3 = pos(p.x, n3);
-    const auto res = kernels::slidingForce(x1, x2, x3, L, mat, wantJ);
-    Vec9 r = res.force;
-    Mat9 J = p.cx * res.stiffness;
-    if (wantJ) addSlackTangent<3>(res, mat, L, {0, 2, 1}, p.cx, J);  // path 1 -> slider -> 2
+    ++out.work().sliding;
+    Vec9 r;
+    Mat9 J;
+    if (g.frictionOf(s)) {  // capstan friction, lock or one-way flow (docs/friction.md)
+      lastT_ = p.t, lastDt_ = p.dt;
+      const auto res = frictionElement(*m_, state_, s, p.x, p.t, p.dt, wantJ);
+      r = res.force;
+      J = p.cx * res.stiffness;
+      if (wantJ) addSlackPartTangents(res, mat, L, p.cx, J);
+    } else {
+      const auto res = kernels::slidingForce(x1, x2, x3, L, mat, wantJ);
+      r = res.force;
+      J = p.cx * res.stiffness;
+      if (wantJ) addSlackTangent<3>(res, mat, L, {0, 2, 1}, p.cx, J);  // path 1 -> slider -> 2
+    }
     if (mat.density > 0.0) {
+      ++out.work().lineMass;
       if (p.inertia) {
         const auto in =
             kernels::slidingInertia(x1, x2, x3, gather3(p.a, n1, n2, n3), L, mat, m_->massKind);
@@ -155,7 +241,8 @@ void SlidingGroupTerm::addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd
     const int n3 = g.sliders[s];
     const double L = g.refLength[k];
     const Vec3 x1 = pos(x, n1), x2 = pos(x, n2), x3 = pos(x, n3);
-    e.strain += kernels::slidingForce(x1, x2, x3, L, mat, false).energy;
+    e.strain += g.frictionOf(s) ? frictionElement(*m_, state_, s, x, lastT_, 0.0, false).energy
+                                : kernels::slidingForce(x1, x2, x3, L, mat, false).energy;
     if (mat.density > 0.0) {
       const Vec9 vv = gather3(v, n1, n2, n3);
       e.kinetic +=
@@ -169,11 +256,15 @@ void SlidingGroupTerm::addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd
 }
 
 // ---- PointMassTerm ---------------------------------------------------------------------------
+PointMassTerm::PointMassTerm(const Model& m) : m_(&m) {
+  for (int n = 0; n < m.numNodes(); ++n)
+    if (m.pointMass[n] != 0.0) nodes_.push_back(n);
+}
+
 void PointMassTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
   const bool wantJ = out.wantMatrix();
-  for (int n = 0; n < m_->numNodes(); ++n) {
+  for (int n : nodes_) {
     const double mass = m_->pointMass[n];
-    if (mass == 0.0) continue;
     Eigen::Matrix<double, 3, 1> r = Eigen::Matrix<double, 3, 1>::Zero();
     Eigen::Matrix3d J = Eigen::Matrix3d::Zero();
     if (p.inertia) {
@@ -181,15 +272,15 @@ void PointMassTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
       J += p.ca * mass * Eigen::Matrix3d::Identity();
     }
     r -= p.loadFactor * mass * m_->gravity;
+    ++out.work().pointMass;
     out.add<1>({n}, r, wantJ ? &J : nullptr);
   }
 }
 
 void PointMassTerm::addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
                               EnergyBreakdown& e) const {
-  for (int n = 0; n < m_->numNodes(); ++n) {
+  for (int n : nodes_) {
     const double mass = m_->pointMass[n];
-    if (mass == 0.0) continue;
     e.kinetic += 0.5 * mass * v.segment<3>(3 * n).squaredNorm();
     e.gravity -= mass * m_->gravity.dot(x.segment<3>(3 * n));
   }

@@ -50,20 +50,29 @@ class SlidingGroupTerm final : public Term {
     return state_.arriveAtNodes(*m_, x, kernels::kArrivalFraction, kernels::kSeparationFraction,
                                 true);
   }
-  void commit(const Eigen::VectorXd& x) override { state_.commit(x); }
+  // Sliders with friction: the converged split at x is found (docs/friction.md) and committed.
+  void commit(const Eigen::VectorXd& x) override;
   void revert() override { state_.revert(); }
   const SlidingGroupState& state() const { return state_; }
   SlidingGroupState& state() { return state_; }
+
+  // Forces and strains of the two parts of active element `element` at x (equal for a
+  // frictionless slider), with the committed split for a slider with friction (output).
+  struct ActiveParts {
+    double N1, strain1, N2, strain2;
+  };
+  ActiveParts activeParts(int element, const Eigen::VectorXd& x) const;
 
  private:
   const Model* m_;
   SlidingGroupState state_;
   SliderSearch search_;
+  double lastT_ = 0.0, lastDt_ = 0.0;  // of the last assembly: the step being solved
 };
 
 class PointMassTerm final : public Term {
  public:
-  explicit PointMassTerm(const Model& m) : m_(&m) {}
+  explicit PointMassTerm(const Model& m);
   const char* name() const override { return "point_masses"; }
   void addCouplings(std::vector<std::vector<int>>&) const override {}
   void assemble(const EvalPoint& p, SystemAssembler& out) override;
@@ -72,6 +81,7 @@ class PointMassTerm final : public Term {
 
  private:
   const Model* m_;
+  std::vector<int> nodes_;  // the nodes with a point mass (not every node of a canopy mesh)
 };
 
 }  // namespace chute

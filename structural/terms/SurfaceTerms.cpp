@@ -1,5 +1,7 @@
 #include "terms/SurfaceTerms.hpp"
 
+#include <algorithm>
+
 namespace chute {
 
 using kernels::Vec3;
@@ -67,6 +69,7 @@ void MembraneTerm::assembleElement(int k, const kernels::MembraneReference<N>& r
   const bool wantJ = out.wantMatrix();
   const auto x = gatherNodes<N>(p.x, e);
   const auto res = kernels::membraneForce<N>(x, ref, mat, m_->membraneSets[e.set].wrinkling, wantJ);
+  ++out.work().membrane;
   states_[k] = {res.state, res.principalStress, res.principalStrain};
   Eigen::Matrix<double, 3 * N, 1> r = res.force;
   Eigen::Matrix<double, 3 * N, 3 * N> J = p.cx * res.stiffness;
@@ -143,8 +146,11 @@ void MembraneTerm::addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
 
 // ---- PressureTerm --------------------------------------------------------------------------
 void PressureTerm::addCouplings(std::vector<std::vector<int>>& cliques) const {
+  // Only the loaded sets' elements (the membrane term already couples all of them).
   for (const auto& e : m_->membranes)
-    cliques.emplace_back(e.nodes.begin(), e.nodes.begin() + e.numNodes);
+    if (std::any_of(m_->pressures.begin(), m_->pressures.end(),
+                    [&](const PressureLoadDef& l) { return l.set == e.set; }))
+      cliques.emplace_back(e.nodes.begin(), e.nodes.begin() + e.numNodes);
 }
 
 void PressureTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
@@ -160,6 +166,7 @@ void PressureTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
       auto one = [&](auto nodesTag) {
         constexpr int N = decltype(nodesTag)::value;
         const auto pl = kernels::pressureLoad<N>(gatherNodes<N>(p.x, e), pr, wantJ);
+        ++out.work().pressure;
         const Eigen::Matrix<double, 3 * N, 1> r = -pl.force;
         const Eigen::Matrix<double, 3 * N, 3 * N> J = -p.cx * pl.dForce;
         out.add<N>(nodeIds<N>(e), r, wantJ ? &J : nullptr);
@@ -191,6 +198,7 @@ void DragTerm::addSegment(int a, int b, const Vec3& wind, double c, const EvalPo
   const bool wantJ = out.wantMatrix();
   const auto d = kernels::lineDrag(p.x.segment<3>(3 * a), p.x.segment<3>(3 * b),
                                    p.v.segment<3>(3 * a), p.v.segment<3>(3 * b), wind, c, wantJ);
+  ++out.work().drag;
   const Eigen::Matrix<double, 6, 6> J = p.cx * d.dPosition + p.cv * d.dVelocity;
   out.add<2>({a, b}, d.residual, wantJ ? &J : nullptr);
 }

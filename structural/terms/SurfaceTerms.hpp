@@ -27,7 +27,10 @@ class MembraneTerm final : public Term {
     Eigen::Vector2d principalStress = Eigen::Vector2d::Zero();
     Eigen::Vector2d principalStrain = Eigen::Vector2d::Zero();
   };
+  // A function of the current strain, recomputed at every assembly (not history); kept so that
+  // output after a coupling checkpoint is restored shows the restored state.
   const std::vector<ElementState>& elementStates() const { return states_; }
+  void setElementStates(const std::vector<ElementState>& s) { states_ = s; }
   // Elements around a node, for stress probes.
   std::vector<int> elementsAt(int node) const;
 

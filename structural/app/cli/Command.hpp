@@ -19,5 +19,7 @@ struct Command {
 Command addRunCommand(CLI::App& app);
 Command addRenderCommand(CLI::App& app);
 Command addPlotCommand(CLI::App& app);
+Command addCoupleCommand(CLI::App& app);
+Command addMeshCommand(CLI::App& app);
 
 }  // namespace chute::cli

@@ -1,0 +1,212 @@
+#include "ParachuteGenerator.hpp"
+
+#include <gmsh.h>
+
+#include <Eigen/Geometry>
+#include <chrono>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include "GmshSession.hpp"
+#include "ParachuteStart.hpp"
+
+namespace chute::mesh {
+
+void ParachuteSpec::validate() const {
+  auto bad = [](const std::string& option, const std::string& why) {
+    throw std::invalid_argument(option + ": " + why);
+  };
+  if (gores < 4) bad("--gores", "give at least 4 gores");
+  if (!(diameter > 0.0)) bad("--diameter", "must be positive");
+  if (ventDiameter < 0.0 || ventDiameter >= diameter)
+    bad("--vent-diameter", "must be in [0, diameter)");
+  if (!(lineLength > diameter / 2))
+    bad("--line-length",
+        "must exceed the canopy radius (the flat pattern's lines run from the "
+        "skirt to the confluence on the axis)");
+  if (lineElements < 1) bad("--line-elements", "must be at least 1");
+  if (!(elementSize > 0.0) || elementSize > diameter / 2)
+    bad("--element-size", "must be in (0, diameter / 2]");
+  if (sliderSide < 0.0) bad("--slider", "the slider side must be positive");
+  if (sliderDivisions < 1) bad("--slider-divisions", "must be at least 1");
+  if (payloadMass < 0.0) bad("--payload-mass", "must not be negative");
+  if (hasBox() && (payloadBox[1] <= 0.0 || payloadBox[2] <= 0.0))
+    bad("--payload-box", "needs three positive edge lengths");
+  if (hasBox() && payloadMass <= 0.0) bad("--payload-box", "needs --payload-mass");
+  if (riserLength < 0.0) bad("--riser-length", "must not be negative");
+  if (hasBox() && riserLength > 0.0 &&
+      riserLength <= 0.5 * std::hypot(payloadBox[0], payloadBox[1]))
+    bad("--riser-length", "must exceed half the diagonal of the box's top face");
+  if (riserElements < 1) bad("--riser-elements", "must be at least 1");
+  if (start != "flat" && start != "folded") bad("--start", "expected flat or folded");
+  if (bundleRadius < 0.0 || bundleRadius >= diameter / 2)
+    bad("--bundle-radius", "must be in [0, diameter / 2)");
+  if (sliderDrop < 0.0) bad("--slider-drop", "must not be negative");
+  if (lineSlack < 0.0 || lineSlack >= 0.5) bad("--line-slack", "must be in [0, 0.5)");
+}
+
+namespace {
+
+int physical(int dim, const std::vector<int>& tags, const std::string& name) {
+  const int g = gmsh::model::addPhysicalGroup(dim, tags);
+  gmsh::model::setPhysicalName(dim, g, name);
+  return g;
+}
+
+}  // namespace
+
+GeneratedParachute generateParachute(const ParachuteSpec& spec, const std::string& msh) {
+  spec.validate();
+  namespace geo = gmsh::model::geo;
+  GeneratedParachute out;
+  GmshScope scope;
+  const auto t0 = std::chrono::steady_clock::now();
+  callGmsh("gmsh: building the parachute", [&] {
+    gmsh::model::add("parachute");
+    const int n = spec.gores;
+    const double R = spec.diameter / 2, r = spec.ventDiameter / 2, L = spec.lineLength;
+    const double H = std::sqrt(L * L - R * R), h = spec.elementSize;
+    const double dTheta = 2.0 * std::numbers::pi / n;
+
+    // Canopy: gore k between the radial seams at angles k dTheta and (k + 1) dTheta.
+    const int centre = geo::addPoint(0.0, 0.0, H, h);
+    std::vector<int> skirtPt(n), ventPt(n), seam(n), skirtArc(n), ventArc(n), gore(n);
+    for (int k = 0; k < n; ++k) {
+      const double c = std::cos(k * dTheta), s = std::sin(k * dTheta);
+      skirtPt[k] = geo::addPoint(R * c, R * s, H, h);
+      ventPt[k] = r > 0.0 ? geo::addPoint(r * c, r * s, H, h) : centre;
+    }
+    for (int k = 0; k < n; ++k) {
+      seam[k] = geo::addLine(ventPt[k], skirtPt[k]);
+      skirtArc[k] = geo::addCircleArc(skirtPt[k], centre, skirtPt[(k + 1) % n]);
+      if (r > 0.0) ventArc[k] = geo::addCircleArc(ventPt[k], centre, ventPt[(k + 1) % n]);
+    }
+    for (int k = 0; k < n; ++k) {
+      std::vector<int> loop = {seam[k], skirtArc[k], -seam[(k + 1) % n]};
+      if (r > 0.0) loop.push_back(-ventArc[k]);
+      gore[k] = geo::addPlaneSurface({geo::addCurveLoop(loop)});
+    }
+
+    // Suspension lines: skirt point j to the confluence at the origin.
+    const int confluence = geo::addPoint(0.0, 0.0, 0.0, h);
+    std::vector<int> line(n);
+    for (int j = 0; j < n; ++j) {
+      line[j] = geo::addLine(skirtPt[j], confluence);
+      geo::mesh::setTransfiniteCurve(line[j], spec.lineElements + 1);
+    }
+
+    // Slider: a square centred on the axis, corner k at the mean angle of its group of lines.
+    std::vector<int> grommet, sliderEdge;
+    int slider = -1;
+    if (spec.hasSlider()) {
+      double phi0 = 0.0;
+      int count = 0;
+      for (int j = 0; j < n && grommetOfLine(j, n) == 0; ++j, ++count) phi0 += j * dTheta;
+      phi0 /= count;
+      const double rho = spec.sliderSide / std::sqrt(2.0), z = 0.5 * H;
+      for (int k = 0; k < 4; ++k) {
+        const double a = phi0 + k * std::numbers::pi / 2;
+        grommet.push_back(geo::addPoint(rho * std::cos(a), rho * std::sin(a), z, h));
+      }
+      for (int k = 0; k < 4; ++k) {
+        sliderEdge.push_back(geo::addLine(grommet[k], grommet[(k + 1) % 4]));
+        geo::mesh::setTransfiniteCurve(sliderEdge.back(), spec.sliderDivisions + 1);
+      }
+      slider = geo::addPlaneSurface({geo::addCurveLoop(sliderEdge)});
+      geo::mesh::setTransfiniteSurface(slider);
+      geo::mesh::setRecombine(2, slider);
+    }
+
+    // Payload: a point at the confluence or riserLength below it, or a braced box hanging from
+    // the confluence by four risers to its top corners.
+    std::vector<int> payloadPts, risers, boxBars;
+    if (spec.payloadMass > 0.0 && !spec.hasBox()) {
+      if (spec.riserLength > 0.0) {
+        payloadPts.push_back(geo::addPoint(0.0, 0.0, -spec.riserLength, h));
+        risers.push_back(geo::addLine(confluence, payloadPts[0]));
+      } else {
+        payloadPts.push_back(confluence);
+      }
+    } else if (spec.hasBox()) {
+      const auto& b = spec.payloadBox;
+      const double half = 0.5 * std::hypot(b[0], b[1]);
+      const double l = spec.riserLength > 0.0 ? spec.riserLength : 2.0 * half;
+      const double zTop = -std::sqrt(l * l - half * half);
+      for (int level = 0; level < 2; ++level)
+        for (int c = 0; c < 4; ++c) {
+          const double sx = (c == 0 || c == 3) ? -0.5 : 0.5, sy = c < 2 ? -0.5 : 0.5;
+          payloadPts.push_back(geo::addPoint(sx * b[0], sy * b[1], zTop - level * b[2], h));
+        }
+      for (int c = 0; c < 4; ++c) risers.push_back(geo::addLine(confluence, payloadPts[c]));
+      auto bar = [&](int a, int bb) {
+        boxBars.push_back(geo::addLine(payloadPts[a], payloadPts[bb]));
+      };
+      for (int level = 0; level < 2; ++level)
+        for (int c = 0; c < 4; ++c) bar(4 * level + c, 4 * level + (c + 1) % 4);  // rims
+      for (int c = 0; c < 4; ++c) bar(c, 4 + c);                                  // posts
+      bar(0, 2);  // one diagonal per face: the triangulated box is rigid (18 = 3 * 8 - 6 bars)
+      bar(4, 6);
+      for (int c = 0; c < 4; ++c) bar(c, 4 + (c + 1) % 4);
+    }
+    for (int c : risers) geo::mesh::setTransfiniteCurve(c, spec.riserElements + 1);
+    for (int c : boxBars) geo::mesh::setTransfiniteCurve(c, 2);
+    geo::synchronize();
+
+    physical(2, gore, "canopy");
+    for (int k = 0; k < n; ++k) physical(2, {gore[k]}, "gore_" + std::to_string(k));
+    physical(1, seam, "radial_seams");
+    physical(1, skirtArc, "skirt_band");
+    if (r > 0.0) physical(1, ventArc, "vent_band");
+    physical(1, line, "lines");
+    for (int j = 0; j < n; ++j) physical(1, {line[j]}, "line_" + std::to_string(j));
+    physical(0, skirtPt, "skirt_points");
+    for (int j = 0; j < n; ++j) physical(0, {skirtPt[j]}, "skirt_" + std::to_string(j));
+    physical(0, {confluence}, "confluence");
+    if (r == 0.0) physical(0, {centre}, "apex");
+    if (slider > 0) {
+      physical(2, {slider}, "slider");
+      physical(1, sliderEdge, "slider_edges");
+      physical(0, grommet, "grommets");
+      for (int k = 0; k < 4; ++k) physical(0, {grommet[k]}, "grommet_" + std::to_string(k));
+    }
+    if (!risers.empty()) physical(1, risers, "risers");
+    if (!boxBars.empty()) physical(1, boxBars, "payload_box");
+    if (!payloadPts.empty()) physical(0, payloadPts, "payload");
+
+    gmsh::option::setNumber("Mesh.MeshSizeMax", h);
+    gmsh::option::setNumber("Mesh.Algorithm", spec.meshAlgorithm);
+    gmsh::model::mesh::generate(2);
+    out.meshSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    out.mesh = currentMesh();
+
+    // Figures: canopy area against the analytic flat area, line lengths against L.
+    const GmshMesh& m = out.mesh;
+    for (const auto& e : m.group("canopy", 2)->elements) {
+      const Vec3 a = m.at(e[0]), b = m.at(e[1]), c = m.at(e[2]);
+      out.canopyArea += 0.5 * (b - a).cross(c - a).norm();
+      if (e.size() == 4) out.canopyArea += 0.5 * (c - a).cross(m.at(e[3]) - a).norm();
+      out.triangles += e.size() == 3;
+    }
+    out.flatArea = std::numbers::pi * (R * R - r * r);
+    for (int j = 0; j < n; ++j) {
+      double len = 0.0;
+      for (const auto& e : m.group("line_" + std::to_string(j), 1)->elements)
+        len += (m.at(e[1]) - m.at(e[0])).norm();
+      out.maxLineLengthError = std::max(out.maxLineLengthError, std::abs(len - L));
+      if (spec.hasSlider()) ++out.linesPerGrommet[grommetOfLine(j, n)];
+    }
+
+    if (spec.start == "folded" || spec.hasSlider()) {
+      const StartConfiguration s = parachuteStart(spec, out.mesh);
+      out.mesh.views["initial_displacement"] = s.displacement;
+      out.maxStartStretch = s.maxStretch;
+    } else {
+      out.maxStartStretch = 1.0;
+    }
+    if (!msh.empty()) writeCurrentMesh(msh, out.mesh.views);
+  });
+  return out;
+}
+
+}  // namespace chute::mesh

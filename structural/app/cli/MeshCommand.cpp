@@ -1,0 +1,148 @@
+// `chute mesh parachute --gores N --diameter D --line-length L --element-size h --out FILE.msh
+//  [--vent-diameter d] [--line-elements n] [--slider SIDE] [--payload-mass m] [--payload-box
+//  a,b,c] [--riser-length l] [--start flat|folded] [--case FILE.toml] [--config PARAMS.toml]`:
+// a flat circular canopy with lines, slider and payload meshed with gmsh (README "Meshes").
+#include <fmt/core.h>
+
+#include <cstdio>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <toml.hpp>
+#include <vector>
+
+#include "GmshSession.hpp"
+#include "ParachuteCaseWriter.hpp"
+#include "ParachuteGenerator.hpp"
+#include "app/cli/Command.hpp"
+
+namespace chute::cli {
+
+namespace {
+
+// Options from a TOML parameter file (key = option name without "--"), for the options the
+// command line did not give. Returns an error message ("file:line: key: reason") or "".
+std::string applyParameterFile(CLI::App& cmd, const std::string& file) {
+  toml::value root;
+  try {
+    root = toml::parse(file);
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  for (const auto& [key, value] : root.as_table()) {
+    CLI::Option* opt = nullptr;
+    try {
+      opt = cmd.get_option("--" + key);
+    } catch (const CLI::OptionNotFound&) {
+    }
+    const std::string where = file + ":" + std::to_string(value.location().line()) + ": " + key;
+    if (!opt || key == "config") return where + ": not an option of chute mesh parachute";
+    if (opt->count() > 0) continue;  // the command line wins
+    std::vector<std::string> results;
+    if (value.is_array()) {
+      for (const auto& v : value.as_array())
+        results.push_back(v.is_string() ? v.as_string().str : toml::format(v));
+    } else {
+      results.push_back(value.is_string() ? value.as_string().str : toml::format(value));
+    }
+    try {
+      for (const auto& r : results) opt->add_result(r);
+      opt->run_callback();
+    } catch (const CLI::Error& e) {
+      return where + ": " + e.what();
+    }
+  }
+  return "";
+}
+
+}  // namespace
+
+Command addMeshCommand(CLI::App& app) {
+  struct Args {
+    mesh::ParachuteSpec spec;
+    mesh::ParachuteCaseOptions caseOptions;
+    std::vector<double> box;
+    std::string out, caseFile, config;
+    bool quiet = false;
+  };
+  auto a = std::make_shared<Args>();
+  auto* mesh = app.add_subcommand("mesh", "build meshes with gmsh");
+  mesh->require_subcommand(1);
+  auto* p = mesh->add_subcommand("parachute", "flat circular canopy, lines, slider and payload");
+  p->add_option("--config", a->config,
+                "parameter file (TOML): option = value, names without '--'; the command line wins");
+  auto& s = a->spec;
+  p->add_option("--gores", s.gores, "number of gores (and suspension lines)");
+  p->add_option("--diameter", s.diameter, "nominal (flat) diameter of the canopy");
+  p->add_option("--vent-diameter", s.ventDiameter, "vent diameter (0: none)")->default_val(0.0);
+  p->add_option("--line-length", s.lineLength, "suspension line length, skirt to confluence");
+  p->add_option("--line-elements", s.lineElements, "elements per line")->default_val(8);
+  p->add_option("--element-size", s.elementSize, "canopy mesh size");
+  p->add_option("--mesh-algorithm", s.meshAlgorithm, "gmsh Mesh.Algorithm (6, 5, 8 quads)")
+      ->default_val(6);
+  p->add_option("--slider", s.sliderSide, "slider: side of the square (grommets at the corners)");
+  p->add_option("--slider-divisions", s.sliderDivisions, "quads along a slider edge")
+      ->default_val(1);
+  p->add_option("--payload-mass", s.payloadMass,
+                "payload mass (at the confluence, the riser's "
+                "end or the box corners)");
+  p->add_option("--payload-box", a->box, "payload box edge lengths a,b,c (braced trusses)")
+      ->delimiter(',')
+      ->expected(3);
+  p->add_option("--riser-length", s.riserLength,
+                "confluence to payload point (box: to each top corner)");
+  p->add_option("--riser-elements", s.riserElements, "elements per riser")->default_val(1);
+  p->add_option("--start", s.start, "start configuration: flat or folded")->default_val("flat");
+  p->add_option("--bundle-radius", s.bundleRadius, "folded: packed canopy radius (default D/40)");
+  p->add_option("--slider-drop", s.sliderDrop,
+                "slider below the skirt at the start (default L/20)");
+  p->add_option("--line-slack", s.lineSlack, "start slack of the longest line (fraction)")
+      ->default_val(0.005);
+  p->add_option("--out", a->out, "output mesh (.msh, format 4.1)");
+  p->add_option("--case", a->caseFile, "also write a case file that runs the mesh");
+  p->add_option("--pressure", a->caseOptions.pressure, "case: canopy pressure (ramped)");
+  p->add_option("--t-end", a->caseOptions.tEnd, "case: end time")->default_val(0.02);
+  p->add_option("--dt", a->caseOptions.dt, "case: time step")->default_val(1e-3);
+  p->add_flag("--quiet", a->quiet, "print nothing");
+  return {mesh, [a, p] {
+            if (!*p) return kExitBadInput;
+            if (!a->config.empty()) {
+              if (const std::string e = applyParameterFile(*p, a->config); !e.empty()) {
+                fmt::print(stderr, "chute: mesh parachute: {}\n", e);
+                return kExitBadInput;
+              }
+            }
+            if (a->out.empty()) {
+              fmt::print(stderr, "chute: mesh parachute: --out: give the .msh file to write\n");
+              return kExitBadInput;
+            }
+            if (!a->box.empty()) a->spec.payloadBox = {a->box[0], a->box[1], a->box[2]};
+            mesh::GeneratedParachute g;
+            try {
+              g = mesh::generateParachute(a->spec, a->out);
+              if (!a->caseFile.empty()) {
+                mesh::writeParachuteCase(a->spec, g, a->caseFile, a->out, a->caseOptions);
+              }
+            } catch (const std::invalid_argument& e) {
+              fmt::print(stderr, "chute: mesh parachute: {}\n", e.what());
+              return kExitBadInput;
+            } catch (const std::runtime_error& e) {  // gmsh, folding, unwritable files
+              fmt::print(stderr, "chute: mesh parachute: {}\n", e.what());
+              return kExitRunFailed;
+            }
+            if (!a->quiet) {
+              fmt::print("{}: {} nodes, {} canopy triangles, {} groups, meshed in {:.2f} s\n",
+                         a->out, g.mesh.nodeTags.size(), g.triangles, g.mesh.groups.size(),
+                         g.meshSeconds);
+              fmt::print(
+                  "  canopy area {:.6g} (flat pattern {:.6g}, {:+.3f} %), line length error "
+                  "{:.2e}, start stretch <= {:.6f}\n",
+                  g.canopyArea, g.flatArea, 100 * (g.canopyArea / g.flatArea - 1),
+                  g.maxLineLengthError, g.maxStartStretch);
+              if (!a->caseFile.empty()) fmt::print("  case: {}\n", a->caseFile);
+            }
+            return 0;
+          }};
+}
+
+}  // namespace chute::cli
