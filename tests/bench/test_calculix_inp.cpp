@@ -3,6 +3,7 @@
 // 20-character field. Running ccx itself is bench/peer/run_peer.py's job (not a test dependency).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <map>
 #include <sstream>
 #include <string>
@@ -26,12 +27,17 @@ std::map<std::string, int> countCards(const std::string& deck, int& widest) {
     if (line.rfind("*", 0) == 0) {
       card = line.substr(0, line.find(','));
       const auto type = line.find("TYPE=");
-      if (type != std::string::npos)
-        card += ":" + line.substr(type + 5, line.find(',', type) - type - 5);
-      ++count[card + "#cards"];
+      if (type != std::string::npos) {
+        std::string name = line.substr(type + 5);
+        name.resize(std::min(name.size(), name.find(',')));
+        card.push_back(':');
+        card.append(name);
+      }
+      ++count[std::string(card).append("#cards")];
       continue;
     }
     ++count[card];
+    if (card == "*HEADING") continue;  // free text
     std::istringstream fields(line);
     std::string f;
     while (std::getline(fields, f, ',')) {
