@@ -873,6 +873,9 @@ CaseSpec readCaseFromString(const std::string& text, const std::string& file,
     c.reference = ref;
   }
   if (mesh) holdUnusedMeshNodes(m, *mesh);
+  if (DofMap(m).numEquations() == 0)
+    top.fail(top.has("boundary") ? "boundary" : "nodes",
+             "every degree of freedom is fixed or prescribed: there is nothing to solve");
   top.finish();
   return c;
 }

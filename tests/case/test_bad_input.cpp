@@ -759,6 +759,14 @@ std::vector<Row> rows() {
        "active = [1, 1]"},
       // ---- empty sets
       {kEmpty,
+       "name = \"still\"\n[materials.rope]\nkind = \"cable\"\nE = 1.0e6\narea = 1.0e-3\n"
+       "[nodes]\na = [0.0, 0.0, 0.0]\nb = [1.0, 0.0, 0.0]\n"
+       "[[cables]]\nname = \"c\"\nmaterial = \"rope\"\npath = [\"a\", \"b\"]\n"
+       "[boundary]\nfixed = [\"a\", \"b\"]\n[solver]\ndt = 0.01\nt_end = 0.1\n",
+       {},
+       "boundary: every degree of freedom is fixed or prescribed: there is nothing to solve",
+       "[boundary]"},
+      {kEmpty,
        replaced("sliders = [\"s\"]", "sliders = []"),
        {},
        "sliding_groups[0].sliders: a sliding group needs at least one slider",
