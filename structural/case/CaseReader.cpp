@@ -27,6 +27,7 @@ std::vector<std::string> ProbeSpec::columns() const {
   if (kind == "line_force") q = {"N", "strain"};
   if (kind == "membrane_stress") q = {"S1", "S2"};
   if (kind == "wrinkling") q = {"taut", "wrinkled", "slack"};
+  if (kind == "skirt_radius") q = {"mean", "min", "max"};
   for (auto& s : q) s = name + "." + s;
   return q;
 }
@@ -401,7 +402,7 @@ ProbeSpec readProbe(const Model& m, TomlTable t) {
   p.name = t.string("name");
   p.kind = t.choice("kind", "node_position",
                     {"node_position", "node_velocity", "slider", "energy", "line_force",
-                     "membrane_stress", "wrinkling", "slider_friction"});
+                     "membrane_stress", "wrinkling", "slider_friction", "skirt_radius"});
   if (p.kind == "node_position" || p.kind == "node_velocity" || p.kind == "membrane_stress") {
     p.node = nodeRef(m, t, "node", t.string("node", p.name));
   } else if (p.kind == "slider" || p.kind == "slider_friction") {
@@ -423,6 +424,19 @@ ProbeSpec readProbe(const Model& m, TomlTable t) {
     for (const auto& c : m.cables) count += c.set == p.lineSet;
     for (const auto& g : m.groups) count += g.set == p.lineSet ? g.numElements() : 0;
     p.element = static_cast<int>(t.integer("element", 0, 0, count - 1));
+  } else if (p.kind == "skirt_radius") {
+    // A node set (or one node) by name: its node ids.
+    auto nodesOf = [&](const std::string& key, const std::string& name) -> std::vector<int> {
+      if (auto it = m.nodeSets.find(name); it != m.nodeSets.end() && !it->second.empty())
+        return it->second;
+      if (auto it = m.nodeByName.find(name); it != m.nodeByName.end()) return {it->second};
+      t.fail(key, "no node or node set '" + name + "'");
+    };
+    p.nodes = nodesOf("set", t.string("set"));
+    const auto axis = t.strings("axis");
+    if (axis.size() != 2) t.fail("axis", "give two nodes or node sets: [from, to]");
+    p.axisFrom = nodesOf("axis", axis[0]);
+    p.axisTo = nodesOf("axis", axis[1]);
   }
   t.finish();
   return p;
