@@ -1,5 +1,7 @@
 #include "Probes.hpp"
 
+#include <algorithm>
+#include <array>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -54,6 +56,29 @@ std::pair<double, double> lineForce(const Model& m, const StructuralSystem& sys,
   }
   throw std::logic_error("line_force probe: element not found");
 }
+
+Vec3 centroid(const std::vector<int>& nodes, const Eigen::VectorXd& x) {
+  Vec3 c = Vec3::Zero();
+  for (int n : nodes) c += x.segment<3>(3 * n);
+  return c / static_cast<double>(nodes.size());
+}
+
+// Mean, least and largest distance of `nodes` from the axis through the centroids of axisFrom
+// and axisTo (a canopy's skirt radius about the line confluence -> vent).
+std::array<double, 3> radiusAboutAxis(const ProbeSpec& p, const Eigen::VectorXd& x) {
+  const Vec3 a = centroid(p.axisFrom, x);
+  const Vec3 axis = centroid(p.axisTo, x) - a;
+  const Vec3 e = axis.norm() > 0.0 ? Vec3(axis.normalized()) : Vec3::UnitZ();
+  double sum = 0.0, lo = kInf, hi = 0.0;
+  for (int n : p.nodes) {
+    const Vec3 d = x.segment<3>(3 * n) - a;
+    const double r = (d - d.dot(e) * e).norm();
+    sum += r;
+    lo = std::min(lo, r);
+    hi = std::max(hi, r);
+  }
+  return {sum / static_cast<double>(p.nodes.size()), lo, hi};
+}
 }  // namespace
 
 std::vector<double> ProbeSet::evaluate(const StructuralSystem& sys, const DynamicState& s,
@@ -104,6 +129,9 @@ std::vector<double> ProbeSet::evaluate(const StructuralSystem& sys, const Dynami
       const auto [N, eps] = lineForce(*model_, sys, p.lineSet, p.element, s.x);
       out.push_back(N);
       out.push_back(eps);
+    } else if (p.kind == "skirt_radius") {
+      const auto r = radiusAboutAxis(p, s.x);
+      out.insert(out.end(), r.begin(), r.end());
     }
   }
   return out;

@@ -28,6 +28,7 @@ std::vector<std::string> ProbeSpec::columns() const {
   if (kind == "line_force") q = {"N", "strain"};
   if (kind == "membrane_stress") q = {"S1", "S2"};
   if (kind == "wrinkling") q = {"taut", "wrinkled", "slack"};
+  if (kind == "skirt_radius") q = {"mean", "min", "max"};
   for (auto& s : q) s = name + "." + s;
   return q;
 }
@@ -569,14 +570,16 @@ ProbeSpec readProbe(const Model& m, TomlTable t) {
     t.fail("name", "must be non-empty, without commas, quotes or control characters");
   p.kind = t.choice("kind", "node_position",
                     {"node_position", "node_velocity", "slider", "energy", "line_force",
-                     "membrane_stress", "wrinkling", "slider_friction"});
+                     "membrane_stress", "wrinkling", "slider_friction", "skirt_radius"});
   const std::string why = "by a probe of kind \"" + p.kind + "\"";
   const bool atNode =
       p.kind == "node_position" || p.kind == "node_velocity" || p.kind == "membrane_stress";
   const bool atSlider = p.kind == "slider" || p.kind == "slider_friction";
   if (!atNode) t.notUsed({"node"}, why);
   if (!atSlider) t.notUsed({"group", "slider"}, why);
-  if (p.kind != "line_force") t.notUsed({"set", "element"}, why);
+  if (p.kind != "line_force") t.notUsed({"element"}, why);
+  if (p.kind != "line_force" && p.kind != "skirt_radius") t.notUsed({"set"}, why);
+  if (p.kind != "skirt_radius") t.notUsed({"axis"}, why);
   if (atNode) {
     p.node = nodeRef(m, t, "node", t.string("node", p.name));
   } else if (p.kind == "slider" || p.kind == "slider_friction") {
@@ -598,6 +601,19 @@ ProbeSpec readProbe(const Model& m, TomlTable t) {
     for (const auto& c : m.cables) count += c.set == p.lineSet;
     for (const auto& g : m.groups) count += g.set == p.lineSet ? g.numElements() : 0;
     p.element = static_cast<int>(t.integer("element", 0, 0, count - 1));
+  } else if (p.kind == "skirt_radius") {
+    // A node set (or one node) by name: its node ids.
+    auto nodesOf = [&](const std::string& key, const std::string& name) -> std::vector<int> {
+      if (auto it = m.nodeSets.find(name); it != m.nodeSets.end() && !it->second.empty())
+        return it->second;
+      if (auto it = m.nodeByName.find(name); it != m.nodeByName.end()) return {it->second};
+      t.fail(key, "no node or node set '" + name + "'");
+    };
+    p.nodes = nodesOf("set", t.string("set"));
+    const auto axis = t.strings("axis");
+    if (axis.size() != 2) t.fail("axis", "give two nodes or node sets: [from, to]");
+    p.axisFrom = nodesOf("axis", axis[0]);
+    p.axisTo = nodesOf("axis", axis[1]);
   }
   t.finish();
   return p;

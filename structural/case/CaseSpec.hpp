@@ -12,10 +12,12 @@ namespace chute {
 
 struct ProbeSpec {
   std::string name;
-  std::string kind;  // node_position, node_velocity, slider, energy, line_force
+  std::string kind;  // node_position, node_velocity, slider, energy, line_force, ...
   int node = -1;
-  int group = -1, slider = -1;               // slider probes
-  int lineSet = -1, element = -1;            // line_force probes: set index and element within it
+  int group = -1, slider = -1;     // slider probes
+  int lineSet = -1, element = -1;  // line_force probes: set index and element within it
+  // skirt_radius: distance of `nodes` from the axis through the centroids of axisFrom and axisTo.
+  std::vector<int> nodes, axisFrom, axisTo;
   std::vector<std::string> columns() const;  // "<name>.<quantity>"
 };
 
