@@ -26,6 +26,7 @@ std::vector<std::string> ProbeSpec::columns() const {
   if (kind == "energy") q = {"kinetic", "strain", "gravity", "total"};
   if (kind == "line_force") q = {"N", "strain"};
   if (kind == "membrane_stress") q = {"S1", "S2"};
+  if (kind == "edge_angle") q = {"angle"};
   if (kind == "wrinkling") q = {"taut", "wrinkled", "slack"};
   for (auto& s : q) s = name + "." + s;
   return q;
@@ -401,9 +402,13 @@ ProbeSpec readProbe(const Model& m, TomlTable t) {
   p.name = t.string("name");
   p.kind = t.choice("kind", "node_position",
                     {"node_position", "node_velocity", "slider", "energy", "line_force",
-                     "membrane_stress", "wrinkling", "slider_friction"});
+                     "membrane_stress", "wrinkling", "slider_friction", "edge_angle"});
   if (p.kind == "node_position" || p.kind == "node_velocity" || p.kind == "membrane_stress") {
     p.node = nodeRef(m, t, "node", t.string("node", p.name));
+  } else if (p.kind == "edge_angle") {
+    p.node = nodeRef(m, t, "from", t.string("from"));
+    p.node2 = nodeRef(m, t, "to", t.string("to"));
+    if (p.node == p.node2) t.fail("to", "the edge needs two different nodes");
   } else if (p.kind == "slider" || p.kind == "slider_friction") {
     const std::string g = t.string("group");
     for (size_t i = 0; i < m.groups.size(); ++i)
@@ -575,6 +580,18 @@ CaseSpec readCase(const std::string& file, const std::vector<std::string>& overr
       m.drags.push_back(d);
     }
     l.finish();
+  }
+  // [[events]] cut = "<cable set>", at = t: the set carries load up to t and is gone after it.
+  for (auto& t : top.tables("events")) {
+    const std::string set = t.string("cut");
+    auto it = std::find_if(m.lineSets.begin(), m.lineSets.end(),
+                           [&](const LineSet& s) { return s.name == set; });
+    if (it == m.lineSets.end()) t.fail("cut", "unknown cable set '" + set + "'");
+    if (it->sliding)
+      t.fail("cut", "'" + set + "' is a sliding group; only [[cables]] sets can be cut");
+    if (std::isfinite(it->cutAt)) t.fail("cut", "'" + set + "' is cut twice");
+    it->cutAt = t.nonNegative("at", 0.0);
+    t.finish();
   }
   {
     TomlTable s = top.table("solver");
