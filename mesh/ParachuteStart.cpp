@@ -169,6 +169,12 @@ StartConfiguration parachuteStart(const ParachuteSpec& spec, const GmshMesh& m) 
         for (std::size_t t : g->nodes())
           if (t != confluence) u[t] = c0 - m.at(confluence);
   for (std::size_t t : m.nodeTags) u.try_emplace(t, Vec3::Zero());
+  // Inflated: the whole start moved rigidly so that the confluence stays at its reference point
+  // (the origin): a payload rigged below it in a case file's [nodes] starts where it is written.
+  if (inflated) {
+    const Vec3 shift = -u.at(confluence);
+    for (auto& [tag, d] : u) d += shift;
+  }
   return out;
 }
 

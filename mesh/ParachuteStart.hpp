@@ -14,7 +14,8 @@
 //         rho -> arc length c rho from the apex along the meridian of a sphere of radius Rs with
 //         Rs sin(R / Rs) = inflatedRatio R (the skirt at the projected radius, height H); c = 1
 //         (lowered until no element stretches): meridians exact, hoops shorter (wrinkled);
-//         lines straight, slider and confluence as for flat.
+//         lines straight (slackened by lineSlack); the whole start moved rigidly so that the
+//         confluence stays at its reference point, the origin.
 #include "GmshMesh.hpp"
 #include "ParachuteGenerator.hpp"
 
