@@ -76,5 +76,8 @@ struct CaseSpec {
 // Reads and validates a case file; overrides are "dotted.key=value" strings (--set).
 // Throws CaseError naming file, line and key.
 CaseSpec readCase(const std::string& file, const std::vector<std::string>& overrides = {});
+// The same from the file's text; `file` names it in messages (tests, the fuzz target).
+CaseSpec readCaseFromString(const std::string& text, const std::string& file,
+                            const std::vector<std::string>& overrides = {});
 
 }  // namespace chute
