@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -37,7 +38,8 @@ std::vector<std::string> ProbeSet::columns() const {
 namespace {
 // Axial force and strain of element `element` of line set `set` (cables first, then groups).
 std::pair<double, double> lineForce(const Model& m, const StructuralSystem& sys, int set,
-                                    int element, const Eigen::VectorXd& x) {
+                                    int element, const Eigen::VectorXd& x, double t) {
+  if (m.lineSets[set].cutBy(t)) return {0.0, 0.0};  // a cut set carries nothing
   auto at = [&](int n) { return Vec3(x.segment<3>(3 * n)); };
   int k = 0;
   for (const auto& c : m.cables) {
@@ -125,8 +127,16 @@ std::vector<double> ProbeSet::evaluate(const StructuralSystem& sys, const Dynami
         for (const auto& st : mt->elementStates()) count[static_cast<int>(st.state)] += 1.0;
       const double n = std::max(1.0, count[0] + count[1] + count[2]);
       for (double c : count) out.push_back(c / n);
+    } else if (p.kind == "edge_angle") {
+      // Angle in degrees between the edge node -> node2 and the upward vertical (against gravity;
+      // +z without gravity): 0 when node2 is straight above node, 90 when the edge is level.
+      const Model& m = *model_;
+      const Vec3 up = m.hasGravity() ? Vec3(-m.gravity.normalized()) : Vec3::UnitZ();
+      const Vec3 d = s.x.segment<3>(3 * p.node2) - s.x.segment<3>(3 * p.node);
+      const double c = std::clamp(d.dot(up) / std::max(d.norm(), 1e-300), -1.0, 1.0);
+      out.push_back(std::acos(c) * 180.0 / M_PI);
     } else if (p.kind == "line_force") {
-      const auto [N, eps] = lineForce(*model_, sys, p.lineSet, p.element, s.x);
+      const auto [N, eps] = lineForce(*model_, sys, p.lineSet, p.element, s.x, s.t);
       out.push_back(N);
       out.push_back(eps);
     } else if (p.kind == "skirt_radius") {

@@ -27,6 +27,7 @@ std::vector<std::string> ProbeSpec::columns() const {
   if (kind == "energy") q = {"kinetic", "strain", "gravity", "total"};
   if (kind == "line_force") q = {"N", "strain"};
   if (kind == "membrane_stress") q = {"S1", "S2"};
+  if (kind == "edge_angle") q = {"angle"};
   if (kind == "wrinkling") q = {"taut", "wrinkled", "slack"};
   if (kind == "skirt_radius") q = {"mean", "min", "max"};
   for (auto& s : q) s = name + "." + s;
@@ -568,9 +569,10 @@ ProbeSpec readProbe(const Model& m, TomlTable t) {
         return (ch >= 0 && ch < 32) || ch == ',' || ch == '"';
       }))
     t.fail("name", "must be non-empty, without commas, quotes or control characters");
-  p.kind = t.choice("kind", "node_position",
-                    {"node_position", "node_velocity", "slider", "energy", "line_force",
-                     "membrane_stress", "wrinkling", "slider_friction", "skirt_radius"});
+  p.kind =
+      t.choice("kind", "node_position",
+               {"node_position", "node_velocity", "slider", "energy", "line_force",
+                "membrane_stress", "wrinkling", "slider_friction", "skirt_radius", "edge_angle"});
   const std::string why = "by a probe of kind \"" + p.kind + "\"";
   const bool atNode =
       p.kind == "node_position" || p.kind == "node_velocity" || p.kind == "membrane_stress";
@@ -580,8 +582,13 @@ ProbeSpec readProbe(const Model& m, TomlTable t) {
   if (p.kind != "line_force") t.notUsed({"element"}, why);
   if (p.kind != "line_force" && p.kind != "skirt_radius") t.notUsed({"set"}, why);
   if (p.kind != "skirt_radius") t.notUsed({"axis"}, why);
+  if (p.kind != "edge_angle") t.notUsed({"from", "to"}, why);
   if (atNode) {
     p.node = nodeRef(m, t, "node", t.string("node", p.name));
+  } else if (p.kind == "edge_angle") {
+    p.node = nodeRef(m, t, "from", t.string("from"));
+    p.node2 = nodeRef(m, t, "to", t.string("to"));
+    if (p.node == p.node2) t.fail("to", "the edge needs two different nodes");
   } else if (p.kind == "slider" || p.kind == "slider_friction") {
     const std::string g = t.string("group");
     for (size_t i = 0; i < m.groups.size(); ++i)
@@ -633,7 +640,7 @@ CaseSpec readCaseFromString(const std::string& text, const std::string& file,
   // Unknown top-level keys first: a misspelt table would otherwise surface as something missing.
   top.finish({"name", "description", "units", "nodes", "materials", "cables", "sliding_groups",
               "membranes", "point_masses", "boundary", "loads", "solver", "output", "reference",
-              "mesh"});
+              "mesh", "events"});
   CaseSpec c;
   c.file = file;
   c.name = top.string("name", std::filesystem::path(file).stem().string());
@@ -778,6 +785,18 @@ CaseSpec readCaseFromString(const std::string& text, const std::string& file,
       m.drags.push_back(d);
     }
     l.finish();
+  }
+  // [[events]] cut = "<cable set>", at = t: the set carries load up to t and is gone after it.
+  for (auto& t : top.tables("events")) {
+    const std::string set = t.string("cut");
+    auto it = std::find_if(m.lineSets.begin(), m.lineSets.end(),
+                           [&](const LineSet& s) { return s.name == set; });
+    if (it == m.lineSets.end()) t.fail("cut", "unknown cable set '" + set + "'");
+    if (it->sliding)
+      t.fail("cut", "'" + set + "' is a sliding group; only [[cables]] sets can be cut");
+    if (std::isfinite(it->cutAt)) t.fail("cut", "'" + set + "' is cut twice");
+    it->cutAt = t.nonNegative("at", 0.0);
+    t.finish();
   }
   {
     TomlTable s = top.table("solver");

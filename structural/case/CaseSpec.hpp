@@ -12,8 +12,9 @@ namespace chute {
 
 struct ProbeSpec {
   std::string name;
-  std::string kind;  // node_position, node_velocity, slider, energy, line_force, ...
+  std::string kind;  // node_position, node_velocity, slider, energy, line_force, edge_angle, ...
   int node = -1;
+  int node2 = -1;                  // edge_angle: the edge runs node -> node2
   int group = -1, slider = -1;     // slider probes
   int lineSet = -1, element = -1;  // line_force probes: set index and element within it
   // skirt_radius: distance of `nodes` from the axis through the centroids of axisFrom and axisTo.
