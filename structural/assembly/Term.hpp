@@ -57,6 +57,12 @@ class Term {
   // Static equilibrium: the update reached a kink (the fraction passageFraction gave); make the
   // discrete change now. Returns whether anything changed.
   virtual bool crossNow(Eigen::VectorXd& /*x*/) { return false; }
+  // Dynamics: kinks passed by prescribed motion, whose time needs no locating (a driven slider
+  // passing a node), crossed by the motion from positions `from` to `to`: the discrete change
+  // is noted for the next updateState, and `to` may be adjusted to the new state (a passed node
+  // put along the cable). Returns how many changes were noted.
+  virtual bool drivesKinks() const { return false; }
+  virtual int crossDriven(const Eigen::VectorXd& /*from*/, Eigen::VectorXd& /*to*/) { return 0; }
   virtual void commit(const Eigen::VectorXd& /*x*/) {}  // x: the converged positions
   virtual void revert() {}
 };

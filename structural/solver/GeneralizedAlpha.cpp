@@ -68,10 +68,12 @@ void GeneralizedAlpha::computeInitialAcceleration(DynamicState& s) {
 
 template <class MakePoint, class Update>
 NewtonReport GeneralizedAlpha::newton(Eigen::VectorXd& x, double tol, MakePoint&& makePoint,
-                                      Update&& onUpdate, bool crossInPlace) {
+                                      Update&& onUpdate, const Eigen::VectorXd* stepStart) {
   NewtonReport rep;
   const int neq = sys_->numEquations();
-  Eigen::VectorXd dxEq(neq), dx(x.size());
+  const bool crossInPlace = stepStart == nullptr;
+  const bool driven = !crossInPlace && sys_->drivesKinks();
+  Eigen::VectorXd dxEq(neq), dx(x.size()), motion, before;
   int lastChanges = 0;
   for (int it = 0; it < newton_.maxIterations; ++it) {
     lastChanges = sys_->updateState(x);
@@ -102,7 +104,15 @@ NewtonReport GeneralizedAlpha::newton(Eigen::VectorXd& x, double tol, MakePoint&
       rep.failure = "non-finite update";
       return rep;
     }
-    const double passage = sys_->passageFraction(x, dx);
+    double passage = 1.0;
+    if (crossInPlace) {
+      passage = sys_->passageFraction(x, dx);
+    } else {
+      // The fraction of the step (positions are linear in time to first order) at which the
+      // motion from the step's start to this trial end passes an event.
+      motion = x + dx - *stepStart;
+      passage = sys_->passageFraction(*stepStart, motion);
+    }
     if (newton_.verbose)
       std::fprintf(stderr, "    newton %2d  |R| = %.3e  |dx| = %.3e  changes %d%s\n", it, rn, un,
                    lastChanges, passage < 1.0 ? "  passes an event" : "");
@@ -113,14 +123,19 @@ NewtonReport GeneralizedAlpha::newton(Eigen::VectorXd& x, double tol, MakePoint&
       continue;
     }
     if (passage < 1.0) {
-      // The first update is the linearised step: its passage fraction estimates the event time.
-      rep.failure = "a slider reaches a node within the step";
-      rep.eventFraction = it == 0 ? std::max(passage, 1e-12) : 0.5;
+      // The step's motion to this trial end passes an event at this fraction: retry the step
+      // to end there.
+      rep.failure = "an event (a slider at a node, a cable slack / taut) within the step";
+      rep.eventFraction = std::max(passage, 1e-12);
       return rep;
     }
+    if (driven) before = x;
     x += dx;
     onUpdate();
-    if (lastChanges == 0 && un <= tol) {
+    // A driven slider carried past a node by this update is handed over there.
+    const bool crossed = driven && sys_->crossDriven(before, x) > 0;
+    if (crossed) onUpdate();
+    if (lastChanges == 0 && !crossed && un <= tol) {
       if (sys_->onConverged(x)) onUpdate();  // moved by a negligible amount onto an event
       rep.converged = true;
       return rep;
@@ -183,12 +198,15 @@ NewtonReport GeneralizedAlpha::step(DynamicState& s, double dt) {
                       dt};
   };
   newmark();
+  // The prescribed motion's jump may carry a driven slider past nodes: it starts Newton in the
+  // element it has reached.
+  if (sys_->drivesKinks() && sys_->crossDriven(old.x, n.x) > 0) newmark();
   double tol = newton_.tolDisplacement;
   if (newton_.nominalStep > 0.0 && dt < newton_.nominalStep) {
     const double ratio = dt / newton_.nominalStep;
     tol = std::max(tol * ratio * ratio, 100.0 * 2.22e-16 * newton_.lengthScale);
   }
-  NewtonReport rep = newton(n.x, tol, makePoint, newmark);
+  NewtonReport rep = newton(n.x, tol, makePoint, newmark, &old.x);
   if (rep.converged) {
     sys_->commit(n.x);
     s = n;
@@ -223,7 +241,7 @@ NewtonReport GeneralizedAlpha::solveStatic(DynamicState& s, int nSteps, double i
     };
     const Eigen::VectorXd start = x;
     NewtonReport rep = newton(
-        x, newton_.tolDisplacement, makePoint, [] {}, true);
+        x, newton_.tolDisplacement, makePoint, [] {}, nullptr);
     total.iterations += rep.iterations;
     total.residualNorms.insert(total.residualNorms.end(), rep.residualNorms.begin(),
                                rep.residualNorms.end());

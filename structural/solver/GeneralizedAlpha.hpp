@@ -76,10 +76,14 @@ class GeneralizedAlpha {
   LinearSolver& linearSolver() { return linear_; }
 
  private:
-  // crossInPlace: a passage is crossed within the solve (static) instead of cutting the step.
+  // stepStart (dynamics): the positions the step starts from, before constrained dofs moved to
+  // their prescribed places. Events are located along the step's whole motion, from stepStart to
+  // each trial end x + dx, so a kink crossed by prescribed motion (a driven slider passing a
+  // node) is timed like one crossed by Newton's updates. nullptr (statics): a passage is crossed
+  // within the solve instead of cutting the step.
   template <class MakePoint, class Update>
   NewtonReport newton(Eigen::VectorXd& x, double tol, MakePoint&& makePoint, Update&& onUpdate,
-                      bool crossInPlace = false);
+                      const Eigen::VectorXd* stepStart);
 
   StructuralSystem* sys_;
   GeneralizedAlphaParams p_;

@@ -99,6 +99,16 @@ bool StructuralSystem::crossNow(Eigen::VectorXd& x) {
   return changed;
 }
 
+bool StructuralSystem::drivesKinks() const {
+  return std::any_of(terms_.begin(), terms_.end(), [](const auto& t) { return t->drivesKinks(); });
+}
+
+int StructuralSystem::crossDriven(const Eigen::VectorXd& from, Eigen::VectorXd& to) {
+  int changes = 0;
+  for (const auto& t : terms_) changes += t->crossDriven(from, to);
+  return changes;
+}
+
 bool StructuralSystem::onConverged(Eigen::VectorXd& x) {
   bool changed = false;
   for (const auto& t : terms_) changed |= t->onConverged(x);

@@ -35,6 +35,9 @@ class StructuralSystem {
   double passageFraction(const Eigen::VectorXd& x, const Eigen::VectorXd& dx);
   bool onConverged(Eigen::VectorXd& x);
   bool crossNow(Eigen::VectorXd& x);
+  // Kinks passed by prescribed motion (driven sliders at nodes), see Term::crossDriven.
+  bool drivesKinks() const;
+  int crossDriven(const Eigen::VectorXd& from, Eigen::VectorXd& to);
 
   // Nodal forces over all dofs at a converged state (for output): the support reactions
   // (the residual at constrained dofs, zero elsewhere) and the applied loads (gravity, pressure,
