@@ -50,6 +50,13 @@ class Term {
   virtual double passageFraction(const Eigen::VectorXd& /*x*/, const Eigen::VectorXd& /*dx*/) {
     return 1.0;
   }
+  // Events located along the step's whole motion (a cable's slack / taut switch): given the
+  // positions the step started from and the motion from there to a trial end, the fraction of
+  // the step at which the motion passes one (1 if none); the step is then cut to end there.
+  virtual double stepEventFraction(const Eigen::VectorXd& /*start*/,
+                                   const Eigen::VectorXd& /*motion*/) {
+    return 1.0;
+  }
   // Called on a converged iterate; may move x by a negligible amount onto a kink reached at the
   // end of the step, and schedule the discrete change there for commit(). Returns whether it
   // moved x.

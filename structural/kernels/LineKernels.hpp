@@ -30,7 +30,7 @@ Vec6 cableGravity(double L, const LineMaterial& mat, const Vec3& g);
 // |d + f delta| = L, or 1 if the motion does not cross it. A start or an end within
 // kSlackTautBand L of the switch is on it, not across it (the step that brought the cable there
 // was cut to end on it).
-inline constexpr double kSlackTautBand = 1e-8;
+inline constexpr double kSlackTautBand = 1e-6;
 double slackTautCrossing(const Vec3& d, const Vec3& delta, double L);
 
 // ---- active sliding element -------------------------------------------------------------------

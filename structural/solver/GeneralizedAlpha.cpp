@@ -68,12 +68,12 @@ void GeneralizedAlpha::computeInitialAcceleration(DynamicState& s) {
 
 template <class MakePoint, class Update>
 NewtonReport GeneralizedAlpha::newton(Eigen::VectorXd& x, double tol, MakePoint&& makePoint,
-                                      Update&& onUpdate, const Eigen::VectorXd* stepStart) {
+                                      Update&& onUpdate, bool crossInPlace,
+                                      const Eigen::VectorXd* stepStart) {
   NewtonReport rep;
   const int neq = sys_->numEquations();
-  const bool crossInPlace = stepStart == nullptr;
   const bool driven = !crossInPlace && sys_->drivesKinks();
-  Eigen::VectorXd dxEq(neq), dx(x.size()), motion, before;
+  Eigen::VectorXd dxEq(neq), dx(x.size()), before, motion;
   int lastChanges = 0;
   for (int it = 0; it < newton_.maxIterations; ++it) {
     lastChanges = sys_->updateState(x);
@@ -104,15 +104,7 @@ NewtonReport GeneralizedAlpha::newton(Eigen::VectorXd& x, double tol, MakePoint&
       rep.failure = "non-finite update";
       return rep;
     }
-    double passage = 1.0;
-    if (crossInPlace) {
-      passage = sys_->passageFraction(x, dx);
-    } else {
-      // The fraction of the step (positions are linear in time to first order) at which the
-      // motion from the step's start to this trial end passes an event.
-      motion = x + dx - *stepStart;
-      passage = sys_->passageFraction(*stepStart, motion);
-    }
+    const double passage = sys_->passageFraction(x, dx);
     if (newton_.verbose)
       std::fprintf(stderr, "    newton %2d  |R| = %.3e  |dx| = %.3e  changes %d%s\n", it, rn, un,
                    lastChanges, passage < 1.0 ? "  passes an event" : "");
@@ -122,11 +114,19 @@ NewtonReport GeneralizedAlpha::newton(Eigen::VectorXd& x, double tol, MakePoint&
       onUpdate();
       continue;
     }
-    if (passage < 1.0) {
-      // The step's motion to this trial end passes an event at this fraction: retry the step
-      // to end there.
+    // Slack / taut switches: along the whole motion from the step's start to this trial end
+    // (the fraction of the step where it passes one, positions being linear in time to first
+    // order).
+    double stepEvent = 1.0;
+    if (stepStart) {
+      motion = x + dx - *stepStart;
+      stepEvent = sys_->stepEventFraction(*stepStart, motion);
+    }
+    if (passage < 1.0 || stepEvent < 1.0) {
+      // The first update is the linearised step: its passage fraction estimates the event time.
       rep.failure = "an event (a slider at a node, a cable slack / taut) within the step";
-      rep.eventFraction = std::max(passage, 1e-12);
+      const double sliders = passage < 1.0 ? (it == 0 ? passage : 0.5) : 1.0;
+      rep.eventFraction = std::max(std::min(sliders, stepEvent), 1e-12);
       return rep;
     }
     if (driven) before = x;
@@ -206,7 +206,7 @@ NewtonReport GeneralizedAlpha::step(DynamicState& s, double dt) {
     const double ratio = dt / newton_.nominalStep;
     tol = std::max(tol * ratio * ratio, 100.0 * 2.22e-16 * newton_.lengthScale);
   }
-  NewtonReport rep = newton(n.x, tol, makePoint, newmark, &old.x);
+  NewtonReport rep = newton(n.x, tol, makePoint, newmark, false, &old.x);
   if (rep.converged) {
     sys_->commit(n.x);
     s = n;
@@ -241,7 +241,7 @@ NewtonReport GeneralizedAlpha::solveStatic(DynamicState& s, int nSteps, double i
     };
     const Eigen::VectorXd start = x;
     NewtonReport rep = newton(
-        x, newton_.tolDisplacement, makePoint, [] {}, nullptr);
+        x, newton_.tolDisplacement, makePoint, [] {}, true);
     total.iterations += rep.iterations;
     total.residualNorms.insert(total.residualNorms.end(), rep.residualNorms.begin(),
                                rep.residualNorms.end());

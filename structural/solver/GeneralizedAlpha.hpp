@@ -76,14 +76,13 @@ class GeneralizedAlpha {
   LinearSolver& linearSolver() { return linear_; }
 
  private:
-  // stepStart (dynamics): the positions the step starts from, before constrained dofs moved to
-  // their prescribed places. Events are located along the step's whole motion, from stepStart to
-  // each trial end x + dx, so a kink crossed by prescribed motion (a driven slider passing a
-  // node) is timed like one crossed by Newton's updates. nullptr (statics): a passage is crossed
-  // within the solve instead of cutting the step.
+  // crossInPlace: a passage is crossed within the solve (static) instead of cutting the step.
+  // In dynamics driven sliders are handed over along the way (StructuralSystem::crossDriven).
+  // stepStart: the positions the step started from, for events located along the step's whole
+  // motion (StructuralSystem::stepEventFraction); nullptr: none.
   template <class MakePoint, class Update>
   NewtonReport newton(Eigen::VectorXd& x, double tol, MakePoint&& makePoint, Update&& onUpdate,
-                      const Eigen::VectorXd* stepStart);
+                      bool crossInPlace = false, const Eigen::VectorXd* stepStart = nullptr);
 
   StructuralSystem* sys_;
   GeneralizedAlphaParams p_;

@@ -93,6 +93,13 @@ double StructuralSystem::passageFraction(const Eigen::VectorXd& x, const Eigen::
   return f;
 }
 
+double StructuralSystem::stepEventFraction(const Eigen::VectorXd& start,
+                                           const Eigen::VectorXd& motion) {
+  double f = 1.0;
+  for (const auto& t : terms_) f = std::min(f, t->stepEventFraction(start, motion));
+  return f;
+}
+
 bool StructuralSystem::crossNow(Eigen::VectorXd& x) {
   bool changed = false;
   for (const auto& t : terms_) changed |= t->crossNow(x);

@@ -33,6 +33,7 @@ class StructuralSystem {
   const SparseMatrix& matrix() const { return assembler_.matrix(); }
   bool symmetric() const;
   double passageFraction(const Eigen::VectorXd& x, const Eigen::VectorXd& dx);
+  double stepEventFraction(const Eigen::VectorXd& start, const Eigen::VectorXd& motion);
   bool onConverged(Eigen::VectorXd& x);
   bool crossNow(Eigen::VectorXd& x);
   // Kinks passed by prescribed motion (driven sliders at nodes), see Term::crossDriven.

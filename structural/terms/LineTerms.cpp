@@ -93,7 +93,7 @@ void CableTerm::addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
   for (const auto& c : m_->cables) cableEnergy(*m_, c.a, c.b, c.L, c.material, x, v, e);
 }
 
-double CableTerm::passageFraction(const Eigen::VectorXd& x, const Eigen::VectorXd& dx) {
+double CableTerm::stepEventFraction(const Eigen::VectorXd& x, const Eigen::VectorXd& dx) {
   double fraction = 1.0;
   for (const auto& c : m_->cables) {
     const auto& mat = m_->materials[c.material];

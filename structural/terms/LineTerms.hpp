@@ -23,7 +23,8 @@ class CableTerm final : public Term {
   // Slack / taut switches are located in time like a slider at a node: a step whose motion
   // takes a tension-only cable across zero strain is cut to end there, so no step straddles
   // the kink of its energy (the trapezoidal rule conserves the energy of each smooth piece).
-  double passageFraction(const Eigen::VectorXd& x, const Eigen::VectorXd& dx) override;
+  // Measured along the step's whole motion: Newton's later updates may take a cable across.
+  double stepEventFraction(const Eigen::VectorXd& start, const Eigen::VectorXd& motion) override;
 
  private:
   const Model* m_;
