@@ -39,7 +39,10 @@ void ParachuteSpec::validate() const {
       riserLength <= 0.5 * std::hypot(payloadBox[0], payloadBox[1]))
     bad("--riser-length", "must exceed half the diagonal of the box's top face");
   if (riserElements < 1) bad("--riser-elements", "must be at least 1");
-  if (start != "flat" && start != "folded") bad("--start", "expected flat or folded");
+  if (start != "flat" && start != "folded" && start != "inflated")
+    bad("--start", "expected flat, folded or inflated");
+  if (!(inflatedRatio > 2.0 / std::numbers::pi && inflatedRatio < 1.0))
+    bad("--inflated-ratio", "must be in (2/pi, 1): a cap no deeper than a hemisphere");
   if (bundleRadius < 0.0 || bundleRadius >= diameter / 2)
     bad("--bundle-radius", "must be in [0, diameter / 2)");
   if (sliderDrop < 0.0) bad("--slider-drop", "must not be negative");
@@ -197,7 +200,7 @@ GeneratedParachute generateParachute(const ParachuteSpec& spec, const std::strin
       if (spec.hasSlider()) ++out.linesPerGrommet[grommetOfLine(j, n)];
     }
 
-    if (spec.start == "folded" || spec.hasSlider()) {
+    if (spec.start != "flat" || spec.hasSlider()) {
       const StartConfiguration s = parachuteStart(spec, out.mesh);
       out.mesh.views["initial_displacement"] = s.displacement;
       out.maxStartStretch = s.maxStretch;

@@ -34,7 +34,8 @@ struct ParachuteSpec {
   std::array<double, 3> payloadBox{0.0, 0.0, 0.0};  // > 0: a box of trusses, mass at its corners
   double riserLength = 0.0;  // confluence to the payload point (box: to each top corner)
   int riserElements = 1;
-  std::string start = "flat";  // start configuration: "flat" or "folded"
+  std::string start = "flat";  // start configuration: "flat", "folded" or "inflated"
+  double inflatedRatio = 0.7;  // inflated: projected (skirt) diameter / D
   double bundleRadius = 0.0;   // folded: radius of the packed canopy at the skirt (0: D / 40)
   double sliderDrop = 0.0;     // slider below the skirt at the start (0: line length / 20)
   double lineSlack = 0.005;    // the longest line starts this fraction shorter than its length

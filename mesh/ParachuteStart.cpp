@@ -39,6 +39,21 @@ StartConfiguration parachuteStart(const ParachuteSpec& spec, const GmshMesh& m) 
   const int n = spec.gores;
   const double R = spec.diameter / 2, L = spec.lineLength, H = std::sqrt(L * L - R * R);
   const bool folded = spec.start == "folded";
+  const bool inflated = spec.start == "inflated";
+  // Inflated: the pattern radius rho becomes arc length lambda rho along the meridians of a
+  // spherical cap of radius Rs (Rs sin(R / Rs) = ratio R: the skirt at the projected radius),
+  // the skirt at height H. Meridians keep (lambda = 1) or lose length, hoops shorten: the fabric
+  // starts stress-free (wrinkled), the gores' excess width taken up when pressure bulges them.
+  double Rs = R;
+  if (inflated) {
+    const double target = spec.inflatedRatio * R;
+    double lo = 2.0 * R / M_PI, hi = 1e6 * R;  // Rs sin(R/Rs) rises from 2R/pi to R
+    for (int it = 0; it < 200; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      (mid * std::sin(R / mid) < target ? lo : hi) = mid;
+    }
+    Rs = 0.5 * (lo + hi);
+  }
   const double eps = (spec.bundleRadius > 0.0 ? spec.bundleRadius : spec.diameter / 40) / R;
   const double drop = spec.sliderDrop > 0.0 ? spec.sliderDrop : L / 20;
   auto& u = out.displacement;
@@ -48,11 +63,17 @@ StartConfiguration parachuteStart(const ParachuteSpec& spec, const GmshMesh& m) 
   const MeshGroup& canopy = *m.group("canopy", 2);
   const auto canopyNodes = canopy.nodes();
   auto fold = [&](const Vec3& X, double c) -> Vec3 {
+    if (inflated) {
+      const double rho = std::hypot(X.x(), X.y()), theta = std::atan2(X.y(), X.x());
+      const double phi = c * rho / Rs, phiR = c * R / Rs;
+      return Vec3(Rs * std::sin(phi) * std::cos(theta), Rs * std::sin(phi) * std::sin(theta),
+                  H + Rs * (std::cos(phi) - std::cos(phiR)));
+    }
     if (!folded) return X;
     const double rho = std::hypot(X.x(), X.y());
     return Vec3(eps * X.x(), eps * X.y(), H + c * (R - rho));
   };
-  double c = 0.999 * std::sqrt(1.0 - eps * eps);
+  double c = inflated ? 1.0 : 0.999 * std::sqrt(1.0 - eps * eps);
   for (int attempt = 0;; ++attempt) {
     double worst = 0.0;
     auto tri = [&](std::size_t a, std::size_t b, std::size_t d) {
@@ -63,12 +84,12 @@ StartConfiguration parachuteStart(const ParachuteSpec& spec, const GmshMesh& m) 
       tri(e[0], e[1], e[2]);
       if (e.size() == 4) tri(e[0], e[2], e[3]);
     }
-    out.maxStretch = folded ? worst : 1.0;  // flat: the identity (worst is round-off about 1)
-    if (worst <= 1.0 || !folded) break;
-    if (attempt > 200) throw std::runtime_error("folded start: could not pack the canopy");
+    out.maxStretch = folded || inflated ? worst : 1.0;  // flat: the identity (round-off about 1)
+    if (worst <= 1.0 || !(folded || inflated)) break;
+    if (attempt > 200) throw std::runtime_error(spec.start + " start: could not shape the canopy");
     c *= 0.995;
   }
-  out.axialFactor = folded ? c : 1.0;
+  out.axialFactor = folded || inflated ? c : 1.0;
   for (std::size_t t : canopyNodes) u[t] = fold(m.at(t), c) - m.at(t);
 
   // Slider: a rigid drop to sliderDrop below the skirt (which stays at height H).
@@ -94,7 +115,10 @@ StartConfiguration parachuteStart(const ParachuteSpec& spec, const GmshMesh& m) 
     auto& ch = chains[j] = orderedChain(*m.group("line_" + std::to_string(j), 1));
     if (ch.front() == confluence) std::reverse(ch.begin(), ch.end());
     skirt[j] = m.at(ch.front()) + u.at(ch.front());
-    const Vec3 via = spec.hasSlider() ? grommet[grommetOfLine(j, n)] : Vec3(0, 0, skirt[j].z());
+    // Inflated: straight from the skirt (the line's own start); folded / flat: over the axis.
+    const Vec3 via = spec.hasSlider() ? grommet[grommetOfLine(j, n)]
+                     : inflated       ? skirt[j]
+                                      : Vec3(0, 0, skirt[j].z());
     longest = std::max(longest, (via - skirt[j]).norm());
     reach = std::max(reach, std::hypot(via.x(), via.y()));
   }
@@ -145,6 +169,12 @@ StartConfiguration parachuteStart(const ParachuteSpec& spec, const GmshMesh& m) 
         for (std::size_t t : g->nodes())
           if (t != confluence) u[t] = c0 - m.at(confluence);
   for (std::size_t t : m.nodeTags) u.try_emplace(t, Vec3::Zero());
+  // Inflated: the whole start moved rigidly so that the confluence stays at its reference point
+  // (the origin): a payload rigged below it in a case file's [nodes] starts where it is written.
+  if (inflated) {
+    const Vec3 shift = -u.at(confluence);
+    for (auto& [tag, d] : u) d += shift;
+  }
   return out;
 }
 

@@ -10,6 +10,12 @@
 //         angle theta of the pattern goes to (eps rho cos theta, eps rho sin theta,
 //         H + c (R - rho)), eps = bundleRadius / R, c < sqrt(1 - eps^2) (lowered until no element
 //         stretches); slider and lines as for flat.
+// inflated: the canopy on a spherical cap, an approximation of the inflated shape: pattern radius
+//         rho -> arc length c rho from the apex along the meridian of a sphere of radius Rs with
+//         Rs sin(R / Rs) = inflatedRatio R (the skirt at the projected radius, height H); c = 1
+//         (lowered until no element stretches): meridians exact, hoops shorter (wrinkled);
+//         lines straight (slackened by lineSlack); the whole start moved rigidly so that the
+//         confluence stays at its reference point, the origin.
 #include "GmshMesh.hpp"
 #include "ParachuteGenerator.hpp"
 
@@ -18,7 +24,7 @@ namespace chute::mesh {
 struct StartConfiguration {
   NodeVectors displacement;  // node tag -> start minus reference
   double maxStretch = 0.0;   // largest principal stretch of a canopy triangle (<= 1)
-  double axialFactor = 1.0;  // c of the folded map
+  double axialFactor = 1.0;  // c of the folded / inflated map
 };
 
 StartConfiguration parachuteStart(const ParachuteSpec& spec, const GmshMesh& mesh);

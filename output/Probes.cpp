@@ -1,5 +1,8 @@
 #include "Probes.hpp"
 
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -35,7 +38,8 @@ std::vector<std::string> ProbeSet::columns() const {
 namespace {
 // Axial force and strain of element `element` of line set `set` (cables first, then groups).
 std::pair<double, double> lineForce(const Model& m, const StructuralSystem& sys, int set,
-                                    int element, const Eigen::VectorXd& x) {
+                                    int element, const Eigen::VectorXd& x, double t) {
+  if (m.lineSets[set].cutBy(t)) return {0.0, 0.0};  // a cut set carries nothing
   auto at = [&](int n) { return Vec3(x.segment<3>(3 * n)); };
   int k = 0;
   for (const auto& c : m.cables) {
@@ -53,6 +57,29 @@ std::pair<double, double> lineForce(const Model& m, const StructuralSystem& sys,
     return {parts.N1, parts.strain1};
   }
   throw std::logic_error("line_force probe: element not found");
+}
+
+Vec3 centroid(const std::vector<int>& nodes, const Eigen::VectorXd& x) {
+  Vec3 c = Vec3::Zero();
+  for (int n : nodes) c += x.segment<3>(3 * n);
+  return c / static_cast<double>(nodes.size());
+}
+
+// Mean, least and largest distance of `nodes` from the axis through the centroids of axisFrom
+// and axisTo (a canopy's skirt radius about the line confluence -> vent).
+std::array<double, 3> radiusAboutAxis(const ProbeSpec& p, const Eigen::VectorXd& x) {
+  const Vec3 a = centroid(p.axisFrom, x);
+  const Vec3 axis = centroid(p.axisTo, x) - a;
+  const Vec3 e = axis.norm() > 0.0 ? Vec3(axis.normalized()) : Vec3::UnitZ();
+  double sum = 0.0, lo = kInf, hi = 0.0;
+  for (int n : p.nodes) {
+    const Vec3 d = x.segment<3>(3 * n) - a;
+    const double r = (d - d.dot(e) * e).norm();
+    sum += r;
+    lo = std::min(lo, r);
+    hi = std::max(hi, r);
+  }
+  return {sum / static_cast<double>(p.nodes.size()), lo, hi};
 }
 }  // namespace
 
@@ -100,10 +127,21 @@ std::vector<double> ProbeSet::evaluate(const StructuralSystem& sys, const Dynami
         for (const auto& st : mt->elementStates()) count[static_cast<int>(st.state)] += 1.0;
       const double n = std::max(1.0, count[0] + count[1] + count[2]);
       for (double c : count) out.push_back(c / n);
+    } else if (p.kind == "edge_angle") {
+      // Angle in degrees between the edge node -> node2 and the upward vertical (against gravity;
+      // +z without gravity): 0 when node2 is straight above node, 90 when the edge is level.
+      const Model& m = *model_;
+      const Vec3 up = m.hasGravity() ? Vec3(-m.gravity.normalized()) : Vec3::UnitZ();
+      const Vec3 d = s.x.segment<3>(3 * p.node2) - s.x.segment<3>(3 * p.node);
+      const double c = std::clamp(d.dot(up) / std::max(d.norm(), 1e-300), -1.0, 1.0);
+      out.push_back(std::acos(c) * 180.0 / M_PI);
     } else if (p.kind == "line_force") {
-      const auto [N, eps] = lineForce(*model_, sys, p.lineSet, p.element, s.x);
+      const auto [N, eps] = lineForce(*model_, sys, p.lineSet, p.element, s.x, s.t);
       out.push_back(N);
       out.push_back(eps);
+    } else if (p.kind == "skirt_radius") {
+      const auto r = radiusAboutAxis(p, s.x);
+      out.insert(out.end(), r.begin(), r.end());
     }
   }
   return out;

@@ -115,6 +115,7 @@ SceneFrame buildFrame(StructuralSystem& sys, const DynamicState& s, const FrameF
 
   CellFields c;
   for (const auto& e : m.cables) {
+    if (m.lineSets[e.set].cutBy(s.t)) continue;  // cut ([[events]]): no longer in the structure
     const auto& mat = m.materials[e.material];
     const auto r = kernels::cableForce(at(e.a), at(e.b), e.L, mat, false);
     addCell(f, CellShape::Line, {e.a, e.b});

@@ -241,6 +241,17 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
     record(state);
     writeVtu(state);
   } else {
+    // A set cut at t (LineSet::cutAt) loads the step that ends at t; the acceleration just after
+    // it is that of the structure without it (M a = f_ext - f_int there), as at a start.
+    auto accelerationAfterCut = [&](DynamicState& s) {
+      if (!m.hasCutAt(s.t)) return;
+      DynamicState after = s;
+      after.t = std::nextafter(s.t, std::numeric_limits<double>::infinity());
+      for (int d = 0; d < after.a.size(); ++d)
+        if (sys.dofs().eqOfDof(d) >= 0) after.a[d] = 0.0;
+      integrator.computeInitialAcceleration(after);
+      s.a = after.a;
+    };
     double dt = sv.dt, eventStep = 0.0;
     int successesSinceCut = 0;
     if (restart) {
@@ -261,6 +272,7 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
       r.kineticMax = c.kineticMax;
     } else {
       integrator.computeInitialAcceleration(state);
+      accelerationAfterCut(state);
       sys.commit(state.x);
       record(state);
       writeVtu(state);
@@ -299,7 +311,8 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
     while (state.t < tEnd - 1e-12 * sv.dt) {
       // The next stop: the end or the next output time. A step that would leave a sliver of
       // less than a tenth of a step before it is stretched to reach it.
-      const double stop = std::min({tEnd, probeClock.nextTime(), vtuClock.nextTime()});
+      const double stop =
+          std::min({tEnd, probeClock.nextTime(), vtuClock.nextTime(), m.nextCutAfter(state.t)});
       double h = std::min(dt, stop - state.t);
       if (stop - state.t - h < 0.1 * h) h = stop - state.t;
       if (eventStep > 0 && eventStep < h) h = eventStep;
@@ -329,6 +342,7 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
       }
       if (reachesStop) state.t = stop;  // no round-off drift of output times
       ++r.steps;
+      accelerationAfterCut(state);
       r.maxNewtonInStep = std::max(r.maxNewtonInStep, rep.iterations);
       if (dt < sv.dt && ++successesSinceCut >= 4)
         dt = std::min(2 * dt, sv.dt), successesSinceCut = 0;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "app/cli/Command.hpp"
+#include "case/CaseError.hpp"
 
 int main(int argc, char** argv) {
   using namespace chute::cli;
@@ -19,11 +20,16 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : kExitBadInput;
+    if (e.get_exit_code() == 0) return app.exit(e);              // --help
+    fmt::print(stderr, "chute: {} (chute --help)\n", e.what());  // bad input: one line, status 2
+    return kExitBadInput;
   }
   try {
     for (const auto& c : commands)
       if (*c.sub) return c.run();
+  } catch (const chute::CaseError& e) {  // bad input found outside the case reader
+    fmt::print(stderr, "chute: {}\n", e.what());
+    return kExitBadInput;
   } catch (const std::exception& e) {
     fmt::print(stderr, "chute: {}\n", e.what());
     return 1;

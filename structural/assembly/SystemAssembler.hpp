@@ -4,7 +4,10 @@
 // is built once and covers every coupling any term can ever create.
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <algorithm>
 #include <array>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "assembly/WorkCounters.hpp"
@@ -34,11 +37,38 @@ class SystemAssembler {
     if (full_)
       for (int i = 0; i < N; ++i) full_->segment<3>(3 * nodes[i]) += r.template segment<3>(3 * i);
     if (!J || !wantMatrix_) return;
+    // Node block by node block: a node's free dofs have consecutive equation numbers and the
+    // pattern holds every dof pair of a clique, so within a column the rows of node a are
+    // consecutive entries. One search per (node a, column) instead of one per entry.
+    const int* inner = matrix_.innerIndexPtr();
+    const int* outer = matrix_.outerIndexPtr();
+    double* values = matrix_.valuePtr();
     for (int j = 0; j < 3 * N; ++j) {
-      if (eq[j] < 0) continue;
-      for (int i = 0; i < 3 * N; ++i)
-        if (eq[i] >= 0 && (*J)(i, j) != 0.0) matrix_.coeffRef(eq[i], eq[j]) += (*J)(i, j);
+      const int col = eq[j];
+      if (col < 0) continue;
+      const int* begin = inner + outer[col];
+      const int* end = inner + outer[col + 1];
+      for (int a = 0; a < N; ++a) {
+        int k0 = 0;
+        while (k0 < 3 && eq[3 * a + k0] < 0) ++k0;
+        if (k0 == 3) continue;
+        const int* pos = std::lower_bound(begin, end, eq[3 * a + k0]);
+        if (pos == end || *pos != eq[3 * a + k0]) {
+          outsidePattern(eq[3 * a + k0], col);
+          continue;
+        }
+        double* v = values + (pos - inner);
+        for (int k = k0; k < 3; ++k)
+          if (eq[3 * a + k] >= 0) *v++ += (*J)(3 * a + k, j);
+      }
     }
+  }
+
+  // A coupling the pattern lacks (a term that did not declare its cliques): a programming
+  // error, reported rather than written to the wrong entry.
+  [[noreturn]] static void outsidePattern(int row, int col) {
+    throw std::logic_error("SystemAssembler: entry (" + std::to_string(row) + ", " +
+                           std::to_string(col) + ") is outside the sparsity pattern");
   }
 
   // While set, every residual is also summed over all dofs, constrained ones included (for

@@ -2,6 +2,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cctype>
+#include <climits>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -26,62 +27,143 @@ std::vector<std::string> ProbeSpec::columns() const {
   if (kind == "energy") q = {"kinetic", "strain", "gravity", "total"};
   if (kind == "line_force") q = {"N", "strain"};
   if (kind == "membrane_stress") q = {"S1", "S2"};
+  if (kind == "edge_angle") q = {"angle"};
   if (kind == "wrinkling") q = {"taut", "wrinkled", "slack"};
+  if (kind == "skirt_radius") q = {"mean", "min", "max"};
   for (auto& s : q) s = name + "." + s;
   return q;
 }
 
 namespace {
 
-toml::value parseFile(const std::string& file) {
-  if (!std::filesystem::exists(file)) throw CaseError(file + ": cannot open: no such file");
+// Largest model a case may generate (nodes): a typo in a count must give an error, not exhaust
+// memory. About 0.3 GB of model data; meshes this size come from a mesh file, not a count.
+constexpr long kMaxNodes = 1000000;
+// Largest coordinate or length a case may give: squared distances must not overflow.
+constexpr double kMaxLength = 1e100;
+
+// A coordinate triple within +-kMaxLength (required, or `fallback` when absent).
+Vec3 point(TomlTable& t, const std::string& key, const Vec3* fallback = nullptr) {
+  const Vec3 x = fallback ? t.vec3(key, *fallback) : t.vec3(key);
+  if (x.cwiseAbs().maxCoeff() > kMaxLength) t.fail(key, "coordinates beyond +-1e100");
+  return x;
+}
+// A positive length up to kMaxLength.
+double length(TomlTable& t, const std::string& key) {
+  const double x = t.positive(key);
+  if (x > kMaxLength) t.fail(key, "lengths beyond 1e100");
+  return x;
+}
+
+// toml11 reports a syntax error over several lines (message, source line, caret); chute reports
+// bad input in one: "file:line: malformed TOML: message (annotation)".
+std::string oneLine(const std::string& what) {
+  std::string first = what.substr(0, what.find('\n'));
+  for (const std::string prefix : {"[error] "})
+    if (first.rfind(prefix, 0) == 0) first = first.substr(prefix.size());
+  if (first.rfind("toml::", 0) == 0 || first.rfind("parse_", 0) == 0) {
+    const auto colon = first.find(": ");
+    if (colon != std::string::npos) first = first.substr(colon + 2);
+  }
+  // The last caret annotation ("^--- expected value, but got nothing") says what was wrong.
+  std::string note;
+  for (const std::string mark : {"^--- ", "~~~ "}) {
+    const auto at = what.rfind(mark);
+    if (at != std::string::npos) {
+      note = what.substr(at + mark.size());
+      note = note.substr(0, note.find('\n'));
+      break;
+    }
+  }
+  if (!note.empty() && note != "here") first += " (" + note + ")";
+  return first;
+}
+
+toml::value parseText(const std::string& text, const std::string& file) {
   try {
-    return toml::parse(file);
+    std::istringstream in(text);
+    return toml::parse(in, file);
+  } catch (const toml::exception& e) {
+    throw CaseError(file + ":" + std::to_string(e.location().line()) +
+                    ": malformed TOML: " + oneLine(e.what()));
   } catch (const std::exception& e) {
-    throw CaseError(std::string("malformed TOML: ") + e.what());
+    throw CaseError(file + ": malformed TOML: " + oneLine(e.what()));
   }
 }
 
+std::string readText(const std::string& file) {
+  std::error_code ec;
+  if (!std::filesystem::exists(file, ec)) throw CaseError(file + ": cannot open: no such file");
+  if (std::filesystem::is_directory(file, ec))
+    throw CaseError(file + ": cannot open: is a directory");
+  std::ifstream in(file, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  if (!in) throw CaseError(file + ": cannot open: not readable");
+  return ss.str();
+}
+
+// The closest of `known` to `key`, as " (did you mean 'x'?)", or "".
+std::string didYouMean(const std::string& key, const std::vector<std::string>& known) {
+  std::string best;
+  int bestD = 1 << 30;
+  for (const auto& k : known) {
+    const int d = editDistance(key, k);
+    if (d < bestD) bestD = d, best = k;
+  }
+  if (best.empty() || bestD > std::max<int>(2, static_cast<int>(key.size()) / 3)) return "";
+  return " (did you mean '" + best + "'?)";
+}
+
 void applyOverride(toml::value& root, const std::string& file, const std::string& assignment) {
+  const std::string where = "--set " + assignment;
   const auto eq = assignment.find('=');
-  if (eq == std::string::npos || eq == 0)
-    throw CaseError("--set " + assignment + ": expected key=value");
+  if (eq == std::string::npos || eq == 0) throw CaseError(where + ": expected key=value");
   const std::string path = assignment.substr(0, eq), text = assignment.substr(eq + 1);
   std::vector<std::string> keys;
   std::stringstream ss(path);
   for (std::string k; std::getline(ss, k, '.');) {
-    if (k.empty()) throw CaseError("--set " + assignment + ": empty key in '" + path + "'");
+    if (k.empty()) throw CaseError(where + ": empty key in '" + path + "'");
     keys.push_back(k);
   }
+  if (path.back() == '.') throw CaseError(where + ": empty key in '" + path + "'");
   // Each step is a table key, or an index into an array of tables ("membranes.0.rings").
   toml::value* node = &root;
+  std::string walked;
   for (size_t i = 0; i + 1 < keys.size(); ++i) {
     if (node->is_array()) {
       auto& arr = node->as_array();
-      const bool numeric = keys[i].find_first_not_of("0123456789") == std::string::npos;
+      const bool numeric =
+          keys[i].size() <= 9 && keys[i].find_first_not_of("0123456789") == std::string::npos;
       const size_t idx = numeric ? std::stoul(keys[i]) : arr.size();
       if (idx >= arr.size())
-        throw CaseError("--set " + assignment + ": '" + keys[i] + "' is not an index of " +
-                        std::to_string(arr.size()) + " entries on the path " + path);
+        throw CaseError(where + ": " + walked + ": '" + keys[i] + "' is not an index of its " +
+                        std::to_string(arr.size()) + " entries");
       node = &arr[idx];
-      continue;
+    } else {
+      auto& t = node->as_table();
+      auto it = t.find(keys[i]);
+      if (it == t.end()) {
+        std::vector<std::string> known;
+        for (const auto& [k, v] : t)
+          if (v.is_table() || v.is_array()) known.push_back(k);
+        throw CaseError(where + ": " + (walked.empty() ? "" : walked + ".") + keys[i] + ": " +
+                        file + " has no such table" + didYouMean(keys[i], known));
+      }
+      if (!it->second.is_table() && !it->second.is_array())
+        throw CaseError(where + ": " + (walked.empty() ? "" : walked + ".") + keys[i] +
+                        ": is not a table");
+      node = &it->second;
     }
-    auto& t = node->as_table();
-    auto it = t.find(keys[i]);
-    if (it == t.end()) {
-      throw CaseError("--set " + assignment + ": " + file + " has no table '" + keys[i] +
-                      "' on the path " + path);
-    }
-    if (!it->second.is_table() && !it->second.is_array())
-      throw CaseError("--set " + assignment + ": '" + keys[i] + "' in " + path + " is not a table");
-    node = &it->second;
+    walked += (walked.empty() ? "" : ".") + keys[i];
   }
   if (!node->is_table())
-    throw CaseError("--set " + assignment + ": " + path + " does not name a key of a table");
+    throw CaseError(where + ": " + walked + ": an array of tables: give an index (" + walked +
+                    ".0." + keys.back() + ")");
   toml::value parsed;
   try {
     std::istringstream in("v = " + text);
-    parsed = toml::parse(in, "--set " + path).as_table().at("v");
+    parsed = toml::parse(in, where).as_table().at("v");
   } catch (const std::exception& e) {
     // A bare word is a string (--set solver.mass=consistent), as a user types it in a shell.
     const bool bareWord =
@@ -89,15 +171,19 @@ void applyOverride(toml::value& root, const std::string& file, const std::string
         text.find_first_not_of(
             "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-.") ==
             std::string::npos;
-    if (!bareWord) throw CaseError("--set " + assignment + ": not a TOML value: " + e.what());
-    parsed = toml::value(text);
+    if (!bareWord)
+      throw CaseError(where + ": " + path + ": not a TOML value: " + oneLine(e.what()));
+    std::istringstream quoted("v = \"" + text + "\"");  // keeps the --set as its origin
+    parsed = toml::parse(quoted, where).as_table().at("v");
   }
   if (parsed.is_table() || parsed.is_array())
-    throw CaseError("--set " + assignment + ": only scalars can be set");
+    throw CaseError(where + ": " + path + ": only scalars can be set");
   auto& t = node->as_table();
   auto it = t.find(keys.back());
   if (it != t.end() && (it->second.is_table() || it->second.is_array()))
-    throw CaseError("--set " + assignment + ": " + path + " is not a scalar in " + file);
+    throw CaseError(where + ": " + path + ": is a table in " + file + ", not a scalar");
+  // A key the file does not have is added; the reader rejects it (with a did-you-mean) if the
+  // case has no such key.
   t[keys.back()] = parsed;
 }
 
@@ -135,7 +221,34 @@ int materialRef(const Model& m, TomlTable& t) {
   const std::string name = t.string("material");
   for (size_t i = 0; i < m.materialName.size(); ++i)
     if (m.materialName[i] == name) return static_cast<int>(i);
-  t.fail("material", "unknown material '" + name + "'");
+  for (const auto& membrane : m.membraneMaterialName)
+    if (membrane == name)
+      t.fail("material", "'" + name + "' is a membrane material, not a line one");
+  t.fail("material", "unknown material '" + name + "'" + didYouMean(name, m.materialName));
+}
+
+// Cables, sliding groups and membranes name the nodes they generate after themselves, and probes
+// and loads refer to them by name: one name, one entry.
+std::string setName(const Model& m, TomlTable& t, const std::string& fallback) {
+  const std::string name = fallback.empty() ? t.string("name") : t.string("name", fallback);
+  if (name.empty()) t.fail("name", "cannot be empty");
+  // Generated nodes and node sets are named "<name>.<...>": a dot would make names ambiguous.
+  if (name.find('.') != std::string::npos) t.fail("name", "cannot contain '.'");
+  for (const auto& s : m.lineSets)
+    if (s.name == name)
+      t.fail("name", "duplicate name: '" + name + "' is already a " +
+                         (s.sliding ? "sliding group" : "cable set"));
+  for (const auto& s : m.membraneSets)
+    if (s.name == name) t.fail("name", "duplicate name: '" + name + "' is already a membrane set");
+  if (m.nodeSets.count(name)) t.fail("name", "duplicate name: '" + name + "' is a node set");
+  return name;
+}
+
+// Fails when adding `extra` nodes would take the model past kMaxNodes.
+void checkNodeBudget(const Model& m, TomlTable& t, const std::string& key, long extra) {
+  if (extra > kMaxNodes || m.numNodes() + extra > kMaxNodes)
+    t.fail(key, "would make a model of more than " + std::to_string(kMaxNodes) +
+                    " nodes (at least " + std::to_string(m.numNodes() + extra) + ")");
 }
 
 // Points at equal arc length along a polyline, n intervals; returns n + 1 points.
@@ -167,10 +280,12 @@ std::vector<int> pathNodes(const Model& m, TomlTable& t) {
 
 void readCable(Model& m, TomlTable t, int index) {
   CableElement proto;
-  const std::string name = t.string("name", "cables" + std::to_string(index));
+  const std::string name = setName(m, t, "cables" + std::to_string(index));
   proto.material = materialRef(m, t);
   const auto ids = pathNodes(m, t);
-  const long perSegment = t.integer("elements_per_segment", 1, 1, 1000000);
+  const long perSegment = t.integer("elements_per_segment", 1, 1, kMaxNodes);
+  checkNodeBudget(m, t, "elements_per_segment",
+                  (perSegment - 1) * static_cast<long>(ids.size() - 1));
   const double prestrain = t.number("prestrain", 0.0);
   if (prestrain <= -1.0) t.fail("prestrain", "must be > -1");
   t.finish();
@@ -215,7 +330,7 @@ kernels::SliderFrictionLaw readFrictionLaw(TomlTable& t, kernels::SliderFriction
 
 void readSlidingGroup(Model& m, TomlTable t, int index) {
   SlidingGroupDef g;
-  g.name = t.string("name", "sliding_group" + std::to_string(index));
+  g.name = setName(m, t, "sliding_group" + std::to_string(index));
   g.material = materialRef(m, t);
   const auto path = pathNodes(m, t);
   std::vector<int> sliders;
@@ -229,7 +344,8 @@ void readSlidingGroup(Model& m, TomlTable t, int index) {
     if (!sliderSet.count(path[i]))
       t.fail("path", "interior path node '" + m.nodeName[path[i]] +
                          "' is not a slider (the path runs end -> sliders -> end)");
-  const long n = t.integer("elements", 1, 1, 1000000);
+  const long n = t.integer("elements", 1, 1, kMaxNodes);
+  checkNodeBudget(m, t, "elements", n - 1);
   const double prestrain = t.number("prestrain", 0.0);
   if (prestrain <= -1.0) t.fail("prestrain", "must be > -1");
   std::vector<long> active;
@@ -278,7 +394,7 @@ void readSlidingGroup(Model& m, TomlTable t, int index) {
         t.fail("active", "slider '" + m.nodeName[sliders[s]] +
                              "' is not on the path: give its initially active element");
       const double sArc = arc[it - path.begin()];
-      k = std::clamp(static_cast<int>(std::floor(sArc / h)), 0, static_cast<int>(n - 1));
+      k = static_cast<int>(std::clamp(std::floor(sArc / h), 0.0, static_cast<double>(n - 1)));
     }
     // The slider must lie on its active element: l = l1 + l2 equals the element's current
     // length (1 + prestrain) L up to round-off.
@@ -302,22 +418,58 @@ int membraneMaterialRef(const Model& m, TomlTable& t) {
   const std::string name = t.string("material");
   for (size_t i = 0; i < m.membraneMaterialName.size(); ++i)
     if (m.membraneMaterialName[i] == name) return static_cast<int>(i);
-  t.fail("material", "no membrane material '" + name + "' (kind = \"membrane\")");
+  t.fail("material", "no membrane material '" + name + "' (kind = \"membrane\")" +
+                         didYouMean(name, m.membraneMaterialName));
+}
+
+// Why a membrane element is unusable ("" if it is fine): a repeated node, no area, or (quads) a
+// corner that is not convex about the normal the kernel uses (F-membrane reference frame).
+std::string degenerateElement(const Model& m, const MembraneElement& e) {
+  const int n = e.numNodes;
+  for (int i = 0; i < n; ++i)
+    for (int j = i + 1; j < n; ++j)
+      if (e.nodes[i] == e.nodes[j]) return "node '" + m.nodeName[e.nodes[i]] + "' appears twice";
+  double edge2 = 0.0;
+  for (int i = 0; i < n; ++i)
+    edge2 = std::max(edge2, (m.X[e.nodes[(i + 1) % n]] - m.X[e.nodes[i]]).squaredNorm());
+  const double tol = 1e-12 * edge2;
+  auto X = [&](int i) { return m.X[e.nodes[(i + n) % n]]; };
+  if (n == 3) {
+    if ((X(1) - X(0)).cross(X(2) - X(0)).norm() <= tol)
+      return "zero area (its nodes are collinear)";
+    return "";
+  }
+  const Vec3 normal = (X(2) - X(0)).cross(X(3) - X(1));
+  if (normal.norm() <= tol) return "zero area (its diagonals are parallel)";
+  for (int i = 0; i < 4; ++i)
+    if ((X(i + 1) - X(i)).cross(X(i - 1) - X(i)).dot(normal.normalized()) <= tol)
+      return "not convex at node '" + m.nodeName[e.nodes[i]] +
+             "' (nodes must go round the element, counter-clockwise about its normal)";
+  return "";
 }
 
 void readMembranes(Model& m, TomlTable t) {
   MembraneSet set;
-  set.name = t.string("name");
-  if (m.nodeSets.count(set.name)) t.fail("name", "a node set '" + set.name + "' exists already");
+  set.name = setName(m, t, "");
   const int material = membraneMaterialRef(m, t);
   set.wrinkling = t.boolean("wrinkling", true);
   set.prestrain = t.number("prestrain", 0.0);
   if (set.prestrain <= -1.0) t.fail("prestrain", "must be > -1");
   const int setId = static_cast<int>(m.membraneSets.size());
   const std::string kind = t.choice("mesh", "disk", {"disk", "rectangle", "elements"});
+  const std::vector<std::string> diskKeys = {"center", "radius", "rings"},
+                                 rectangleKeys = {"corner", "size", "divisions", "element"},
+                                 elementKeys = {"triangles", "quads"};
+  if (kind != "disk") t.notUsed(diskKeys, "with mesh = \"" + kind + "\"");
+  if (kind != "rectangle") t.notUsed(rectangleKeys, "with mesh = \"" + kind + "\"");
+  if (kind != "elements") t.notUsed(elementKeys, "with mesh = \"" + kind + "\"");
+  if (kind == "disk" || !t.has("bulge"))
+    t.notUsed({"bulge_centre", "bulge_extent"},
+              kind == "disk" ? "with mesh = \"disk\"" : "without bulge");
   if (kind == "elements") {
     // Explicit elements over named nodes: triangles = [["a", "b", "c"], ...], quads likewise.
     auto& all = m.nodeSets[set.name];
+    std::set<int> seen;
     for (const char* key : {"triangles", "quads"}) {
       if (!t.has(key)) continue;
       const size_t n = std::string(key) == "triangles" ? 3 : 4;
@@ -337,22 +489,32 @@ void readMembranes(Model& m, TomlTable t) {
           if (it == m.nodeByName.end())
             t.failAt(v, key, "unknown node '" + v.as_string().str + "'");
           e.nodes[i] = it->second;
-          if (std::find(all.begin(), all.end(), it->second) == all.end()) all.push_back(it->second);
+          if (seen.insert(it->second).second) all.push_back(it->second);
         }
+        const std::string bad = degenerateElement(m, e);
+        if (!bad.empty()) t.failAt(el, key, "degenerate element: " + bad);
         m.membranes.push_back(e);
       }
     }
+    if (all.empty())
+      t.fail("mesh", "an \"elements\" mesh needs triangles = [...] or quads = [...]");
   } else if (kind == "disk") {
-    const Vec3 centre = t.vec3("center", Vec3::Zero());
-    const double radius = t.positive("radius");
-    const long rings = t.integer("rings", 8, 1, 2000);
+    const Vec3 origin = Vec3::Zero();
+    const Vec3 centre = point(t, "center", &origin);
+    const double radius = length(t, "radius");
+    const long rings = t.integer("rings", 8, 1, kMaxNodes);
+    checkNodeBudget(m, t, "rings", 1 + 3 * rings * (rings + 1));
     mesh::addDisk(m, set.name, setId, material, centre, radius, static_cast<int>(rings));
   } else {
-    const Vec3 corner = t.vec3("corner", Vec3::Zero());
-    const Vec3 size = t.vec3("size");
+    const Vec3 origin = Vec3::Zero();
+    const Vec3 corner = point(t, "corner", &origin);
+    const Vec3 size = point(t, "size");
     if (size.x() <= 0 || size.y() <= 0) t.fail("size", "needs positive x and y extents");
     const auto div = t.integers("divisions");
     if (div.size() != 2 || div[0] < 1 || div[1] < 1) t.fail("divisions", "expected [nx, ny] >= 1");
+    if (div[0] >= kMaxNodes || div[1] >= kMaxNodes)
+      t.fail("divisions", "more than " + std::to_string(kMaxNodes) + " divisions");
+    checkNodeBudget(m, t, "divisions", (div[0] + 1) * (div[1] + 1));
     const bool quads = t.choice("element", "quad", {"quad", "triangle"}) == "quad";
     mesh::addRectangle(m, set.name, setId, material, corner, size.x(), size.y(),
                        static_cast<int>(div[0]), static_cast<int>(div[1]), quads);
@@ -361,6 +523,7 @@ void readMembranes(Model& m, TomlTable t) {
   // around bulge_centre [x, y] within bulge_extent [ax, ay] (disk: bulge (1 - r^2/R^2)).
   if (t.has("bulge")) {
     const double h = t.number("bulge");
+    if (std::abs(h) > kMaxLength) t.fail("bulge", "lengths beyond 1e100");
     const auto& nodes = m.nodeSets[set.name];
     if (kind == "disk") {
       const Vec3 c = m.X[m.nodeId(set.name + ".center")];
@@ -368,8 +531,10 @@ void readMembranes(Model& m, TomlTable t) {
       for (int n : nodes) R = std::max(R, (m.X[n] - c).norm());
       for (int n : nodes) m.u0[n].z() += h * (1.0 - (m.X[n] - c).squaredNorm() / (R * R));
     } else {
-      const Vec3 c = t.vec3("bulge_centre");
-      const Vec3 ext = t.vec3("bulge_extent");
+      const Vec3 c = point(t, "bulge_centre");
+      const Vec3 ext = point(t, "bulge_extent");
+      if (ext.x() <= 0.0 || ext.y() <= 0.0)
+        t.fail("bulge_extent", "needs positive x and y extents");
       for (int n : nodes) {
         const double dx = std::abs(m.X[n].x() - c.x()) / ext.x(),
                      dy = std::abs(m.X[n].y() - c.y()) / ext.y();
@@ -399,11 +564,31 @@ std::vector<int> nodesOf(const Model& m, TomlTable& t) {
 ProbeSpec readProbe(const Model& m, TomlTable t) {
   ProbeSpec p;
   p.name = t.string("name");
-  p.kind = t.choice("kind", "node_position",
-                    {"node_position", "node_velocity", "slider", "energy", "line_force",
-                     "membrane_stress", "wrinkling", "slider_friction"});
-  if (p.kind == "node_position" || p.kind == "node_velocity" || p.kind == "membrane_stress") {
+  // Probe names head the columns of probes.csv.
+  if (p.name.empty() || std::any_of(p.name.begin(), p.name.end(), [](char ch) {
+        return (ch >= 0 && ch < 32) || ch == ',' || ch == '"';
+      }))
+    t.fail("name", "must be non-empty, without commas, quotes or control characters");
+  p.kind =
+      t.choice("kind", "node_position",
+               {"node_position", "node_velocity", "slider", "energy", "line_force",
+                "membrane_stress", "wrinkling", "slider_friction", "skirt_radius", "edge_angle"});
+  const std::string why = "by a probe of kind \"" + p.kind + "\"";
+  const bool atNode =
+      p.kind == "node_position" || p.kind == "node_velocity" || p.kind == "membrane_stress";
+  const bool atSlider = p.kind == "slider" || p.kind == "slider_friction";
+  if (!atNode) t.notUsed({"node"}, why);
+  if (!atSlider) t.notUsed({"group", "slider"}, why);
+  if (p.kind != "line_force") t.notUsed({"element"}, why);
+  if (p.kind != "line_force" && p.kind != "skirt_radius") t.notUsed({"set"}, why);
+  if (p.kind != "skirt_radius") t.notUsed({"axis"}, why);
+  if (p.kind != "edge_angle") t.notUsed({"from", "to"}, why);
+  if (atNode) {
     p.node = nodeRef(m, t, "node", t.string("node", p.name));
+  } else if (p.kind == "edge_angle") {
+    p.node = nodeRef(m, t, "from", t.string("from"));
+    p.node2 = nodeRef(m, t, "to", t.string("to"));
+    if (p.node == p.node2) t.fail("to", "the edge needs two different nodes");
   } else if (p.kind == "slider" || p.kind == "slider_friction") {
     const std::string g = t.string("group");
     for (size_t i = 0; i < m.groups.size(); ++i)
@@ -423,6 +608,19 @@ ProbeSpec readProbe(const Model& m, TomlTable t) {
     for (const auto& c : m.cables) count += c.set == p.lineSet;
     for (const auto& g : m.groups) count += g.set == p.lineSet ? g.numElements() : 0;
     p.element = static_cast<int>(t.integer("element", 0, 0, count - 1));
+  } else if (p.kind == "skirt_radius") {
+    // A node set (or one node) by name: its node ids.
+    auto nodesOf = [&](const std::string& key, const std::string& name) -> std::vector<int> {
+      if (auto it = m.nodeSets.find(name); it != m.nodeSets.end() && !it->second.empty())
+        return it->second;
+      if (auto it = m.nodeByName.find(name); it != m.nodeByName.end()) return {it->second};
+      t.fail(key, "no node or node set '" + name + "'");
+    };
+    p.nodes = nodesOf("set", t.string("set"));
+    const auto axis = t.strings("axis");
+    if (axis.size() != 2) t.fail("axis", "give two nodes or node sets: [from, to]");
+    p.axisFrom = nodesOf("axis", axis[0]);
+    p.axisTo = nodesOf("axis", axis[1]);
   }
   t.finish();
   return p;
@@ -431,21 +629,39 @@ ProbeSpec readProbe(const Model& m, TomlTable t) {
 }  // namespace
 
 CaseSpec readCase(const std::string& file, const std::vector<std::string>& overrides) {
-  toml::value root = parseFile(file);
+  return readCaseFromString(readText(file), file, overrides);
+}
+
+CaseSpec readCaseFromString(const std::string& text, const std::string& file,
+                            const std::vector<std::string>& overrides) {
+  toml::value root = parseText(text, file);
   for (const auto& o : overrides) applyOverride(root, file, o);
   TomlTable top(root, "", file);
+  // Unknown top-level keys first: a misspelt table would otherwise surface as something missing.
+  top.finish({"name", "description", "units", "nodes", "materials", "cables", "sliding_groups",
+              "membranes", "point_masses", "boundary", "loads", "solver", "output", "reference",
+              "mesh", "events"});
   CaseSpec c;
   c.file = file;
   c.name = top.string("name", std::filesystem::path(file).stem().string());
+  // The name is the default output directory out/<name>/: one plain path component.
+  if (c.name.empty() || c.name == "." || c.name == ".." ||
+      c.name.find_first_of("/\\") != std::string::npos ||
+      std::any_of(c.name.begin(), c.name.end(), [](char ch) { return ch >= 0 && ch < 32; }))
+    top.fail("name", "must be a plain file name (no '/', not empty, '.' or '..')");
   c.description = top.string("description", "");
   c.units = top.string("units", "");
   Model& m = c.model;
 
   if (top.has("nodes")) {
     TomlTable nodes = top.table("nodes");
-    for (const auto& name : nodes.keys()) {
+    const auto names = nodes.keys();
+    if (static_cast<long>(names.size()) > kMaxNodes)
+      nodes.fail("", "more than " + std::to_string(kMaxNodes) + " nodes");
+    for (const auto& name : names) {
+      if (name.empty()) nodes.fail(name, "a node name cannot be empty");
       if (name.find('.') != std::string::npos) nodes.fail(name, "node names cannot contain '.'");
-      m.addNode(nodes.vec3(name), name);
+      m.addNode(point(nodes, name), name);
     }
   }
   std::unique_ptr<MeshImport> mesh;  // [mesh]: a gmsh mesh whose physical groups entries map
@@ -472,12 +688,6 @@ CaseSpec readCase(const std::string& file, const std::vector<std::string>& overr
   for (auto& t : top.tables("membranes"))
     t.has("group") ? readMeshMembranes(m, mesh.get(), t) : readMembranes(m, t);
   if (m.numNodes() == 0) top.fail("nodes", "the case has no nodes (no [nodes] and no meshes)");
-  {
-    std::set<std::string> names;
-    for (const auto& s : m.lineSets)
-      if (!names.insert(s.name).second)
-        top.fail(s.sliding ? "sliding_groups" : "cables", "duplicate set name '" + s.name + "'");
-  }
   for (auto& t : top.tables("point_masses")) {
     if (t.has("group")) {
       readMeshPointMasses(m, mesh.get(), t);
@@ -576,6 +786,18 @@ CaseSpec readCase(const std::string& file, const std::vector<std::string>& overr
     }
     l.finish();
   }
+  // [[events]] cut = "<cable set>", at = t: the set carries load up to t and is gone after it.
+  for (auto& t : top.tables("events")) {
+    const std::string set = t.string("cut");
+    auto it = std::find_if(m.lineSets.begin(), m.lineSets.end(),
+                           [&](const LineSet& s) { return s.name == set; });
+    if (it == m.lineSets.end()) t.fail("cut", "unknown cable set '" + set + "'");
+    if (it->sliding)
+      t.fail("cut", "'" + set + "' is a sliding group; only [[cables]] sets can be cut");
+    if (std::isfinite(it->cutAt)) t.fail("cut", "'" + set + "' is cut twice");
+    it->cutAt = t.nonNegative("at", 0.0);
+    t.finish();
+  }
   {
     TomlTable s = top.table("solver");
     auto& sv = c.solver;
@@ -589,6 +811,9 @@ CaseSpec readCase(const std::string& file, const std::vector<std::string>& overr
       if (sv.rhoInf < 0.0 || sv.rhoInf > 1.0) s.fail("rho_inf", "must be in [0, 1]");
       sv.dtMin = s.positive("dt_min", sv.dt * 1e-6);
       if (sv.dtMin > sv.dt) s.fail("dt_min", "must not exceed dt");
+    } else {
+      s.notUsed({"dt", "t_end", "rho_inf", "integrator", "mass_damping", "dt_min"},
+                "by static runs (type = \"static\")");
     }
     sv.loadSteps = static_cast<int>(s.integer("load_steps", 1, 1, 1000000));
     sv.initialLoadFactor = s.positive("initial_load_factor", 0.0 + 1.0);
@@ -606,7 +831,7 @@ CaseSpec readCase(const std::string& file, const std::vector<std::string>& overr
   }
   if (top.has("output")) {
     TomlTable o = top.table("output");
-    c.output.everySteps = static_cast<int>(o.integer("every", 1, 1, 1L << 40));
+    c.output.everySteps = static_cast<int>(o.integer("every", 1, 1, INT_MAX));
     if (o.has("interval")) c.output.interval = o.positive("interval");
     if (o.has("interval") && o.has("every")) o.fail("every", "give either every or interval");
     std::set<std::string> names;
@@ -619,7 +844,7 @@ CaseSpec readCase(const std::string& file, const std::vector<std::string>& overr
       TomlTable v = o.table("vtu");
       auto& vtu = c.output.vtu;
       vtu.write = v.boolean("write", true);
-      vtu.everySteps = static_cast<int>(v.integer("every", 1, 1, 1L << 40));
+      vtu.everySteps = static_cast<int>(v.integer("every", 1, 1, INT_MAX));
       if (v.has("interval")) vtu.interval = v.positive("interval");
       if (v.has("interval") && v.has("every")) v.fail("every", "give either every or interval");
       vtu.fields = v.strings("fields", {});
@@ -683,6 +908,9 @@ CaseSpec readCase(const std::string& file, const std::vector<std::string>& overr
     c.reference = ref;
   }
   if (mesh) holdUnusedMeshNodes(m, *mesh);
+  if (DofMap(m).numEquations() == 0)
+    top.fail(top.has("boundary") ? "boundary" : "nodes",
+             "every degree of freedom is fixed or prescribed: there is nothing to solve");
   top.finish();
   return c;
 }

@@ -12,10 +12,13 @@ namespace chute {
 
 struct ProbeSpec {
   std::string name;
-  std::string kind;  // node_position, node_velocity, slider, energy, line_force
+  std::string kind;  // node_position, node_velocity, slider, energy, line_force, edge_angle, ...
   int node = -1;
-  int group = -1, slider = -1;               // slider probes
-  int lineSet = -1, element = -1;            // line_force probes: set index and element within it
+  int node2 = -1;                  // edge_angle: the edge runs node -> node2
+  int group = -1, slider = -1;     // slider probes
+  int lineSet = -1, element = -1;  // line_force probes: set index and element within it
+  // skirt_radius: distance of `nodes` from the axis through the centroids of axisFrom and axisTo.
+  std::vector<int> nodes, axisFrom, axisTo;
   std::vector<std::string> columns() const;  // "<name>.<quantity>"
 };
 
@@ -75,5 +78,8 @@ struct CaseSpec {
 // Reads and validates a case file; overrides are "dotted.key=value" strings (--set).
 // Throws CaseError naming file, line and key.
 CaseSpec readCase(const std::string& file, const std::vector<std::string>& overrides = {});
+// The same from the file's text; `file` names it in messages (tests, the fuzz target).
+CaseSpec readCaseFromString(const std::string& text, const std::string& file,
+                            const std::vector<std::string>& overrides = {});
 
 }  // namespace chute

@@ -15,8 +15,16 @@ std::string typeName(const toml::value& v) {
   if (v.is_table()) return "a table";
   return "a date/time";
 }
-int lineOf(const toml::value& v) {
-  return static_cast<int>(v.location().line());
+// Where a value came from: "file:line", or "--set key=value" for a command-line override
+// (parsed under that name by the case reader).
+std::string originOf(const toml::value& v, const std::string& file) {
+  const auto loc = v.location();
+  if (loc.file_name().rfind("--set ", 0) == 0) return loc.file_name();
+  return file + ":" + std::to_string(loc.line());
+}
+// Allowed edit distance for a did-you-mean: about a third of the key, at least one.
+int typoDistance(const std::string& key) {
+  return std::max<int>(1, static_cast<int>(key.size()) / 3);
 }
 }  // namespace
 
@@ -46,8 +54,9 @@ std::string TomlTable::dotted(const std::string& key) const {
 }
 
 std::string TomlTable::where(const std::string& key) const {
-  const toml::value& v = has(key) ? at(key) : *table_;
-  return file_ + ":" + std::to_string(lineOf(v)) + ": " + dotted(key);
+  const auto& t = table_->as_table();
+  auto it = t.find(key);
+  return originOf(it != t.end() ? it->second : *table_, file_) + ": " + dotted(key);
 }
 
 void TomlTable::fail(const std::string& key, const std::string& message) const {
@@ -56,7 +65,7 @@ void TomlTable::fail(const std::string& key, const std::string& message) const {
 
 void TomlTable::failAt(const toml::value& v, const std::string& key,
                        const std::string& message) const {
-  throw CaseError(file_ + ":" + std::to_string(lineOf(v)) + ": " + dotted(key) + ": " + message);
+  throw CaseError(originOf(v, file_) + ": " + dotted(key) + ": " + message);
 }
 
 bool TomlTable::has(const std::string& key) const {
@@ -68,7 +77,13 @@ const toml::value& TomlTable::at(const std::string& key) const {
   asked_.insert(key);
   const auto& t = table_->as_table();
   auto it = t.find(key);
-  if (it == t.end()) fail(key, "required key is missing");
+  if (it == t.end()) {
+    // A required key that is missing is most often misspelt: point at the misspelling.
+    for (const auto& [other, v] : t)
+      if (!asked_.count(other) && editDistance(other, key) <= typoDistance(key))
+        failAt(v, other, "unknown key (did you mean '" + key + "'? it is required)");
+    fail(key, "required key is missing");
+  }
   return it->second;
 }
 
@@ -222,6 +237,19 @@ std::vector<TomlTable> TomlTable::tables(const std::string& key) {
   return out;
 }
 
+void TomlTable::notUsed(const std::vector<std::string>& keys, const std::string& why) const {
+  const auto& t = table_->as_table();
+  for (const auto& key : keys) {
+    auto it = t.find(key);
+    if (it != t.end()) failAt(it->second, key, "not used " + why);
+  }
+}
+
+void TomlTable::finish(const std::vector<std::string>& known) const {
+  asked_.insert(known.begin(), known.end());
+  finish();
+}
+
 void TomlTable::finish() const {
   for (const auto& [key, v] : table_->as_table()) {
     if (asked_.count(key)) continue;
@@ -232,7 +260,7 @@ void TomlTable::finish() const {
       if (d < bestD) bestD = d, best = known;
     }
     std::string msg = "unknown key";
-    if (!best.empty() && bestD <= std::max<int>(2, static_cast<int>(key.size()) / 3))
+    if (!best.empty() && bestD <= std::max({2, typoDistance(key), typoDistance(best)}))
       msg += " (did you mean '" + best + "'?)";
     failAt(v, key, msg);
   }

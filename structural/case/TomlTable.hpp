@@ -43,13 +43,19 @@ class TomlTable {
   // Every key of this table (for tables whose keys are names, such as [nodes]).
   std::vector<std::string> keys() const;
 
-  // Throws for every key present that was never asked for.
+  // Fails for the first of `keys` present: keys of the schema that this table's choices leave
+  // unused ("not used <why>", e.g. why = "by static runs"), so they are not reported as unknown.
+  void notUsed(const std::vector<std::string>& keys, const std::string& why) const;
+  // Throws for the first key present that was never asked for (with a did-you-mean).
   void finish() const;
+  // The same, counting `known` as asked (checks a table's keys before reading it).
+  void finish(const std::vector<std::string>& known) const;
 
   [[noreturn]] void fail(const std::string& key, const std::string& message) const;
   [[noreturn]] void failAt(const toml::value& v, const std::string& key,
                            const std::string& message) const;
-  std::string where(const std::string& key) const;  // "file:line: path.key"
+  // "file:line: path.key" ("--set k=v: path.key" for a value given on the command line).
+  std::string where(const std::string& key) const;
 
  private:
   const toml::value& at(const std::string& key) const;

@@ -1,5 +1,6 @@
 #include "model/Model.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -45,6 +46,18 @@ double Model::totalLineMass() const {
     for (double L : g.refLength)
       m += materials[g.material].density * materials[g.material].area * L;
   return m;
+}
+
+double Model::nextCutAfter(double t) const {
+  double next = std::numeric_limits<double>::infinity();
+  for (const auto& s : lineSets)
+    if (s.cutAt > t) next = std::min(next, s.cutAt);
+  return next;
+}
+
+bool Model::hasCutAt(double t) const {
+  return std::any_of(lineSets.begin(), lineSets.end(),
+                     [t](const LineSet& s) { return s.cutAt == t; });
 }
 
 DofMap::DofMap(const Model& m) : eq_(3 * m.numNodes(), -1) {

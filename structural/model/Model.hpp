@@ -3,6 +3,7 @@
 // Knows nothing of parachutes or of time integration.
 #include <Eigen/Core>
 #include <array>
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
@@ -23,9 +24,13 @@ struct CableElement {
 };
 
 // A named set of line elements (a `[[cables]]` or `[[sliding_groups]]` entry), for output.
+// A cable set may be cut at a time (`[[events]] cut = ...`): it carries load up to cutAt and is
+// gone from the assembly after it (t > cutAt); the run lands a step on cutAt.
 struct LineSet {
   std::string name;
   bool sliding = false;
+  double cutAt = std::numeric_limits<double>::infinity();
+  bool cutBy(double t) const { return t > cutAt; }
 };
 
 // A chain of sliding elements and the slider points allowed to pass along it (formulation.md 4).
@@ -128,6 +133,9 @@ struct Model {
   int nodeId(const std::string& name) const;  // throws std::out_of_range if unknown
   bool hasGravity() const { return gravity.squaredNorm() > 0.0; }
   double totalLineMass() const;  // sum of rho A0 L over all line elements
+  // The first time a set is cut after t (infinity if none): where a run must land a step.
+  double nextCutAfter(double t) const;
+  bool hasCutAt(double t) const;  // a set is cut exactly at t
 };
 
 // Equation numbering of the free dofs; constrained dofs map to -1.

@@ -1,8 +1,31 @@
 #include "solver/LinearSolver.hpp"
 
+#include <dlfcn.h>
+
 #include <algorithm>
+#include <cstdlib>
 
 namespace chute {
+
+namespace {
+// SuiteSparse does its dense fronts in BLAS. With OpenBLAS (Debian's libopenblas0-pthread, the
+// libblas.so.3 alternative install-deps.sh selects) a second thread pays only on large fronts;
+// on small systems it costs more than it saves, badly so on a loaded machine (measured 2-5x
+// slower factorisations at 1.5k-10k equations). One thread below this size, all cores above,
+// unless the user set OPENBLAS_NUM_THREADS. Looked up at run time: with another BLAS it is a
+// no-op.
+constexpr int kThreadedBlasFrom = 40000;  // equations
+
+void chooseBlasThreads(int equations) {
+  if (std::getenv("OPENBLAS_NUM_THREADS") || std::getenv("OMP_NUM_THREADS")) return;
+  using SetThreads = void (*)(int);
+  static const auto set =
+      reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
+  static const auto get =
+      reinterpret_cast<int (*)()>(dlsym(RTLD_DEFAULT, "openblas_get_num_procs"));
+  if (set && get) set(equations >= kThreadedBlasFrom ? get() : 1);
+}
+}  // namespace
 
 LinearSolver::LinearSolver(bool preferCholesky, Timings& timings)
     : kind_(preferCholesky ? Kind::Cholmod : Kind::Umfpack), timings_(&timings) {}
@@ -20,6 +43,7 @@ bool LinearSolver::factorize(const SparseMatrix& A) {
       cholmod_->cholmod().print = 0;
     }
     if (!analysed_) {
+      chooseBlasThreads(static_cast<int>(A.rows()));
       cholmod_->analyzePattern(A);
       analysed_ = true;
       ++analyses_;
@@ -33,6 +57,7 @@ bool LinearSolver::factorize(const SparseMatrix& A) {
   }
   if (!umfpack_) umfpack_ = std::make_unique<Eigen::UmfPackLU<SparseMatrix>>();
   if (!analysed_) {
+    chooseBlasThreads(static_cast<int>(A.rows()));
     // UMFPACK's symbolic analysis looks at the values too. Analyse the pattern with unit values,
     // so the ordering depends on the pattern alone: a restarted run then factorises exactly as
     // the run it continues (bit for bit), whatever matrix it meets first.

@@ -85,12 +85,15 @@ void CableTerm::addCouplings(std::vector<std::vector<int>>& cliques) const {
 }
 
 void CableTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
-  for (const auto& c : m_->cables) assembleCable(*m_, c.a, c.b, c.L, c.material, p, out);
+  time_ = p.t;
+  for (const auto& c : m_->cables)
+    if (!m_->lineSets[c.set].cutBy(p.t)) assembleCable(*m_, c.a, c.b, c.L, c.material, p, out);
 }
 
 void CableTerm::addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
                           EnergyBreakdown& e) const {
-  for (const auto& c : m_->cables) cableEnergy(*m_, c.a, c.b, c.L, c.material, x, v, e);
+  for (const auto& c : m_->cables)
+    if (!m_->lineSets[c.set].cutBy(time_)) cableEnergy(*m_, c.a, c.b, c.L, c.material, x, v, e);
 }
 
 double CableTerm::stepEventFraction(const Eigen::VectorXd& x, const Eigen::VectorXd& dx) {

@@ -28,6 +28,9 @@ class CableTerm final : public Term {
 
  private:
   const Model* m_;
+  // Time of the last assembly (the state being solved or just converged): cut sets
+  // (LineSet::cutAt) are left out of the energy from then on.
+  double time_ = 0.0;
 };
 
 class SlidingGroupTerm final : public Term {

@@ -1,6 +1,6 @@
 // Generated parachutes (mesh/ParachuteGenerator): C-9 counts and figures at half and full scale,
-// .msh write / read-back, the generated case read into a model, the stress-free start (flat and
-// folded), and meshing speed for a 50 k-triangle canopy.
+// .msh write / read-back, the generated case read into a model, the stress-free start (flat,
+// folded, inflated), and meshing speed for a 50 k-triangle canopy.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -149,8 +149,8 @@ TEST(ParachuteMesh, WrittenMshReadsBackAsTheSameMeshAndCase) {
   EXPECT_EQ(m.nodeName[m.nodeId("confluence")], "confluence");
 }
 
-TEST(ParachuteMesh, FlatAndFoldedStartsAreStressFree) {
-  for (const char* start : {"flat", "folded"}) {
+TEST(ParachuteMesh, FlatFoldedAndInflatedStartsAreStressFree) {
+  for (const char* start : {"flat", "folded", "inflated"}) {
     ParachuteSpec s = c9(0.5);
     s.start = start;
     s.payloadMass = 6.0;
@@ -187,6 +187,11 @@ TEST(ParachuteMesh, FlatAndFoldedStartsAreStressFree) {
         start, radius, s.diameter / 2, g.maxStartStretch, worstLine, sliderOff, f, f / scale);
     if (std::string(start) == "folded") {
       EXPECT_LT(radius, 1.01 * s.diameter / 40);
+    }
+    if (std::string(start) == "inflated") {  // the skirt at the projected radius 0.7 R
+      EXPECT_NEAR(radius, s.inflatedRatio * s.diameter / 2, 0.01 * s.diameter / 2);
+      const int conf = m.nodeId("confluence");  // the confluence starts at its reference point
+      EXPECT_LT(m.u0[conf].norm(), 1e-12);
     }
     EXPECT_LE(g.maxStartStretch, 1.0 + 1e-12);
     EXPECT_LE(worstLine, 1.0);

@@ -1,6 +1,7 @@
 // `chute mesh parachute --gores N --diameter D --line-length L --element-size h --out FILE.msh
 //  [--vent-diameter d] [--line-elements n] [--slider SIDE] [--payload-mass m] [--payload-box
-//  a,b,c] [--riser-length l] [--start flat|folded] [--case FILE.toml] [--config PARAMS.toml]`:
+//  a,b,c] [--riser-length l] [--start flat|folded|inflated] [--case FILE.toml]
+//  [--config PARAMS.toml]`:
 // a flat circular canopy with lines, slider and payload meshed with gmsh (README "Meshes").
 #include <fmt/core.h>
 
@@ -92,7 +93,11 @@ Command addMeshCommand(CLI::App& app) {
   p->add_option("--riser-length", s.riserLength,
                 "confluence to payload point (box: to each top corner)");
   p->add_option("--riser-elements", s.riserElements, "elements per riser")->default_val(1);
-  p->add_option("--start", s.start, "start configuration: flat or folded")->default_val("flat");
+  p->add_option("--start", s.start, "start configuration: flat, folded or inflated")
+      ->default_val("flat");
+  p->add_option("--inflated-ratio", s.inflatedRatio,
+                "inflated: projected diameter / D of the spherical-cap start")
+      ->default_val(0.7);
   p->add_option("--bundle-radius", s.bundleRadius, "folded: packed canopy radius (default D/40)");
   p->add_option("--slider-drop", s.sliderDrop,
                 "slider below the skirt at the start (default L/20)");

@@ -75,7 +75,15 @@ Command addRunCommand(CLI::App& app) {
   run->add_flag("--newton-log", a->verboseNewton, "print the residual of every Newton iteration");
   run->add_option("--checkpoint-every", a->checkpointEvery,
                   "write OUT/checkpoint.cbor every N steps (and on SIGINT/SIGTERM)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Validator(
+          [](const std::string& v) -> std::string {
+            return !v.empty() && v.size() < 19 &&
+                           v.find_first_not_of("0123456789") == std::string::npos &&
+                           std::stol(v) > 0
+                       ? ""
+                       : "expected a positive number of steps, found '" + v + "'";
+          },
+          "N"));
   run->add_option("--restart", a->restart, "continue a run from its checkpoint, bit for bit");
   return {run, [a] { return runCase(*a); }};
 }
