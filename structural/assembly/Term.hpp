@@ -70,6 +70,10 @@ class Term {
   // put along the cable). Returns how many changes were noted.
   virtual bool drivesKinks() const { return false; }
   virtual int crossDriven(const Eigen::VectorXd& /*from*/, Eigen::VectorXd& /*to*/) { return 0; }
+  // Round-off floor of a Newton update at the last assembly (length units): a very short, stiff
+  // part (a slider with friction next to a node, docs/friction.md FR16) computes its force from
+  // positions that carry round-off, so no update resolves positions finer than this. 0: none.
+  virtual double displacementFloor() const { return 0.0; }
   virtual void commit(const Eigen::VectorXd& /*x*/) {}  // x: the converged positions
   virtual void revert() {}
 };

@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace chute::kernels {
@@ -80,10 +81,19 @@ WrapAngle wrapAngle(const Vec3& x1, const Vec3& x2, const Vec3& x3, double L) {
   return w;
 }
 
+double frictionRoundoffFloor(const Vec3& x1, const Vec3& x2, const Vec3& x3, double L, double s) {
+  const double shortest = std::min(s, L - s);
+  if (!(shortest > 0.0)) return 0.0;
+  const double size = std::max({x1.lpNorm<Eigen::Infinity>(), x2.lpNorm<Eigen::Infinity>(),
+                                x3.lpNorm<Eigen::Infinity>(), L});
+  return kRoundoffFloorFactor * std::numeric_limits<double>::epsilon() * size * L /
+         shortest;  // FR16
+}
+
 FrictionSlidingResult frictionSlidingForce(const Vec3& x1, const Vec3& x2, const Vec3& x3, double L,
                                            double sStart, const LineMaterial& mat,
                                            const SliderFrictionLaw& law, double dt, bool locked,
-                                           bool withTangent) {
+                                           bool withTangent, SliderStick startSlip) {
   const double r = kApexFraction * L;
   const PartLength p1 = partLength(x3 - x1, r), p2 = partLength(x3 - x2, r);
   const double l1 = p1.length, l2 = p2.length;
@@ -112,6 +122,11 @@ FrictionSlidingResult frictionSlidingForce(const Vec3& x1, const Vec3& x2, const
   if (f1.N > limit * f2.N) sigma = +1;
   if (f2.N > limit * f1.N) sigma = -1;
   if (locked || sigma * law.oneWay < 0) sigma = 0;  // locked, or a ratchet's blocked direction
+  // FR15: at the converged positions of a slipping slider the stick predictor is on the slip limit
+  // (to round-off); stick keeps s = sStart, and the tangent is that of the slip continuing.
+  int tangentSigma = sigma;
+  const int hint = static_cast<int>(startSlip);
+  if (sigma == 0 && hint != 0 && !locked && hint * law.oneWay >= 0) tangentSigma = hint;
 
   double s = s0, E = 1.0, g = 0.0, dgds = 0.0, mu = law.muStatic;
   // Slip condition g(s) = N_high - exp(mu(v) beta) N_low = 0 (FR6) and dg/ds (FR8).
@@ -129,7 +144,11 @@ FrictionSlidingResult frictionSlidingForce(const Vec3& x1, const Vec3& x2, const
     dgds = dNhi - E * dNlo - E * Nlo * beta * dMu;
   };
 
-  if (sigma != 0) {
+  if (sigma == 0 && tangentSigma != 0) {
+    sigma = tangentSigma;  // g and dg/ds at s = sStart for the tangent; the force stays stick's
+    evaluate(s0);
+    sigma = 0;
+  } else if (sigma != 0) {
     // g decreases along u = sigma (s - s_n) >= 0, from g > 0 at u = 0 to -infinity where the
     // low side's reference length vanishes (its force grows without bound): a bracketed root,
     // found by Newton with bisection whenever Newton leaves the bracket (FR8).
@@ -175,8 +194,8 @@ FrictionSlidingResult frictionSlidingForce(const Vec3& x1, const Vec3& x2, const
   addGeometric(1, f2.N * p2.hessian);
   // FR10: in slip s = s(x) through g(x, s(x)) = 0: ds/dx = -(dg/dx) / (dg/ds), and
   // K += (df/ds) (ds/dx)^T with df/ds = dN1/dL1 D1 - dN2/dL2 D2.
-  if (sigma != 0 && dgds != 0.0) {
-    const bool plus = sigma > 0;
+  if (tangentSigma != 0 && dgds != 0.0) {
+    const bool plus = tangentSigma > 0;
     const double kHi = plus ? f1.dNdl : f2.dNdl, kLo = plus ? f2.dNdl : f1.dNdl;
     const double Nlo = plus ? f2.N : f1.N;
     const Vec9& Dhi = plus ? D1 : D2;

@@ -58,10 +58,30 @@ struct FrictionSlidingResult {
 
 // x1, x2: element end nodes, x3: slider. L: element reference length. sStart: split at the start
 // of the step. dt: step length (<= 0: static, slip rate taken as 0). locked: t >= lockAt.
+// startSlip: the direction the slider slipped in over the last step, passed only while the
+// positions are those it converged at (the first Newton iteration of a step): the stick predictor
+// then sits on the slip limit, and a stick verdict returns the stick force (s = sStart) with the
+// slip tangent of that direction at s = sStart (FR15), so that the first update continues the slip.
 FrictionSlidingResult frictionSlidingForce(const Vec3& x1, const Vec3& x2, const Vec3& x3, double L,
                                            double sStart, const LineMaterial& mat,
                                            const SliderFrictionLaw& law, double dt, bool locked,
-                                           bool withTangent);
+                                           bool withTangent,
+                                           SliderStick startSlip = SliderStick::Stick);
+
+// Arrival zone of a slider with friction at a node of its element, as a fraction of the element's
+// reference length (FR16). The short part next to the node is a spring E A / L_i, and Newton
+// iterates that aim at the node itself (L_i -> 0) pass it; the step is cut to end where the
+// slider enters the zone (aimed at half its radius) and the slider is handed over from there.
+// Far below a step's slip (v dt), which absorbs the hand-over's shift of the material coordinate.
+inline constexpr double kFrictionArrivalFraction = 1e-6;
+
+// Round-off floor of positions resolved through the friction element (FR16): a part of reference
+// length L_i computes its strain from positions that carry round-off eps |x|, so its force is
+// uncertain by E A eps |x| / L_i; in slip that force moves the nodes along the soft direction
+// (stiffness ~ E A / L), which is eps |x| L / min(L_1, L_2) of displacement. Returns that with a
+// safety factor kRoundoffFloorFactor.
+inline constexpr double kRoundoffFloorFactor = 8.0;
+double frictionRoundoffFloor(const Vec3& x1, const Vec3& x2, const Vec3& x3, double L, double s);
 
 // Wrap angle beta of the cable at the slider and its gradient (element dof order), FR3-FR4.
 struct WrapAngle {

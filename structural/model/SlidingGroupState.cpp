@@ -109,13 +109,19 @@ double SlidingGroupState::passageFraction(const Eigen::VectorXd& x, const Eigen:
           pendingHandover_[s] = end == 0 ? -1 : +1;
         continue;
       }
-      // A slider with friction within the arrival radius has arrived: its short part is a
-      // stiff spring (E A / L_i) and Newton's path may graze the node; the converged state is
-      // handed over by arriveAtNodes() instead of cutting the step ever shorter.
-      if (hasFriction(static_cast<int>(s)) &&
-          d.norm() <= kernels::kArrivalFraction * def_->refLength[k])
-        continue;
       const double dDelta = d.dot(delta);
+      // A slider with friction (FR16): the event is its entry into the arrival zone of the node,
+      // the step ending where it would be half the zone's radius from the node.
+      const double zone = kernels::kFrictionArrivalFraction * def_->refLength[k];
+      if (hasFriction(static_cast<int>(s)) && d.norm() > zone) {
+        const double aim = 0.5 * zone, dd = delta.squaredNorm();
+        const double disc = dDelta * dDelta - dd * (d.squaredNorm() - aim * aim);
+        if (dd > 0.0 && disc >= 0.0) {  // |d + f delta| = aim at f = (-d.delta -+ sqrt) / dd
+          const double f = (-dDelta - std::sqrt(disc)) / dd;
+          if (f >= 0.0 && f <= 1.0) fraction = std::min(fraction, f);
+        }
+        continue;
+      }
       // The part flips direction, (d + delta) . d < 0: the update passes the node, closest at
       // the fraction -d.delta / |delta|^2.
       if (d.squaredNorm() + dDelta < 0.0)
@@ -138,7 +144,9 @@ bool SlidingGroupState::arriveAtNodes(const Model& model, Eigen::VectorXd& x, do
       const int ni = def_->chain[k + end];
       const int next = k + (end == 0 ? -1 : +1);
       const double dist = (nodePos(x, n3) - nodePos(x, ni)).norm();
-      if (dist > radiusFraction * def_->refLength[k]) continue;
+      const double radius =
+          hasFriction(static_cast<int>(s)) ? kernels::kFrictionArrivalFraction : radiusFraction;
+      if (dist > radius * def_->refLength[k]) continue;
       if (dist >= committedDistance_[end][s]) continue;       // not approaching this node
       if (next < 0 || next >= def_->numElements()) continue;  // the chain ends here
       // Node and slider are placed a hair apart, the node on the side of the element being

@@ -135,7 +135,8 @@ NewtonReport GeneralizedAlpha::newton(Eigen::VectorXd& x, double tol, MakePoint&
     // A driven slider carried past a node by this update is handed over there.
     const bool crossed = driven && sys_->crossDriven(before, x) > 0;
     if (crossed) onUpdate();
-    if (lastChanges == 0 && !crossed && un <= tol) {
+    // Not below what round-off lets the assembled forces resolve (a stiff short part, FR16).
+    if (lastChanges == 0 && !crossed && un <= std::max(tol, sys_->displacementFloor())) {
       if (sys_->onConverged(x)) onUpdate();  // moved by a negligible amount onto an event
       rep.converged = true;
       return rep;

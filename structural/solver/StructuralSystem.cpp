@@ -116,6 +116,12 @@ int StructuralSystem::crossDriven(const Eigen::VectorXd& from, Eigen::VectorXd& 
   return changes;
 }
 
+double StructuralSystem::displacementFloor() const {
+  double f = 0.0;
+  for (const auto& t : terms_) f = std::max(f, t->displacementFloor());
+  return f;
+}
+
 bool StructuralSystem::onConverged(Eigen::VectorXd& x) {
   bool changed = false;
   for (const auto& t : terms_) changed |= t->onConverged(x);

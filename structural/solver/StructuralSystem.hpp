@@ -39,6 +39,7 @@ class StructuralSystem {
   // Kinks passed by prescribed motion (driven sliders at nodes), see Term::crossDriven.
   bool drivesKinks() const;
   int crossDriven(const Eigen::VectorXd& from, Eigen::VectorXd& to);
+  double displacementFloor() const;  // the largest of the terms' (Term::displacementFloor)
 
   // Nodal forces over all dofs at a converged state (for output): the support reactions
   // (the residual at constrained dofs, zero elsewhere) and the applied loads (gravity, pressure,

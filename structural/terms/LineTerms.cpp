@@ -1,6 +1,9 @@
 #include "terms/LineTerms.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <initializer_list>
+#include <limits>
 
 namespace chute {
 
@@ -139,15 +142,30 @@ bool SlidingGroupTerm::symmetricJacobian() const {
 
 namespace {
 // The friction element at positions x for slider s of group state st (docs/friction.md).
-kernels::FrictionSlidingResult frictionElement(const Model& m, const SlidingGroupState& st, int s,
-                                               const Eigen::VectorXd& x, double t, double dt,
-                                               bool withTangent) {
+kernels::FrictionSlidingResult frictionElement(
+    const Model& m, const SlidingGroupState& st, int s, const Eigen::VectorXd& x, double t,
+    double dt, bool withTangent, kernels::SliderStick startSlip = kernels::SliderStick::Stick) {
   const auto& g = st.def();
   const int k = st.activeElement(s);
   const auto* law = g.frictionOf(s);
-  return kernels::frictionSlidingForce(
-      pos(x, g.chain[k]), pos(x, g.chain[k + 1]), pos(x, g.sliders[s]), g.refLength[k],
-      st.splitStart(s), m.materials[g.material], *law, dt, t >= law->lockAt, withTangent);
+  return kernels::frictionSlidingForce(pos(x, g.chain[k]), pos(x, g.chain[k + 1]),
+                                       pos(x, g.sliders[s]), g.refLength[k], st.splitStart(s),
+                                       m.materials[g.material], *law, dt, t >= law->lockAt,
+                                       withTangent, startSlip);
+}
+
+// Whether nodes a, b, c of x are where they were committed (to round-off of a blend of equal
+// positions, as generalized-alpha's x_{n+1-alpha_f} at the predictor x_{n+1} = x_n).
+bool atCommitted(const Eigen::VectorXd& x, const Eigen::VectorXd& committed,
+                 std::initializer_list<int> nodes) {
+  if (committed.size() != x.size()) return false;
+  for (int n : nodes)
+    for (int c = 0; c < 3; ++c) {
+      const double a = x[3 * n + c], b = committed[3 * n + c];
+      if (std::abs(a - b) > 4.0 * std::numeric_limits<double>::epsilon() * std::abs(b))
+        return false;
+    }
+  return true;
 }
 
 // Slack parts of the friction element: the Jacobian-only spring of addSlackTangent, per part.
@@ -184,6 +202,7 @@ void SlidingGroupTerm::commit(const Eigen::VectorXd& x) {
     state_.setConvergedFriction(si, f);
   }
   state_.commit(x);
+  committedX_ = x;
 }
 
 SlidingGroupTerm::ActiveParts SlidingGroupTerm::activeParts(int element,
@@ -209,6 +228,7 @@ void SlidingGroupTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
   const auto& g = state_.def();
   const auto& mat = m_->materials[g.material];
   const bool wantJ = out.wantMatrix();
+  floor_ = 0.0;
   for (int k = 0; k < g.numElements(); ++k) {
     const int n1 = g.chain[k], n2 = g.chain[k + 1];
     const int s = state_.sliderOfElement(k);
@@ -224,7 +244,15 @@ void SlidingGroupTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
     Mat9 J;
     if (g.frictionOf(s)) {  // capstan friction, lock or one-way flow (docs/friction.md)
       lastT_ = p.t, lastDt_ = p.dt;
-      const auto res = frictionElement(*m_, state_, s, p.x, p.t, p.dt, wantJ);
+      // FR15: the first iteration of a step, at the converged positions of a slipping slider,
+      // takes the tangent of the slip continuing (the stick predictor is on the limit there).
+      const auto& committed = state_.friction(s);
+      const bool start = wantJ && committed.state != kernels::SliderStick::Stick &&
+                         state_.activeElement(s) == state_.committedActiveElement(s) &&
+                         atCommitted(p.x, committedX_, {n1, n2, n3});
+      const auto res = frictionElement(*m_, state_, s, p.x, p.t, p.dt, wantJ,
+                                       start ? committed.state : kernels::SliderStick::Stick);
+      floor_ = std::max(floor_, kernels::frictionRoundoffFloor(x1, x2, x3, L, res.s));
       r = res.force;
       J = p.cx * res.stiffness;
       if (wantJ) addSlackPartTangents(res, mat, L, p.cx, J);

@@ -63,6 +63,7 @@ class SlidingGroupTerm final : public Term {
   }
   // Sliders with friction: the converged split at x is found (docs/friction.md) and committed.
   void commit(const Eigen::VectorXd& x) override;
+  double displacementFloor() const override { return floor_; }
   void revert() override { state_.revert(); }
   const SlidingGroupState& state() const { return state_; }
   SlidingGroupState& state() { return state_; }
@@ -79,6 +80,8 @@ class SlidingGroupTerm final : public Term {
   SlidingGroupState state_;
   SliderSearch search_;
   double lastT_ = 0.0, lastDt_ = 0.0;  // of the last assembly: the step being solved
+  Eigen::VectorXd committedX_;         // positions of the last commit (friction: FR15)
+  double floor_ = 0.0;                 // round-off floor of the last assembly (FR16)
 };
 
 class PointMassTerm final : public Term {

@@ -182,3 +182,33 @@ TEST(SliderFriction, FrictionlessOneWayReproducesTheUniformStrainElement) {
   EXPECT_LT(eF, 1e-12);
   EXPECT_LT(eK, 1e-9);
 }
+
+TEST(SliderFriction, StartOfStepTangentIsTheSlipTangentOnTheLimit) {
+  // FR15: at the split a slip step converged to (the stick predictor on the slip limit), the
+  // start-of-step call returns the stick force with the tangent of the slip continuing: equal to
+  // the slip tangent of a predictor a hair behind the limit (which slips by that hair).
+  ElementGeometry su;
+  const double sUni = uniformSplit(su);
+  SliderFrictionLaw law;
+  law.muStatic = law.muDynamic = 0.2;
+  const double dt = 0.05;
+  const auto slip = evalAt(su.pack(), su, 0.8 * sUni, law, dt, false, true);
+  ASSERT_EQ(slip.state, SliderStick::SlipPlus);
+  const auto x = su.pack();
+  const auto start =
+      frictionSlidingForce(x.segment<3>(0), x.segment<3>(3), x.segment<3>(6), su.L, slip.s, rope(),
+                           law, dt, false, true, SliderStick::SlipPlus);
+  const auto behind = evalAt(x, su, slip.s - 1e-9 * su.L, law, dt, false, true);
+  const auto stick = evalAt(x, su, slip.s, law, dt, false, true);
+  const double forceDiff = (start.force - stick.force).norm() / stick.force.norm();
+  const double tangentDiff = relativeError(start.stiffness, behind.stiffness);
+  const double stickDiff = relativeError(stick.stiffness, behind.stiffness);
+  std::printf(
+      "start-of-step tangent on the slip limit (state %d): force vs stick %.1e, tangent vs slip "
+      "tangent %.2e (the stick tangent differs by %.2e)\n",
+      static_cast<int>(stick.state), forceDiff, tangentDiff, stickDiff);
+  EXPECT_EQ(start.state, stick.state);
+  EXPECT_EQ(forceDiff, 0.0);
+  EXPECT_LT(tangentDiff, 1e-6);
+  EXPECT_GT(stickDiff, 1e-2);
+}
