@@ -50,6 +50,13 @@ class Term {
   virtual double passageFraction(const Eigen::VectorXd& /*x*/, const Eigen::VectorXd& /*dx*/) {
     return 1.0;
   }
+  // Events located along the step's whole motion (a cable's slack / taut switch): given the
+  // positions the step started from and the motion from there to a trial end, the fraction of
+  // the step at which the motion passes one (1 if none); the step is then cut to end there.
+  virtual double stepEventFraction(const Eigen::VectorXd& /*start*/,
+                                   const Eigen::VectorXd& /*motion*/) {
+    return 1.0;
+  }
   // Called on a converged iterate; may move x by a negligible amount onto a kink reached at the
   // end of the step, and schedule the discrete change there for commit(). Returns whether it
   // moved x.
@@ -57,6 +64,12 @@ class Term {
   // Static equilibrium: the update reached a kink (the fraction passageFraction gave); make the
   // discrete change now. Returns whether anything changed.
   virtual bool crossNow(Eigen::VectorXd& /*x*/) { return false; }
+  // Dynamics: kinks passed by prescribed motion, whose time needs no locating (a driven slider
+  // passing a node), crossed by the motion from positions `from` to `to`: the discrete change
+  // is noted for the next updateState, and `to` may be adjusted to the new state (a passed node
+  // put along the cable). Returns how many changes were noted.
+  virtual bool drivesKinks() const { return false; }
+  virtual int crossDriven(const Eigen::VectorXd& /*from*/, Eigen::VectorXd& /*to*/) { return 0; }
   // Round-off floor of a Newton update at the last assembly (length units): a very short, stiff
   // part (a slider with friction next to a node, docs/friction.md FR16) computes its force from
   // positions that carry round-off, so no update resolves positions finer than this. 0: none.

@@ -24,6 +24,15 @@ Mat6 cableMass(double L, const LineMaterial& mat, MassKind kind);
 // F5: constant gravity load (rho A0 L / 2) g on each node.
 Vec6 cableGravity(double L, const LineMaterial& mat, const Vec3& g);
 
+// Slack / taut switch of a tension-only cable (the kink of its energy at zero strain, where the
+// stiffness jumps from E A / L to nothing). Given the relative position d = x_b - x_a at the
+// step's start and its change delta over the step, returns the fraction of delta at which
+// |d + f delta| = L, or 1 if the motion does not cross it. A start or an end within
+// kSlackTautBand L of the switch is on it, not across it (the step that brought the cable there
+// was cut to end on it).
+inline constexpr double kSlackTautBand = 1e-6;
+double slackTautCrossing(const Vec3& d, const Vec3& delta, double L);
+
 // ---- active sliding element -------------------------------------------------------------------
 // Node order (1, 2, 3): cable ends 1 and 2, slider 3. F6-F9.
 PolylineResult<3> slidingForce(const Vec3& x1, const Vec3& x2, const Vec3& x3, double L,

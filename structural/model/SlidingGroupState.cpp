@@ -19,6 +19,7 @@ SlidingGroupState::SlidingGroupState(const SlidingGroupDef& def)
       committed_(def.initialActive),
       pendingHandover_(def.sliders.size(), 0),
       handoverAtCommit_(def.sliders.size(), 0),
+      driven_(def.sliders.size(), 0),
       splitStart_(def.sliders.size(), 0.0),
       frTrial_(def.sliders.size()),
       frCommitted_(def.sliders.size()) {
@@ -83,7 +84,6 @@ int SlidingGroupState::search(const Eigen::VectorXd& x, SliderSearch kind) {
     }
     pendingHandover_[s] = 0;
     if (best != trial_[s]) {
-      handoversTrial_ += std::abs(best - trial_[s]);
       trial_[s] = best;
       ++changed;
       // A new element starts with the uniform split (both parts at one strain).
@@ -96,6 +96,7 @@ int SlidingGroupState::search(const Eigen::VectorXd& x, SliderSearch kind) {
 double SlidingGroupState::passageFraction(const Eigen::VectorXd& x, const Eigen::VectorXd& dx) {
   double fraction = 1.0;
   for (size_t s = 0; s < trial_.size(); ++s) {
+    if (driven_[s]) continue;  // crossed within the solve (crossDriven)
     const int k = trial_[s];
     const int n1 = def_->chain[k], n2 = def_->chain[k + 1], n3 = def_->sliders[s];
     for (int end = 0; end < 2; ++end) {
@@ -172,19 +173,73 @@ bool SlidingGroupState::arriveAtNodes(const Model& model, Eigen::VectorXd& x, do
   return changed;
 }
 
+bool SlidingGroupState::hasDriven() const {
+  return std::any_of(driven_.begin(), driven_.end(), [](char d) { return d != 0; });
+}
+
+int SlidingGroupState::crossDriven(const Model& model, const Eigen::VectorXd& from,
+                                   Eigen::VectorXd& to, double separationFraction) {
+  int changed = 0;
+  const int nEl = def_->numElements();
+  for (size_t s = 0; s < trial_.size(); ++s) {
+    if (!driven_[s]) continue;
+    auto takenByOther = [&](int k) {
+      for (size_t o = 0; o < trial_.size(); ++o)
+        if (o != s && trial_[o] == k) return true;
+      return false;
+    };
+    const int n3 = def_->sliders[s];
+    const int start = trial_[s] + pendingHandover_[s];
+    int k = start, came = 0;
+    double lastDistance = std::numeric_limits<double>::infinity();
+    for (bool moved = true; moved;) {
+      moved = false;
+      for (int end = 0; end < 2 && !moved; ++end) {
+        const int dir = end == 0 ? -1 : +1, next = k + dir;
+        if (dir == -came || next < 0 || next >= nEl || takenByOther(next)) continue;
+        const int ni = def_->chain[k + end], far = def_->chain[k + 1 - end];
+        const Vec3 d0 = nodePos(from, n3) - nodePos(from, ni);
+        const Vec3 d1 = nodePos(to, n3) - nodePos(to, ni);
+        // The part turns round (slider and node met on the way), or the slider leaves the node
+        // it sat on away from the element's other node.
+        const bool passes = d0.squaredNorm() > 0.0
+                                ? d0.dot(d1) < 0.0
+                                : d1.dot(nodePos(from, far) - nodePos(from, ni)) < 0.0;
+        if (!passes) continue;
+        bool nodeFree = true;
+        for (int c = 0; c < 3; ++c) nodeFree &= !model.constraint[ni].fixed[c];
+        if (nodeFree) {
+          const double dist = std::min(std::max(d1.norm(), separationFraction * def_->refLength[k]),
+                                       0.5 * lastDistance);
+          const Vec3 back = (nodePos(to, far) - nodePos(to, n3)).normalized();
+          to.segment<3>(3 * ni) = nodePos(to, n3) + dist * back;
+          lastDistance = dist;
+        }
+        k = next, came = dir, moved = true;
+      }
+    }
+    if (k != start) {
+      pendingHandover_[s] = k - trial_[s];
+      ++changed;
+    }
+  }
+  return changed;
+}
+
 void SlidingGroupState::commit(const Eigen::VectorXd& x) {
   if (!splitsInitialised_) initSplits(x);
   for (size_t s = 0; s < trial_.size(); ++s) {
     const int k = trial_[s] + handoverAtCommit_[s];
     if (hasFriction(static_cast<int>(s))) splitStart_[s] = frTrial_[s].s;
     if (handoverAtCommit_[s] != 0 && k >= 0 && k < def_->numElements()) {
-      handoversTrial_ += 1;
       trial_[s] = k;
       splitStart_[s] = frTrial_[s].s = uniformSplit(static_cast<int>(s), k, x);
     }
     handoverAtCommit_[s] = 0;
   }
   frCommitted_ = frTrial_;
+  // Nodes passed by the committed step (not the trial changes a Newton solve made and undid).
+  for (size_t s = 0; s < trial_.size(); ++s) handovers_ += std::abs(trial_[s] - committed_[s]);
   committed_ = trial_;
   for (int end = 0; end < 2; ++end) {
     committedDistance_[end].resize(trial_.size());
@@ -193,7 +248,6 @@ void SlidingGroupState::commit(const Eigen::VectorXd& x) {
           (nodePos(x, def_->sliders[s]) - nodePos(x, def_->chain[trial_[s] + end])).norm();
   }
   std::fill(pendingHandover_.begin(), pendingHandover_.end(), 0);
-  handoversCommitted_ = handoversTrial_;
 }
 
 void SlidingGroupState::restore(const std::vector<int>& active, long handovers,
@@ -203,7 +257,7 @@ void SlidingGroupState::restore(const std::vector<int>& active, long handovers,
   for (size_t s = 0; s < active.size(); ++s) setActiveElement(static_cast<int>(s), active[s]);
   initSplits(x);  // friction splits: uniform, unless restoreSplits() follows
   std::fill(handoverAtCommit_.begin(), handoverAtCommit_.end(), 0);
-  handoversTrial_ = handovers;
+  handovers_ = handovers;
   commit(x);
 }
 
@@ -213,7 +267,6 @@ void SlidingGroupState::revert() {
   for (size_t s = 0; s < trial_.size(); ++s) splitStart_[s] = frCommitted_[s].s;
   std::fill(pendingHandover_.begin(), pendingHandover_.end(), 0);
   std::fill(handoverAtCommit_.begin(), handoverAtCommit_.end(), 0);
-  handoversTrial_ = handoversCommitted_;
 }
 
 double SlidingGroupState::materialCoordinate(int slider, const Eigen::VectorXd& x) const {

@@ -39,6 +39,21 @@ class SlidingGroupState {
   bool arriveAtNodes(const Model& model, Eigen::VectorXd& x, double radiusFraction,
                      double separationFraction, bool immediate = false);
 
+  // Driven sliders: all three dofs follow a moving prescribed path. Where such a slider is at
+  // any time is given, so its node passages need no locating in time: passageFraction() leaves
+  // them out, and crossDriven() hands a driven slider over as soon as a motion from positions
+  // `from` to `to` carries it past an end node of its element (the part to that node turns
+  // round): for the prescribed jump at a step's start (the predictor) and after every Newton
+  // update (which may also carry it back). A free node passed is put on the line from the slider
+  // to the far end of the element left, at its distance from the slider (at least
+  // separationFraction of the reference length), so the new short part starts along the cable.
+  // Returns how many sliders change element.
+  void setDriven(int slider, bool driven) { driven_[slider] = driven; }
+  bool driven(int slider) const { return driven_[slider] != 0; }
+  bool hasDriven() const;
+  int crossDriven(const Model& model, const Eigen::VectorXd& from, Eigen::VectorXd& to,
+                  double separationFraction);
+
   void commit(const Eigen::VectorXd& x);  // x: the converged positions
   void revert();
 
@@ -58,7 +73,7 @@ class SlidingGroupState {
   // |l - L| of element k with slider s: the F12 score.
   double lengthMismatch(int slider, int element, const Eigen::VectorXd& x) const;
 
-  long committedHandovers() const { return handoversCommitted_; }
+  long committedHandovers() const { return handovers_; }
 
   // ---- friction history (docs/friction.md) -----------------------------------------------
   // Sliders with friction, a lock or one-way flow carry the split s of their active element's
@@ -90,7 +105,8 @@ class SlidingGroupState {
   std::vector<int> pendingHandover_;   // per slider: -1 across end 1, +1 across end 2, 0 none
   std::vector<int> handoverAtCommit_;  // same, applied when the step is committed
   std::vector<double> cumulativeRef_;  // reference arc length at each chain node
-  long handoversTrial_ = 0, handoversCommitted_ = 0;
+  std::vector<char> driven_;           // per slider: follows a moving prescribed path
+  long handovers_ = 0;                 // nodes passed by committed steps
   // Friction history: the split the step starts from, per slider (reset to the uniform split
   // when the slider changes element), and the committed / converged-trial friction state.
   double uniformSplit(int slider, int element, const Eigen::VectorXd& x) const;

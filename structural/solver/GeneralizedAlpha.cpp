@@ -68,10 +68,12 @@ void GeneralizedAlpha::computeInitialAcceleration(DynamicState& s) {
 
 template <class MakePoint, class Update>
 NewtonReport GeneralizedAlpha::newton(Eigen::VectorXd& x, double tol, MakePoint&& makePoint,
-                                      Update&& onUpdate, bool crossInPlace) {
+                                      Update&& onUpdate, bool crossInPlace,
+                                      const Eigen::VectorXd* stepStart) {
   NewtonReport rep;
   const int neq = sys_->numEquations();
-  Eigen::VectorXd dxEq(neq), dx(x.size());
+  const bool driven = !crossInPlace && sys_->drivesKinks();
+  Eigen::VectorXd dxEq(neq), dx(x.size()), before, motion;
   int lastChanges = 0;
   for (int it = 0; it < newton_.maxIterations; ++it) {
     lastChanges = sys_->updateState(x);
@@ -112,16 +114,29 @@ NewtonReport GeneralizedAlpha::newton(Eigen::VectorXd& x, double tol, MakePoint&
       onUpdate();
       continue;
     }
-    if (passage < 1.0) {
+    // Slack / taut switches: along the whole motion from the step's start to this trial end
+    // (the fraction of the step where it passes one, positions being linear in time to first
+    // order).
+    double stepEvent = 1.0;
+    if (stepStart) {
+      motion = x + dx - *stepStart;
+      stepEvent = sys_->stepEventFraction(*stepStart, motion);
+    }
+    if (passage < 1.0 || stepEvent < 1.0) {
       // The first update is the linearised step: its passage fraction estimates the event time.
-      rep.failure = "a slider reaches a node within the step";
-      rep.eventFraction = it == 0 ? std::max(passage, 1e-12) : 0.5;
+      rep.failure = "an event (a slider at a node, a cable slack / taut) within the step";
+      const double sliders = passage < 1.0 ? (it == 0 ? passage : 0.5) : 1.0;
+      rep.eventFraction = std::max(std::min(sliders, stepEvent), 1e-12);
       return rep;
     }
+    if (driven) before = x;
     x += dx;
     onUpdate();
+    // A driven slider carried past a node by this update is handed over there.
+    const bool crossed = driven && sys_->crossDriven(before, x) > 0;
+    if (crossed) onUpdate();
     // Not below what round-off lets the assembled forces resolve (a stiff short part, FR16).
-    if (lastChanges == 0 && un <= std::max(tol, sys_->displacementFloor())) {
+    if (lastChanges == 0 && !crossed && un <= std::max(tol, sys_->displacementFloor())) {
       if (sys_->onConverged(x)) onUpdate();  // moved by a negligible amount onto an event
       rep.converged = true;
       return rep;
@@ -184,12 +199,15 @@ NewtonReport GeneralizedAlpha::step(DynamicState& s, double dt) {
                       dt};
   };
   newmark();
+  // The prescribed motion's jump may carry a driven slider past nodes: it starts Newton in the
+  // element it has reached.
+  if (sys_->drivesKinks() && sys_->crossDriven(old.x, n.x) > 0) newmark();
   double tol = newton_.tolDisplacement;
   if (newton_.nominalStep > 0.0 && dt < newton_.nominalStep) {
     const double ratio = dt / newton_.nominalStep;
     tol = std::max(tol * ratio * ratio, 100.0 * 2.22e-16 * newton_.lengthScale);
   }
-  NewtonReport rep = newton(n.x, tol, makePoint, newmark);
+  NewtonReport rep = newton(n.x, tol, makePoint, newmark, false, &old.x);
   if (rep.converged) {
     sys_->commit(n.x);
     s = n;

@@ -77,9 +77,12 @@ class GeneralizedAlpha {
 
  private:
   // crossInPlace: a passage is crossed within the solve (static) instead of cutting the step.
+  // In dynamics driven sliders are handed over along the way (StructuralSystem::crossDriven).
+  // stepStart: the positions the step started from, for events located along the step's whole
+  // motion (StructuralSystem::stepEventFraction); nullptr: none.
   template <class MakePoint, class Update>
   NewtonReport newton(Eigen::VectorXd& x, double tol, MakePoint&& makePoint, Update&& onUpdate,
-                      bool crossInPlace = false);
+                      bool crossInPlace = false, const Eigen::VectorXd* stepStart = nullptr);
 
   StructuralSystem* sys_;
   GeneralizedAlphaParams p_;

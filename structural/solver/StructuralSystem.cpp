@@ -93,10 +93,27 @@ double StructuralSystem::passageFraction(const Eigen::VectorXd& x, const Eigen::
   return f;
 }
 
+double StructuralSystem::stepEventFraction(const Eigen::VectorXd& start,
+                                           const Eigen::VectorXd& motion) {
+  double f = 1.0;
+  for (const auto& t : terms_) f = std::min(f, t->stepEventFraction(start, motion));
+  return f;
+}
+
 bool StructuralSystem::crossNow(Eigen::VectorXd& x) {
   bool changed = false;
   for (const auto& t : terms_) changed |= t->crossNow(x);
   return changed;
+}
+
+bool StructuralSystem::drivesKinks() const {
+  return std::any_of(terms_.begin(), terms_.end(), [](const auto& t) { return t->drivesKinks(); });
+}
+
+int StructuralSystem::crossDriven(const Eigen::VectorXd& from, Eigen::VectorXd& to) {
+  int changes = 0;
+  for (const auto& t : terms_) changes += t->crossDriven(from, to);
+  return changes;
 }
 
 double StructuralSystem::displacementFloor() const {

@@ -33,8 +33,12 @@ class StructuralSystem {
   const SparseMatrix& matrix() const { return assembler_.matrix(); }
   bool symmetric() const;
   double passageFraction(const Eigen::VectorXd& x, const Eigen::VectorXd& dx);
+  double stepEventFraction(const Eigen::VectorXd& start, const Eigen::VectorXd& motion);
   bool onConverged(Eigen::VectorXd& x);
   bool crossNow(Eigen::VectorXd& x);
+  // Kinks passed by prescribed motion (driven sliders at nodes), see Term::crossDriven.
+  bool drivesKinks() const;
+  int crossDriven(const Eigen::VectorXd& from, Eigen::VectorXd& to);
   double displacementFloor() const;  // the largest of the terms' (Term::displacementFloor)
 
   // Nodal forces over all dofs at a converged state (for output): the support reactions

@@ -99,7 +99,29 @@ void CableTerm::addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
     if (!m_->lineSets[c.set].cutBy(time_)) cableEnergy(*m_, c.a, c.b, c.L, c.material, x, v, e);
 }
 
+double CableTerm::stepEventFraction(const Eigen::VectorXd& x, const Eigen::VectorXd& dx) {
+  double fraction = 1.0;
+  for (const auto& c : m_->cables) {
+    const auto& mat = m_->materials[c.material];
+    if (!mat.tensionOnly || mat.compressionStiffnessRatio == 1.0) continue;  // no kink
+    fraction = std::min(fraction, kernels::slackTautCrossing(pos(x, c.b) - pos(x, c.a),
+                                                             pos(dx, c.b) - pos(dx, c.a), c.L));
+  }
+  return fraction;
+}
+
 // ---- SlidingGroupTerm ------------------------------------------------------------------------
+SlidingGroupTerm::SlidingGroupTerm(const Model& m, int group, SliderSearch search)
+    : m_(&m), state_(m.groups[group]), search_(search) {
+  const auto& sliders = m.groups[group].sliders;
+  for (size_t s = 0; s < sliders.size(); ++s) {
+    const auto& c = m.constraint[sliders[s]];
+    const bool moves =
+        c.velocity.squaredNorm() > 0.0 || (c.amplitude.squaredNorm() > 0.0 && c.frequency > 0.0);
+    state_.setDriven(static_cast<int>(s), c.fixed[0] && c.fixed[1] && c.fixed[2] && moves);
+  }
+}
+
 void SlidingGroupTerm::addCouplings(std::vector<std::vector<int>>& cliques) const {
   const auto& g = state_.def();
   // Any element may become active for any slider: cover slider x every chain node up front so a

@@ -20,6 +20,11 @@ class CableTerm final : public Term {
   void assemble(const EvalPoint& p, SystemAssembler& out) override;
   void addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
                  EnergyBreakdown& e) const override;
+  // Slack / taut switches are located in time like a slider at a node: a step whose motion
+  // takes a tension-only cable across zero strain is cut to end there, so no step straddles
+  // the kink of its energy (the trapezoidal rule conserves the energy of each smooth piece).
+  // Measured along the step's whole motion: Newton's later updates may take a cable across.
+  double stepEventFraction(const Eigen::VectorXd& start, const Eigen::VectorXd& motion) override;
 
  private:
   const Model* m_;
@@ -30,8 +35,7 @@ class CableTerm final : public Term {
 
 class SlidingGroupTerm final : public Term {
  public:
-  SlidingGroupTerm(const Model& m, int group, SliderSearch search)
-      : m_(&m), state_(m.groups[group]), search_(search) {}
+  SlidingGroupTerm(const Model& m, int group, SliderSearch search);
   const char* name() const override { return "sliding_group"; }
   void addCouplings(std::vector<std::vector<int>>& cliques) const override;
   int updateState(const Eigen::VectorXd& x) override { return state_.search(x, search_); }
@@ -48,6 +52,10 @@ class SlidingGroupTerm final : public Term {
   }
   bool onConverged(Eigen::VectorXd& x) override {
     return state_.arriveAtNodes(*m_, x, kernels::kArrivalFraction, kernels::kSeparationFraction);
+  }
+  bool drivesKinks() const override { return state_.hasDriven(); }
+  int crossDriven(const Eigen::VectorXd& from, Eigen::VectorXd& to) override {
+    return state_.crossDriven(*m_, from, to, kernels::kSeparationFraction);
   }
   bool crossNow(Eigen::VectorXd& x) override {
     return state_.arriveAtNodes(*m_, x, kernels::kArrivalFraction, kernels::kSeparationFraction,

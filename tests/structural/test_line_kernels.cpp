@@ -306,3 +306,34 @@ TEST(SlidingKernel, TangentMatchesFiniteDifferencesInsideTheApexRadius) {
   EXPECT_LE(worstK, 1e-6);
   EXPECT_LE(worstF, 1e-6);
 }
+
+TEST(SlackTautCrossing, FindsWhereTheLengthPassesTheReferenceLength) {
+  // Random motions across |d| = L both ways: the fraction returned lands on |d + f delta| = L;
+  // motions that stay on one side, or start or end within the band, give 1.
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const double L = 0.25;
+  double worst = 0.0;
+  int crossings = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const Vec3 d = Vec3(u(rng), u(rng), u(rng)) * 0.3, delta = Vec3(u(rng), u(rng), u(rng)) * 0.2;
+    const double f = slackTautCrossing(d, delta, L);
+    const double l0 = d.norm(), l1 = (d + delta).norm();
+    const bool crosses = (l0 < L) != (l1 < L) && std::abs(l0 - L) > kSlackTautBand * L &&
+                         std::abs(l1 - L) > kSlackTautBand * L;
+    if (!crosses) {
+      EXPECT_EQ(f, 1.0);
+      continue;
+    }
+    ++crossings;
+    ASSERT_GT(f, 0.0);
+    ASSERT_LT(f, 1.0);
+    worst = std::max(worst, std::abs((d + f * delta).norm() - L) / L);
+  }
+  std::printf("slack/taut crossing: %d crossings, |l(f) - L| / L <= %.2e\n", crossings, worst);
+  EXPECT_GT(crossings, 100);
+  EXPECT_LE(worst, 1e-12);
+  // Within the band at the start: on the switch, not across it.
+  EXPECT_EQ(slackTautCrossing(Vec3(L * (1 + 0.5 * kSlackTautBand), 0, 0), Vec3(-0.1, 0, 0), L),
+            1.0);
+}
