@@ -48,7 +48,7 @@ for t in "${TARGETS[@]}"; do
   before=$(find $B/artifacts -type f | wc -l)
   log=$B/$t.log
   # -timeout: one input taking 10 s is a hang; -rss_limit_mb: 2 GB is an out-of-memory finding.
-  ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+  ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS="suppressions=$PWD/bench/lsan.supp:print_suppressions=0" UBSAN_OPTIONS=print_stacktrace=1 \
     $B/bin/$t "$corpus" "$seeds" "${dict[@]}" -max_total_time="$SECONDS_PER_TARGET" \
     -timeout=10 -rss_limit_mb=2048 -max_len=65536 -print_final_stats=1 \
     -artifact_prefix=$B/artifacts/ >"$log" 2>&1 || true
