@@ -173,10 +173,12 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
   ProbeSet probes(m, spec.output.probes);
   r.columns = probes.columns();
 
+  // The model's fingerprint: checked against a restart file and written into every checkpoint.
+  const auto hash = modelHash(m);
   std::optional<Checkpoint> restart;
   if (!options.restartFile.empty()) {
     restart = readCheckpoint(options.restartFile);
-    if (restart->caseName != spec.name || restart->modelHash != modelHash(m) ||
+    if (restart->caseName != spec.name || restart->modelHash != hash ||
         restart->state.x.size() != 3 * m.numNodes() ||
         restart->active.size() != sys.slidingGroups().size())
       throw std::runtime_error(options.restartFile + ": a checkpoint of another case or model");
@@ -282,7 +284,7 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
       ScopedTimer timer(sys.timings().output);
       Checkpoint c;
       c.caseName = spec.name;
-      c.modelHash = modelHash(m);
+      c.modelHash = hash;
       c.state = state;
       c.dt = dt, c.eventStep = eventStep, c.successesSinceCut = successesSinceCut;
       c.linearSolverLU =
