@@ -11,6 +11,7 @@ bench/results/output_cost.csv and prints a table.
 import argparse, csv, json, os, statistics, subprocess, tempfile, time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+RESULTS = os.environ.get("CHUTE_BENCH_RESULTS", os.path.join(ROOT, "bench", "results"))
 CHUTE = os.path.join(ROOT, "build", "bin", "chute")
 
 # (case, settings that make every step an output time)
@@ -60,8 +61,8 @@ def main():
             "process_slowdown_pct": round(100 * (proc - base_proc) / base_proc, 1),
         })
         print(rows[-1], flush=True)
-    os.makedirs(os.path.join(ROOT, "bench", "results"), exist_ok=True)
-    path = os.path.join(ROOT, "bench", "results", "output_cost.csv")
+    os.makedirs(RESULTS, exist_ok=True)
+    path = os.path.join(RESULTS, "output_cost.csv")
     with open(path, "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
         w.writeheader()

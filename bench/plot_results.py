@@ -13,7 +13,7 @@ Prints the fitted exponents and writes them to bench/results/scaling_fit.csv.
 import csv, math, os, sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-RESULTS = os.path.join(ROOT, "bench", "results")
+RESULTS = os.environ.get("CHUTE_BENCH_RESULTS", os.path.join(ROOT, "bench", "results"))
 
 
 def fit_exponent(xs, ys):
