@@ -146,7 +146,12 @@ void VtuSeries::writerLoop() {
     const auto t0 = std::chrono::steady_clock::now();
     std::exception_ptr error;
     try {
-      if (!writerError_) writeNow(frame, index);  // after an error, frames are dropped
+      if (!writerError_) {  // after an error, frames are dropped
+        pendingEntries_ += writeFile(frame, index);
+        // The collection is updated in one write once the queue is empty (or every 32 frames):
+        // valid at every moment, and one pwrite instead of one per frame when frames queue up.
+        if (++pendingCount_ >= 32 || queueLooksEmpty()) appendPending();
+      }
     } catch (...) {
       error = std::current_exception();
     }
@@ -166,11 +171,18 @@ void VtuSeries::flush() {
   rethrowWriterError();
 }
 
-void VtuSeries::appendEntry(double t, const std::string& file) {
-  // One write: the new entry followed by the closing tags, at the old closing tags.
-  const std::string entry = entryLine(t, file);
-  writeAllAt(fd_, entry + kFooter, footerAt_, pvdPath());
-  footerAt_ += static_cast<long>(entry.size());
+bool VtuSeries::queueLooksEmpty() const {
+  std::lock_guard lock(mutex_);
+  return queue_.empty();
+}
+
+void VtuSeries::appendPending() {
+  // One write: the new entries followed by the closing tags, at the old closing tags.
+  if (pendingEntries_.empty()) return;
+  writeAllAt(fd_, pendingEntries_ + kFooter, footerAt_, pvdPath());
+  footerAt_ += static_cast<long>(pendingEntries_.size());
+  pendingEntries_.clear();
+  pendingCount_ = 0;
 }
 
 namespace {
@@ -185,7 +197,8 @@ std::string frameText(const SceneFrame& f) {
 
 void VtuSeries::write(SceneFrame f) {
   if (writing_ == Writing::InCaller) {
-    writeNow(f, frames_);
+    pendingEntries_ = writeFile(f, frames_);
+    appendPending();
     ++frames_;
     return;
   }
@@ -201,7 +214,7 @@ void VtuSeries::write(SceneFrame f) {
   queued_.notify_one();
 }
 
-void VtuSeries::writeNow(const SceneFrame& f, int index) {
+std::string VtuSeries::writeFile(const SceneFrame& f, int index) {
   const std::string file = fmt::format("{}_{:06d}.vtu", name_, index);
   const std::string path = dir_ + "/" + file;
   const std::string text = frameText(f);
@@ -214,7 +227,7 @@ void VtuSeries::writeNow(const SceneFrame& f, int index) {
     throw;
   }
   ::close(fd);
-  appendEntry(f.t, file);
+  return entryLine(f.t, file);
 }
 
 std::vector<PvdEntry> readPvd(const std::string& path) {

@@ -49,16 +49,19 @@ class VtuSeries {
 
  private:
   void start(const std::vector<PvdEntry>& kept);
-  void writeNow(const SceneFrame& f, int index);
-  void appendEntry(double t, const std::string& file);
+  std::string writeFile(const SceneFrame& f, int index);  // returns its collection entry
+  void appendPending();  // the entries of files written, into the .pvd
+  bool queueLooksEmpty() const;
   void startThread();
   void writerLoop();
   void rethrowWriterError();
   std::string dir_, name_;
   Writing writing_;
   int fd_ = -1;
-  long footerAt_ = 0;  // offset of the closing tags in the .pvd
-  int frames_ = 0;     // given to write()
+  long footerAt_ = 0;           // offset of the closing tags in the .pvd
+  std::string pendingEntries_;  // of files written, not yet in the .pvd (writer's own)
+  int pendingCount_ = 0;
+  int frames_ = 0;  // given to write()
 
   // Background writing: frames queued in order; the writer takes them one at a time.
   mutable std::mutex mutex_;
