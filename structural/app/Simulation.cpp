@@ -429,6 +429,7 @@ void writeSummary(const std::string& path, const CaseSpec& spec, const RunResult
                {"membrane_kernels", w.membrane},
                {"pressure_kernels", w.pressure},
                {"drag_kernels", w.drag},
+               {"face_drag_kernels", w.faceDrag},
                {"slider_searches", w.sliderSearch},
                {"energy_evaluations", w.energy},
                {"scene_frames", w.sceneFrames},
