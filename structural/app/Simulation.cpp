@@ -167,6 +167,7 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
   ns.nominalStep = sv.dt;
   ns.lengthScale = modelSize(m);
   ns.verbose = options.verboseNewton;
+  ns.slackTautEvents = sv.slackTautEvents;
   GeneralizedAlpha integrator(
       sys, sv.rhoInf, sv.integrator == "bossak" ? AlphaScheme::Bossak : AlphaScheme::ChungHulbert,
       ns);
@@ -442,6 +443,7 @@ void writeSummary(const std::string& path, const CaseSpec& spec, const RunResult
       {"dt", spec.solver.dt},
       {"rho_inf", spec.solver.rhoInf},
       {"integrator", spec.solver.integrator},
+      {"slack_events", spec.solver.slackTautEvents},
       {"mass", spec.model.massKind == kernels::MassKind::Lumped ? "lumped" : "consistent"},
       {"search", spec.solver.search == SliderSearch::NearestLength ? "nearest_length"
                                                                    : "material_coordinate"}};

@@ -842,6 +842,7 @@ CaseSpec readCaseFromString(const std::string& text, const std::string& file,
                     : SliderSearch::MaterialCoordinate;
     sv.maxNewton = static_cast<int>(s.integer("newton_max_iterations", 25, 1, 1000));
     if (s.has("newton_tolerance")) sv.tolDisplacement = s.positive("newton_tolerance");
+    sv.slackTautEvents = s.boolean("slack_events", true);
     s.finish();
   }
   if (top.has("output")) {
