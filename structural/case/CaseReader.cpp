@@ -843,8 +843,6 @@ CaseSpec readCaseFromString(const std::string& text, const std::string& file,
     sv.maxNewton = static_cast<int>(s.integer("newton_max_iterations", 25, 1, 1000));
     if (s.has("newton_tolerance")) sv.tolDisplacement = s.positive("newton_tolerance");
     sv.slackTautEvents = s.boolean("slack_events", true);
-    m.sliderArrivalFraction = s.positive("slider_arrival", kernels::kArrivalFraction);
-    if (m.sliderArrivalFraction > 1e-2) s.fail("slider_arrival", "must be in (0, 1e-2]");
     s.finish();
   }
   if (top.has("output")) {

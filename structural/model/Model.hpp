@@ -135,9 +135,6 @@ struct Model {
 
   Vec3 gravity = Vec3::Zero();
   double massDamping = 0.0;  // Rayleigh mass-proportional damping C = alpha M (membranes)
-  // A frictionless slider within this fraction of its element's reference length of the node it
-  // approaches has arrived there and is handed over (solver.slider_arrival).
-  double sliderArrivalFraction = kernels::kArrivalFraction;
   kernels::MassKind massKind = kernels::MassKind::Lumped;
 
   int numNodes() const { return static_cast<int>(X.size()); }

@@ -112,14 +112,8 @@ double SlidingGroupState::passageFraction(const Eigen::VectorXd& x, const Eigen:
       const double dDelta = d.dot(delta);
       // A slider with friction (FR16): the event is its entry into the arrival zone of the node,
       // the step ending where it would be half the zone's radius from the node.
-      // A frictionless slider with a wide arrival zone (solver.slider_arrival) does the same:
-      // aiming at the node itself, each cut step ends short of it by a fixed share of the
-      // remaining distance and the approach takes dozens of steps (the C-9's grommets).
-      const bool friction = hasFriction(static_cast<int>(s));
-      const bool wideZone = !friction && arrivalFraction_ > kernels::kArrivalFraction;
-      const double zone =
-          (friction ? kernels::kFrictionArrivalFraction : arrivalFraction_) * def_->refLength[k];
-      if ((friction || wideZone) && d.norm() > zone) {
+      const double zone = kernels::kFrictionArrivalFraction * def_->refLength[k];
+      if (hasFriction(static_cast<int>(s)) && d.norm() > zone) {
         const double aim = 0.5 * zone, dd = delta.squaredNorm();
         const double disc = dDelta * dDelta - dd * (d.squaredNorm() - aim * aim);
         if (dd > 0.0 && disc >= 0.0) {  // |d + f delta| = aim at f = (-d.delta -+ sqrt) / dd

@@ -27,9 +27,6 @@ class SlidingGroupState {
   // A slider exactly on a node that the update moves out of its element is handed over to the
   // neighbour there at the next search(): both elements describe the same configuration then.
   double passageFraction(const Eigen::VectorXd& x, const Eigen::VectorXd& dx);
-  // Arrival zone of frictionless sliders (fraction of the element's reference length); above
-  // kernels::kArrivalFraction the step is cut to end inside it (as with friction, FR16).
-  void setArrivalFraction(double f) { arrivalFraction_ = f; }
   // At a converged state: a slider that has reached an end node of its element (within
   // radiusFraction of its reference length) while approaching it during the step is handed over
   // to the neighbour there when the step is committed, and node and slider are placed
@@ -103,7 +100,6 @@ class SlidingGroupState {
 
  private:
   const SlidingGroupDef* def_;
-  double arrivalFraction_ = kernels::kArrivalFraction;
   std::vector<int> trial_, committed_;
   std::vector<double> committedDistance_[2];  // slider to end node 1 / 2 at the step start
   std::vector<int> pendingHandover_;   // per slider: -1 across end 1, +1 across end 2, 0 none

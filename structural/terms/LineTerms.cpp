@@ -113,7 +113,6 @@ double CableTerm::stepEventFraction(const Eigen::VectorXd& x, const Eigen::Vecto
 // ---- SlidingGroupTerm ------------------------------------------------------------------------
 SlidingGroupTerm::SlidingGroupTerm(const Model& m, int group, SliderSearch search)
     : m_(&m), state_(m.groups[group]), search_(search) {
-  state_.setArrivalFraction(m.sliderArrivalFraction);
   const auto& sliders = m.groups[group].sliders;
   for (size_t s = 0; s < sliders.size(); ++s) {
     const auto& c = m.constraint[sliders[s]];

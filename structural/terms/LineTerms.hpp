@@ -51,14 +51,14 @@ class SlidingGroupTerm final : public Term {
     return state_.passageFraction(x, dx);
   }
   bool onConverged(Eigen::VectorXd& x) override {
-    return state_.arriveAtNodes(*m_, x, m_->sliderArrivalFraction, kernels::kSeparationFraction);
+    return state_.arriveAtNodes(*m_, x, kernels::kArrivalFraction, kernels::kSeparationFraction);
   }
   bool drivesKinks() const override { return state_.hasDriven(); }
   int crossDriven(const Eigen::VectorXd& from, Eigen::VectorXd& to) override {
     return state_.crossDriven(*m_, from, to, kernels::kSeparationFraction);
   }
   bool crossNow(Eigen::VectorXd& x) override {
-    return state_.arriveAtNodes(*m_, x, m_->sliderArrivalFraction, kernels::kSeparationFraction,
+    return state_.arriveAtNodes(*m_, x, kernels::kArrivalFraction, kernels::kSeparationFraction,
                                 true);
   }
   // Sliders with friction: the converged split at x is found (docs/friction.md) and committed.
