@@ -7,6 +7,7 @@ dt sweep around the shipped step. Writes bench/results/case_timings.csv and prin
 import argparse, csv, json, os, statistics, subprocess, tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+RESULTS = os.environ.get("CHUTE_BENCH_RESULTS", os.path.join(ROOT, "bench", "results"))
 CHUTE = os.path.join(ROOT, "build", "bin", "chute")
 
 
@@ -45,8 +46,8 @@ def main():
                   f"{r['status']:9s} wall {wall*1e3:8.1f} ms  steps {r['steps']:6d}  "
                   f"Newton/step {r['newton_per_step']:.2f}  events {r['event_retries']:4d}  "
                   f"error {100*r['relative_max_error']:.4f} %", flush=True)
-    os.makedirs(os.path.join(ROOT, "bench", "results"), exist_ok=True)
-    with open(os.path.join(ROOT, "bench", "results", "case_timings.csv"), "w", newline="") as f:
+    os.makedirs(RESULTS, exist_ok=True)
+    with open(os.path.join(RESULTS, "case_timings.csv"), "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
         w.writeheader()
         w.writerows(rows)

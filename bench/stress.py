@@ -6,12 +6,14 @@ test_stress). Energy drift is max |E(t) - E(0)| relative to the run's largest ki
   python3 bench/stress.py
 """
 import csv
+import os
 import json
 import pathlib
 import subprocess
 import tempfile
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
+RESULTS = os.environ.get("CHUTE_BENCH_RESULTS", os.path.join(ROOT, "bench", "results"))
 CHUTE = ROOT / 'build' / 'bin' / 'chute'
 RHO1 = ['solver.rho_inf=1']
 
@@ -69,7 +71,7 @@ def main():
                        reason=j.get('reason', ''))
             rows.append(row)
             print(' '.join(f'{k}={v}' for k, v in row.items() if k != 'reason'), row['reason'])
-    path = ROOT / 'bench' / 'results' / 'stress.csv'
+    path = pathlib.Path(RESULTS) / 'stress.csv'
     path.parent.mkdir(exist_ok=True)
     with path.open('w', newline='') as f:
         w = csv.DictWriter(f, fieldnames=list(rows[0]))

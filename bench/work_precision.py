@@ -15,7 +15,7 @@ import argparse, csv, json, math, os, statistics, subprocess, tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 CHUTE = os.path.join(ROOT, "build", "bin", "chute")
-RESULTS = os.path.join(ROOT, "bench", "results")
+RESULTS = os.environ.get("CHUTE_BENCH_RESULTS", os.path.join(ROOT, "bench", "results"))
 CASES = ["pulley", "bead_1", "bead_5"]
 DTS = [2e-4, 5e-4, 1e-3, 2e-3, 5e-3, 1e-2, 2e-2, 5e-2]
 RHOS = [1.0, 0.9, 0.6]

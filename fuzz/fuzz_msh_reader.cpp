@@ -10,7 +10,7 @@
 #include <string>
 
 #include "GmshMesh.hpp"
-#include "GmshSession.hpp"
+#include "MeshError.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   static const std::string file = "/tmp/chute_fuzz_msh_" + std::to_string(getpid()) + ".msh";

@@ -45,7 +45,15 @@ std::vector<std::size_t> orderedChain(const MeshGroup& g, std::size_t first = 0)
 
 // Reads a mesh file: .msh (any version gmsh reads), or a .geo script that is meshed in the
 // highest dimension of its entities. Throws MeshError naming the file.
+// gmsh (about 90 shared libraries, ~0.2 s to load and relocate) is loaded only here, on first
+// use: a program that links chute_mesh (gmsh) reads in-process; one that links only the mesh
+// data (the `chute` command, libchute_coupling.so) loads the libchute_gmsh.so plugin.
 GmshMesh readMesh(const std::string& file);
+
+// The reader of a program that links gmsh in (registered by GmshSession.cpp).
+using MeshReaderFn = GmshMesh (*)(const std::string&);
+void setInProcessMeshReader(MeshReaderFn reader);
+GmshMesh readMeshWithGmsh(const std::string& file);  // chute_mesh (gmsh) only
 
 // The mesh of gmsh's current model (inside a GmshScope).
 GmshMesh currentMesh();

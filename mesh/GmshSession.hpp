@@ -6,13 +6,9 @@
 #include <stdexcept>
 #include <string>
 
-namespace chute::mesh {
+#include "MeshError.hpp"
 
-// A gmsh failure (bad file, bad geometry): the message is gmsh's last error.
-class MeshError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
+namespace chute::mesh {
 
 class GmshScope {
  public:

@@ -3,27 +3,18 @@
 #include <fcntl.h>
 #include <fmt/core.h>
 #include <unistd.h>
-#include <vtkCellArray.h>
-#include <vtkCellData.h>
-#include <vtkDoubleArray.h>
-#include <vtkFieldData.h>
-#include <vtkIdTypeArray.h>
-#include <vtkIntArray.h>
 #include <vtkNew.h>
-#include <vtkPointData.h>
-#include <vtkPoints.h>
-#include <vtkSmartPointer.h>
-#include <vtkStringArray.h>
-#include <vtkUnsignedCharArray.h>
-#include <vtkUnstructuredGrid.h>
 #include <vtkXMLDataElement.h>
 #include <vtkXMLDataParser.h>
-#include <vtkXMLUnstructuredGridWriter.h>
 
 #include <cerrno>
+#include <chrono>
 #include <cstring>
 #include <filesystem>
 #include <stdexcept>
+
+#include "VtuRawFrame.hpp"
+#include "VtuVtkFrame.hpp"
 
 namespace chute {
 
@@ -32,7 +23,8 @@ constexpr const char* kHeader =
     "<?xml version=\"1.0\"?>\n"
     "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
     "  <Collection>\n";
-constexpr size_t kCompressAbove = 64 * 1024;  // bytes of array data in a frame
+constexpr size_t kCompressAbove = 64 * 1024;    // bytes of array data in a frame
+constexpr size_t kMaxQueuedBytes = 256u << 20;  // frames waiting for the background writer
 constexpr const char* kFooter = "  </Collection>\n</VTKFile>\n";
 
 std::string entryLine(double t, const std::string& file) {
@@ -53,33 +45,17 @@ void writeAllAt(int fd, const std::string& text, long offset, const std::string&
   }
 }
 
-vtkSmartPointer<vtkDataArray> toVtk(const FieldArray& a) {
-  vtkSmartPointer<vtkDataArray> arr;
-  if (a.integer)
-    arr = vtkSmartPointer<vtkIntArray>::New();
-  else
-    arr = vtkSmartPointer<vtkDoubleArray>::New();
-  arr->SetName(a.name.c_str());
-  arr->SetNumberOfComponents(a.components);
-  const vtkIdType n = static_cast<vtkIdType>(a.values.size()) / a.components;
-  arr->SetNumberOfTuples(n);
-  if (a.integer) {
-    auto* ia = static_cast<vtkIntArray*>(arr.Get());
-    for (size_t i = 0; i < a.values.size(); ++i) ia->SetValue(i, static_cast<int>(a.values[i]));
-  } else {
-    auto* da = static_cast<vtkDoubleArray*>(arr.Get());
-    std::copy(a.values.begin(), a.values.end(), da->GetPointer(0));
-  }
-  return arr;
+size_t frameBytes(const SceneFrame& f) {
+  size_t n = f.points.size() * sizeof(double) + f.connectivity.size() * sizeof(int);
+  for (const auto& a : f.pointData) n += a.values.size() * sizeof(double);
+  for (const auto& a : f.cellData) n += a.values.size() * sizeof(double);
+  return n;
 }
+
 }  // namespace
 
-struct VtuSeries::Vtk {
-  vtkNew<vtkXMLUnstructuredGridWriter> writer;
-};
-
-VtuSeries::VtuSeries(std::string dir, std::string name)
-    : dir_(std::move(dir)), name_(std::move(name)), vtk_(std::make_unique<Vtk>()) {
+VtuSeries::VtuSeries(std::string dir, std::string name, Writing writing)
+    : dir_(std::move(dir)), name_(std::move(name)), writing_(writing) {
   std::filesystem::create_directories(dir_);
   // Frames of an earlier run of this case in this directory go first: they would be stale, and
   // writing over them costs more than writing new files (ext4 flushes a file truncated on open).
@@ -90,10 +66,11 @@ VtuSeries::VtuSeries(std::string dir, std::string name)
       std::filesystem::remove(e.path());
   }
   start({});
+  startThread();
 }
 
-VtuSeries::VtuSeries(std::string dir, std::string name, double resumeAfter)
-    : dir_(std::move(dir)), name_(std::move(name)), vtk_(std::make_unique<Vtk>()) {
+VtuSeries::VtuSeries(std::string dir, std::string name, double resumeAfter, Writing writing)
+    : dir_(std::move(dir)), name_(std::move(name)), writing_(writing) {
   std::filesystem::create_directories(dir_);
   std::vector<PvdEntry> kept;
   if (std::filesystem::exists(pvdPath())) {
@@ -106,6 +83,7 @@ VtuSeries::VtuSeries(std::string dir, std::string name, double resumeAfter)
   }
   frames_ = static_cast<int>(kept.size());
   start(kept);
+  startThread();
 }
 
 void VtuSeries::start(const std::vector<PvdEntry>& kept) {
@@ -120,89 +98,136 @@ void VtuSeries::start(const std::vector<PvdEntry>& kept) {
   if (fd_ < 0) throw std::runtime_error("cannot create " + tmp + ": " + std::strerror(errno));
   writeAllAt(fd_, text, 0, tmp);
   std::filesystem::rename(tmp, path);
-  auto& w = vtk_->writer;
-  w->SetDataModeToAppended();
-  w->EncodeAppendedDataOff();  // raw binary
-  // LZ4 for frames worth compressing (see write()): VTK 9.1's zlib compressor allocates and
-  // clears large buffers for every array (~30 ms a frame measured on a 15-node scene).
-  w->SetCompressorTypeToLZ4();
-  // Into memory, then one write: the XML writer otherwise makes hundreds of small writes and
-  // seeks per file.
-  w->WriteToOutputStringOn();
 }
 
 VtuSeries::~VtuSeries() {
+  if (thread_.joinable()) {
+    {
+      std::lock_guard lock(mutex_);
+      stopping_ = true;
+    }
+    queued_.notify_one();
+    thread_.join();  // the writer empties the queue first
+  }
   if (fd_ >= 0) ::close(fd_);
 }
 
-void VtuSeries::appendEntry(double t, const std::string& file) {
-  // One write: the new entry followed by the closing tags, at the old closing tags.
-  const std::string entry = entryLine(t, file);
-  writeAllAt(fd_, entry + kFooter, footerAt_, pvdPath());
-  footerAt_ += static_cast<long>(entry.size());
+void VtuSeries::startThread() {
+  if (writing_ == Writing::Background) thread_ = std::thread([this] { writerLoop(); });
 }
 
-void VtuSeries::write(const SceneFrame& f) {
-  vtkNew<vtkUnstructuredGrid> grid;
-  vtkNew<vtkDoubleArray> coords;
-  coords->SetNumberOfComponents(3);
-  coords->SetNumberOfTuples(static_cast<vtkIdType>(f.points.size() / 3));
-  std::copy(f.points.begin(), f.points.end(), coords->GetPointer(0));
-  vtkNew<vtkPoints> points;
-  points->SetData(coords);
-  grid->SetPoints(points);
+int VtuSeries::frames() const {
+  std::lock_guard lock(mutex_);
+  return frames_;
+}
 
-  vtkNew<vtkIdTypeArray> offsets, conn;
-  offsets->SetNumberOfTuples(f.numCells() + 1);
-  offsets->SetValue(0, 0);
-  for (int c = 0; c < f.numCells(); ++c) offsets->SetValue(c + 1, f.offsets[c]);
-  conn->SetNumberOfTuples(static_cast<vtkIdType>(f.connectivity.size()));
-  for (size_t i = 0; i < f.connectivity.size(); ++i) conn->SetValue(i, f.connectivity[i]);
-  vtkNew<vtkCellArray> cells;
-  cells->SetData(offsets, conn);
-  vtkNew<vtkUnsignedCharArray> types;
-  types->SetNumberOfTuples(f.numCells());
-  for (int c = 0; c < f.numCells(); ++c)
-    types->SetValue(c, static_cast<unsigned char>(f.shapes[c]));
-  grid->SetCells(types, cells);
+double VtuSeries::backgroundSeconds() const {
+  std::lock_guard lock(mutex_);
+  return backgroundSeconds_;
+}
 
-  for (const auto& a : f.pointData) grid->GetPointData()->AddArray(toVtk(a));
-  for (const auto& a : f.cellData) grid->GetCellData()->AddArray(toVtk(a));
-  vtkNew<vtkDoubleArray> time;
-  time->SetName("TimeValue");
-  time->InsertNextValue(f.t);
-  grid->GetFieldData()->AddArray(time);
-  vtkNew<vtkStringArray> parts;
-  parts->SetName("part_names");
-  for (const auto& n : f.partNames) parts->InsertNextValue(n);
-  grid->GetFieldData()->AddArray(parts);
-
-  const std::string file = fmt::format("{}_{:06d}.vtu", name_, frames_);
-  const std::string path = dir_ + "/" + file;
-  auto& w = vtk_->writer;
-  // LZ4 clears a 16 KiB state for every array it compresses: on a small frame that costs more
-  // than the bytes it saves (callgrind: a third of a pulley frame), so small frames go raw.
-  size_t rawBytes = f.points.size() * sizeof(double) + f.connectivity.size() * sizeof(vtkIdType);
-  for (const auto& a : f.pointData) rawBytes += a.values.size() * sizeof(double);
-  for (const auto& a : f.cellData) rawBytes += a.values.size() * sizeof(double);
-  if (rawBytes < kCompressAbove)
-    w->SetCompressorTypeToNone();
-  else
-    w->SetCompressorTypeToLZ4();
-  w->SetFileName(path.c_str());
-  w->SetInputData(grid);
-  if (w->Write() != 1) throw std::runtime_error("cannot write " + path);
-  w->SetInputData(nullptr);
-  {
-    const std::string& text = w->GetOutputString();
-    const int fd =
-        ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);  // new file
-    if (fd < 0) throw std::runtime_error("cannot create " + path + ": " + std::strerror(errno));
-    writeAllAt(fd, text, 0, path);
-    ::close(fd);
+void VtuSeries::rethrowWriterError() {
+  if (writerError_) {
+    auto e = writerError_;
+    writerError_ = nullptr;
+    std::rethrow_exception(e);
   }
-  appendEntry(f.t, file);
+}
+
+void VtuSeries::writerLoop() {
+  std::unique_lock lock(mutex_);
+  for (;;) {
+    queued_.wait(lock, [&] { return stopping_ || !queue_.empty(); });
+    if (queue_.empty()) return;  // stopping, nothing left
+    auto [frame, index] = std::move(queue_.front());
+    queue_.pop_front();
+    busy_ = true;
+    lock.unlock();
+    const auto t0 = std::chrono::steady_clock::now();
+    std::exception_ptr error;
+    try {
+      if (!writerError_) {  // after an error, frames are dropped
+        pendingEntries_ += writeFile(frame, index);
+        // The collection is updated in one write once the queue is empty (or every 32 frames):
+        // valid at every moment, and one pwrite instead of one per frame when frames queue up.
+        if (++pendingCount_ >= 32 || queueLooksEmpty()) appendPending();
+      }
+    } catch (...) {
+      error = std::current_exception();
+    }
+    const double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    lock.lock();
+    queuedBytes_ -= frameBytes(frame);
+    backgroundSeconds_ += dt;
+    if (error && !writerError_) writerError_ = error;
+    busy_ = false;
+    drained_.notify_all();
+  }
+}
+
+void VtuSeries::flush() {
+  std::unique_lock lock(mutex_);
+  drained_.wait(lock, [&] { return queue_.empty() && !busy_; });
+  rethrowWriterError();
+}
+
+bool VtuSeries::queueLooksEmpty() const {
+  std::lock_guard lock(mutex_);
+  return queue_.empty();
+}
+
+void VtuSeries::appendPending() {
+  // One write: the new entries followed by the closing tags, at the old closing tags.
+  if (pendingEntries_.empty()) return;
+  writeAllAt(fd_, pendingEntries_ + kFooter, footerAt_, pvdPath());
+  footerAt_ += static_cast<long>(pendingEntries_.size());
+  pendingEntries_.clear();
+  pendingCount_ = 0;
+}
+
+namespace {
+std::string frameText(const SceneFrame& f) {
+  // Small frames go raw and are written directly (VtuRawFrame): compressing them costs more
+  // than the bytes it saves (LZ4 clears a 16 KiB state per array), and VTK's writer costs
+  // ~1.2 M instructions a frame where a step of such a scene costs ~20 us.
+  if (frameBytes(f) < kCompressAbove) return vtuRawText(f);
+  return vtuVtkText(f, VtkCompression::LZ4);
+}
+}  // namespace
+
+void VtuSeries::write(SceneFrame f) {
+  if (writing_ == Writing::InCaller) {
+    pendingEntries_ = writeFile(f, frames_);
+    appendPending();
+    ++frames_;
+    return;
+  }
+  std::unique_lock lock(mutex_);
+  rethrowWriterError();
+  // A bounded queue: a writer that cannot keep up holds the run back instead of filling memory.
+  drained_.wait(lock, [&] { return queuedBytes_ < kMaxQueuedBytes || writerError_ != nullptr; });
+  rethrowWriterError();
+  queuedBytes_ += frameBytes(f);
+  queue_.emplace_back(std::move(f), frames_);
   ++frames_;
+  lock.unlock();
+  queued_.notify_one();
+}
+
+std::string VtuSeries::writeFile(const SceneFrame& f, int index) {
+  const std::string file = fmt::format("{}_{:06d}.vtu", name_, index);
+  const std::string path = dir_ + "/" + file;
+  const std::string text = frameText(f);
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);  // new file
+  if (fd < 0) throw std::runtime_error("cannot create " + path + ": " + std::strerror(errno));
+  try {
+    writeAllAt(fd, text, 0, path);
+  } catch (...) {
+    ::close(fd);
+    throw;
+  }
+  ::close(fd);
+  return entryLine(f.t, file);
 }
 
 std::vector<PvdEntry> readPvd(const std::string& path) {

@@ -1,11 +1,17 @@
 #pragma once
-// The VTU time series of a run (interfaces.md): one `<case>_NNNNNN.vtu` per output time through
-// VTK's XML writer (binary, appended, zlib-compressed) and a `<case>.pvd` collection with the
-// physical times. The collection is valid at every moment: each new entry and the closing tags
-// go to the file in one write at the end of the previous entry, so a run killed half-way still
-// opens in ParaView with every frame written so far.
+// The VTU time series of a run (interfaces.md): one `<case>_NNNNNN.vtu` per output time (binary,
+// appended; frames above 64 KiB of arrays LZ4-compressed through VTK's XML writer, smaller ones
+// raw, written by VtuRawFrame) and a `<case>.pvd` collection with the physical times. The
+// collection is valid at every moment: each new entry and the closing tags go to the file in one
+// write at the end of the previous entry, so a run killed half-way still opens in ParaView with
+// every frame written so far.
+#include <condition_variable>
+#include <deque>
+#include <exception>
 #include <memory>
+#include <mutex>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "SceneFrame.hpp"
@@ -20,30 +26,52 @@ struct PvdEntry {
 // Reads a .pvd collection, frames in order.
 std::vector<PvdEntry> readPvd(const std::string& path);
 
+enum class Writing { InCaller, Background };
+
 class VtuSeries {
  public:
   // Starts a series `<dir>/<name>.pvd`; an existing collection of that name is replaced.
-  VtuSeries(std::string dir, std::string name);
+  VtuSeries(std::string dir, std::string name, Writing writing = Writing::InCaller);
   // Continues the series of a restarted run: frames after resumeAfter are dropped (collection
   // entries and files), so no output time appears twice.
-  VtuSeries(std::string dir, std::string name, double resumeAfter);
-  ~VtuSeries();
+  VtuSeries(std::string dir, std::string name, double resumeAfter,
+            Writing writing = Writing::InCaller);
+  ~VtuSeries();  // writes what is queued
   VtuSeries(const VtuSeries&) = delete;
   VtuSeries& operator=(const VtuSeries&) = delete;
 
-  void write(const SceneFrame& frame);
-  int frames() const { return frames_; }
+  void write(SceneFrame frame);
+  void flush();        // every frame given so far is in its file and in the .pvd
+  int frames() const;  // frames given so far
+  // Seconds the background thread spent writing (0 when writing in the caller).
+  double backgroundSeconds() const;
   std::string pvdPath() const { return dir_ + "/" + name_ + ".pvd"; }
 
  private:
   void start(const std::vector<PvdEntry>& kept);
-  void appendEntry(double t, const std::string& file);
+  std::string writeFile(const SceneFrame& f, int index);  // returns its collection entry
+  void appendPending();  // the entries of files written, into the .pvd
+  bool queueLooksEmpty() const;
+  void startThread();
+  void writerLoop();
+  void rethrowWriterError();
   std::string dir_, name_;
+  Writing writing_;
   int fd_ = -1;
-  long footerAt_ = 0;  // offset of the closing tags in the .pvd
-  int frames_ = 0;
-  struct Vtk;
-  std::unique_ptr<Vtk> vtk_;  // writer objects kept across frames
+  long footerAt_ = 0;           // offset of the closing tags in the .pvd
+  std::string pendingEntries_;  // of files written, not yet in the .pvd (writer's own)
+  int pendingCount_ = 0;
+  int frames_ = 0;  // given to write()
+
+  // Background writing: frames queued in order; the writer takes them one at a time.
+  mutable std::mutex mutex_;
+  std::condition_variable queued_, drained_;
+  std::deque<std::pair<SceneFrame, int>> queue_;
+  size_t queuedBytes_ = 0;
+  bool busy_ = false, stopping_ = false;
+  std::exception_ptr writerError_;
+  double backgroundSeconds_ = 0.0;
+  std::thread thread_;
 };
 
 }  // namespace chute

@@ -18,7 +18,7 @@ import argparse, csv, json, os, re, statistics, subprocess, tempfile, time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 BENCH = os.path.join(ROOT, "build", "bin", "peer_bench")
-RESULTS = os.path.join(ROOT, "bench", "results")
+RESULTS = os.environ.get("CHUTE_BENCH_RESULTS", os.path.join(ROOT, "bench", "results"))
 PROBES = ["apex", "rim", "line_mid"]
 
 

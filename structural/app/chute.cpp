@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "app/cli/Command.hpp"
-#include "case/CaseError.hpp"
+#include "app/cli/Dispatch.hpp"
 
 int main(int argc, char** argv) {
   using namespace chute::cli;
@@ -16,23 +16,6 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   const std::vector<Command> commands = {addRunCommand(app), addRenderCommand(app),
                                          addPlotCommand(app), addCoupleCommand(app),
-                                         addMeshCommand(app)};
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) return app.exit(e);              // --help
-    fmt::print(stderr, "chute: {} (chute --help)\n", e.what());  // bad input: one line, status 2
-    return kExitBadInput;
-  }
-  try {
-    for (const auto& c : commands)
-      if (*c.sub) return c.run();
-  } catch (const chute::CaseError& e) {  // bad input found outside the case reader
-    fmt::print(stderr, "chute: {}\n", e.what());
-    return kExitBadInput;
-  } catch (const std::exception& e) {
-    fmt::print(stderr, "chute: {}\n", e.what());
-    return 1;
-  }
-  return 0;
+                                         addMeshForwardCommand(app)};
+  return dispatch(app, commands, argc, argv);
 }

@@ -5,7 +5,7 @@
 #include <limits>
 #include <set>
 
-#include "GmshSession.hpp"
+#include "MeshError.hpp"
 
 namespace chute {
 

@@ -9,7 +9,9 @@ struct Timings {
   double search = 0.0;
   double factorisation = 0.0;
   double solve = 0.0;
-  double output = 0.0;
+  double output = 0.0;  // in the stepping thread, including the wait for the last frames
+  // VTU frames written on the background thread: overlaps the others, not part of the total.
+  double outputBackground = 0.0;
   long assemblies = 0, searches = 0, factorisations = 0, solves = 0;
 };
 

@@ -20,6 +20,7 @@ Command addRunCommand(CLI::App& app);
 Command addRenderCommand(CLI::App& app);
 Command addPlotCommand(CLI::App& app);
 Command addCoupleCommand(CLI::App& app);
-Command addMeshCommand(CLI::App& app);
+Command addMeshCommand(CLI::App& app);         // in the gmsh plugin
+Command addMeshForwardCommand(CLI::App& app);  // in `chute`: forwards to the plugin
 
 }  // namespace chute::cli
