@@ -166,9 +166,9 @@ TEST(PayOnly, NoWorkForWhatTheSceneDoesNotDeclare) {
 
   std::printf(
       "\nwork counters (kernel evaluations per element per residual evaluation; searches per "
-      "slider)\n%-13s %6s %7s %7s %7s %6s %7s %7s %6s %7s %6s %6s %5s %5s  %s\n",
-      "scene", "steps", "line", "sliding", "lmass", "pmass", "membr", "press", "drag", "search",
-      "energy", "frames", "vtuS", "vtuF", "terms built");
+      "slider)\n%-13s %6s %7s %7s %7s %6s %7s %7s %6s %6s %7s %6s %6s %5s %5s  %s\n",
+      "scene", "steps", "line", "sliding", "lmass", "pmass", "membr", "press", "drag", "fdrag",
+      "search", "energy", "frames", "vtuS", "vtuF", "terms built");
   for (const auto& row : rows) {
     const auto& w = row.r.work;
     std::printf("%-13s %6ld %7ld %7ld %7ld %6ld %7ld %7ld %6ld %6ld %7ld %6ld %6ld %5ld %5ld  %s\n",
