@@ -42,6 +42,9 @@ class Term {
                          EnergyBreakdown& e) const = 0;
   // Whether the Jacobian this term adds is symmetric (CHOLMOD may be used when all are).
   virtual bool symmetricJacobian() const { return true; }
+  // Whether assemble() depends on EvalPoint::loadFactor (loads, gravity). A term that says false
+  // is left out of the evaluations that separate applied loads from the rest (output frames).
+  virtual bool loadDependent() const { return true; }
   // Event location for kinks of the term's energy crossed by the motion (a slider passing a
   // node). Given a Newton update dx from positions x, returns the fraction of dx at which the
   // update would pass such a kink (1 if none); the step is then cut to end there. A term may also

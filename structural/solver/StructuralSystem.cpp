@@ -63,24 +63,28 @@ StructuralSystem::NodalForces StructuralSystem::nodalForces(const Eigen::VectorX
                                                             bool inertia) {
   const long n = x.size();
   NodalForces f;
-  Eigen::VectorXd full = Eigen::VectorXd::Zero(n), unloaded = Eigen::VectorXd::Zero(n);
-  auto residualOver = [&](Eigen::VectorXd& out, const Eigen::VectorXd& acc, double load) {
-    EvalPoint p{x, v, acc, t};
+  auto residualOver = [&](bool loadTerms, double load) {
+    Eigen::VectorXd out = Eigen::VectorXd::Zero(n);
+    EvalPoint p{x, v, a, t};
     p.inertia = inertia;
     p.loadFactor = load;
     assembler_.captureAllDofs(&out);
     assembler_.begin(false);
-    for (const auto& term : terms_) term->assemble(p, assembler_);
+    for (const auto& term : terms_)
+      if (term->loadDependent() == loadTerms) term->assemble(p, assembler_);
     assembler_.captureAllDofs(nullptr);
+    return out;
   };
-  // r = f_int + M a - f_ext: the supports supply r at constrained dofs.
-  residualOver(full, a, 1.0);
+  // r = f_int + M a - f_ext: the supports supply r at constrained dofs. Loads are the
+  // load-factor-scaled part, f_ext = r(lambda = 0) - r(lambda = 1), nonzero only for the terms
+  // that depend on the load factor: those are evaluated twice, the others (membranes, cables
+  // without gravity) once.
+  const Eigen::VectorXd loaded = residualOver(true, 1.0);
+  const Eigen::VectorXd full = residualOver(false, 1.0) + loaded;
   f.reaction = Eigen::VectorXd::Zero(n);
   for (long d = 0; d < n; ++d)
     if (dofs_.eqOfDof(static_cast<int>(d)) < 0) f.reaction[d] = full[d];
-  // Loads are the load-factor-scaled part: f_ext = r(lambda = 0) - r(lambda = 1).
-  residualOver(unloaded, a, 0.0);
-  f.applied = unloaded - full;
+  f.applied = residualOver(true, 0.0) - loaded;
   return f;
 }
 

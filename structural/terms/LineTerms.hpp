@@ -16,6 +16,7 @@ class CableTerm final : public Term {
  public:
   explicit CableTerm(const Model& m) : m_(&m) {}
   const char* name() const override { return "cables"; }
+  bool loadDependent() const override { return m_->hasGravity(); }  // gravity only
   void addCouplings(std::vector<std::vector<int>>& cliques) const override;
   void assemble(const EvalPoint& p, SystemAssembler& out) override;
   void addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
@@ -37,6 +38,7 @@ class SlidingGroupTerm final : public Term {
  public:
   SlidingGroupTerm(const Model& m, int group, SliderSearch search);
   const char* name() const override { return "sliding_group"; }
+  bool loadDependent() const override { return m_->hasGravity(); }  // gravity only
   void addCouplings(std::vector<std::vector<int>>& cliques) const override;
   int updateState(const Eigen::VectorXd& x) override { return state_.search(x, search_); }
   void assemble(const EvalPoint& p, SystemAssembler& out) override;
@@ -88,6 +90,7 @@ class PointMassTerm final : public Term {
  public:
   explicit PointMassTerm(const Model& m);
   const char* name() const override { return "point_masses"; }
+  bool loadDependent() const override { return m_->hasGravity(); }  // gravity only
   void addCouplings(std::vector<std::vector<int>>&) const override {}
   void assemble(const EvalPoint& p, SystemAssembler& out) override;
   void addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v,

@@ -17,6 +17,7 @@ class MembraneTerm final : public Term {
  public:
   explicit MembraneTerm(const Model& m);
   const char* name() const override { return "membranes"; }
+  bool loadDependent() const override { return m_->hasGravity(); }  // gravity only
   void addCouplings(std::vector<std::vector<int>>& cliques) const override;
   void assemble(const EvalPoint& p, SystemAssembler& out) override;
   void addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
