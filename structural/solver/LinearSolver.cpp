@@ -9,21 +9,18 @@ namespace chute {
 
 namespace {
 // SuiteSparse does its dense fronts in BLAS. With OpenBLAS (Debian's libopenblas0-pthread, the
-// libblas.so.3 alternative install-deps.sh selects) a second thread pays only on large fronts;
-// on small systems it costs more than it saves, badly so on a loaded machine (measured 2-5x
-// slower factorisations at 1.5k-10k equations). One thread below this size, all cores above,
-// unless the user set OPENBLAS_NUM_THREADS. Looked up at run time: with another BLAS it is a
-// no-op.
-constexpr int kThreadedBlasFrom = 40000;  // equations
-
-void chooseBlasThreads(int equations) {
+// libblas.so.3 alternative install-deps.sh selects) a second thread barely pays here and costs a
+// lot when the machine is busy (OpenBLAS threads spin): measured on the bench canopy, one
+// factorisation at 91k equations 0.68 s with 2 threads and 0.73 s with 1 on a quiet machine, but
+// 5.2 s with 2 threads at load 6 on 2 cores; at 178k, 1 thread 2.07 s against 2.45 s with 2
+// (bench/README.md). So one thread, unless the user set OPENBLAS_NUM_THREADS or
+// OMP_NUM_THREADS. Looked up at run time: with another BLAS it is a no-op.
+void chooseBlasThreads(int /*equations*/) {
   if (std::getenv("OPENBLAS_NUM_THREADS") || std::getenv("OMP_NUM_THREADS")) return;
   using SetThreads = void (*)(int);
   static const auto set =
       reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
-  static const auto get =
-      reinterpret_cast<int (*)()>(dlsym(RTLD_DEFAULT, "openblas_get_num_procs"));
-  if (set && get) set(equations >= kThreadedBlasFrom ? get() : 1);
+  if (set) set(1);
 }
 }  // namespace
 
