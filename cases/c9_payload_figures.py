@@ -23,8 +23,10 @@ import csv
 import json
 import math
 import os
+import resource
 import subprocess
 import sys
+import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 CHUTE = os.path.join(ROOT, "build", "bin", "chute")
@@ -74,10 +76,17 @@ def main():
     if a.remesh:
         run([CHUTE] + MESH_ARGS)
     dirs = {name: os.path.join(a.out, name) for name, _ in MODELS}
+    timing = {}
     if not a.no_run:
         for name, _ in MODELS:
+            before = resource.getrusage(resource.RUSAGE_CHILDREN)
+            t0 = time.monotonic()
             run([CHUTE, "run", os.path.join(ROOT, "cases", name + ".toml"), "--out", dirs[name],
                  "--quiet"])
+            after = resource.getrusage(resource.RUSAGE_CHILDREN)
+            timing[name] = {"wall_s_measured": time.monotonic() - t0,
+                            "cpu_s": (after.ru_utime - before.ru_utime) +
+                                     (after.ru_stime - before.ru_stime)}
 
     figures = {"models": {}}
     relative = {}
@@ -105,7 +114,12 @@ def main():
             "vertical_min_max_ft": [min(r[2] for r in rel), max(r[2] for r in rel)],
             "rotation": [[t, at(rows, t)["long_edge.angle"]] for t in TABLE_TIMES
                          if t <= rows[-1]["t"] + 1e-9],
+            # settling: the angle's range over the last quarter of the run
+            "last_quarter_angle_range_deg": [
+                min(r[3] for r in rel if r[0] >= 0.75 * rel[-1][0]),
+                max(r[3] for r in rel if r[0] >= 0.75 * rel[-1][0])],
         }
+        figures["models"][name].update(timing.get(name, {}))
         # Derived series for `chute plot` (it reads probes.csv of a run directory).
         d = os.path.join(a.out, "relative", label.replace(" ", "_"))
         os.makedirs(d, exist_ok=True)
@@ -135,6 +149,8 @@ def main():
             vals = [figures["models"][n]["rotation"] for n, _ in MODELS]
             if all(k < len(v) for v in vals):
                 f.write("%g,%s\n" % (t, ",".join("%.2f" % v[k][1] for v in vals)))
+    figures["load_average_1min"] = os.getloadavg()[0]
+    figures["cpus"] = os.cpu_count()
     with open(os.path.join(a.out, "payload_figures.json"), "w") as f:
         json.dump(figures, f, indent=2)
 
@@ -147,12 +163,16 @@ def main():
     for name, label in MODELS:
         m = figures["models"][name]
         print("%-13s %s: %d steps, %d rejected, %.2f Newton/step, wall %.1f s for %.2f s "
-              "(%.1f s per simulated s); final angle %.1f, max %.1f, level first at %s s; corner "
-              "horizontal %.2f..%.2f ft, vertical %.2f..%.2f ft" % (
+              "(%.1f s per simulated s; CPU %s s); final angle %.1f, max %.1f, last quarter "
+              "%.1f..%.1f, level first at %s s; corner horizontal %.2f..%.2f ft, vertical "
+              "%.2f..%.2f ft" % (
                   label, m["status"], m["steps"], m["rejected_steps"], m["newton_per_step"],
                   m["wall_time_s"], m["simulated_s"], m["wall_per_simulated_s"],
-                  m["final_angle_deg"], m["max_angle_deg"], m["first_level_s"],
+                  "%.1f" % m["cpu_s"] if "cpu_s" in m else "-",
+                  m["final_angle_deg"], m["max_angle_deg"],
+                  *m["last_quarter_angle_range_deg"], m["first_level_s"],
                   *m["horizontal_min_max_ft"], *m["vertical_min_max_ft"]))
+    print("machine: %d CPUs, load average %.1f" % (figures["cpus"], figures["load_average_1min"]))
     ok = all(m["status"] == "completed" for m in figures["models"].values())
     return 0 if ok else 1
 

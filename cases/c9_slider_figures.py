@@ -60,14 +60,19 @@ def read_radius(out):
 
 
 def inflation_figures(t, r):
-    """Final radius (mean over the last FINAL_WINDOW of the run), its value at the end and the
-    first time the radius reaches 90 % of the final radius."""
+    """Final radius (mean over the last FINAL_WINDOW of the run), its value at the end and t90:
+    the first time the radius reaches 90 % of the FINAL radius. A canopy whose final radius is
+    not above its starting radius / 0.9 never inflated to it (or closed again): t90 is then
+    "not reached" (None), never the start time."""
     t_end = t[-1]
     window = [ri for ti, ri in zip(t, r) if ti >= (1.0 - FINAL_WINDOW) * t_end]
     final = sum(window) / len(window)
-    t90 = next((ti for ti, ri in zip(t, r) if ri >= 0.9 * final), None)
+    inflated = r[0] < 0.9 * final
+    t90 = next((ti for ti, ri in zip(t, r) if ri >= 0.9 * final), None) if inflated else None
     return {"t_end": t_end, "initial_radius": r[0], "final_radius": final, "radius_at_end": r[-1],
-            "t90": t90}
+            "peak_radius": max(r), "t_peak": t[r.index(max(r))], "t90": t90,
+            "t90_note": None if inflated else
+            "not reached: the final radius is not above the start's / 0.9 (closed or never opened)"}
 
 
 def main():
@@ -117,17 +122,18 @@ def main():
     with open(os.path.join(a.out, "c9_slider_acceptance.json"), "w") as f:
         json.dump(result, f, indent=2)
 
-    print(f"\n{'':14}{'t90 (s)':>9}{'R final':>9}{'R(t_end)':>9}{'steps':>7}{'rej.':>6}"
+    print(f"\n{'':14}{'t90 (s)':>12}{'R final':>9}{'R(t_end)':>9}{'steps':>7}{'rej.':>6}"
           f"{'Newton/step':>12}{'wall (s)':>10}{'cpu (s)':>9}  status")
     for n in CASES:
         c = result["cases"][n]
-        t90 = f"{c['t90']:.3f}" if c["t90"] is not None else "-"
+        t90 = f"{c['t90']:.3f}" if c["t90"] is not None else "not reached"
         cpu = f"{c['cpu_s']:.1f}" if "cpu_s" in c else "-"
-        print(f"{n:14}{t90:>9}{c['final_radius']:9.3f}{c['radius_at_end']:9.3f}{c['steps']:7d}"
+        print(f"{n:14}{t90:>12}{c['final_radius']:9.3f}{c['radius_at_end']:9.3f}{c['steps']:7d}"
               f"{c['rejected_steps']:6d}{c['newton_per_step']:12.2f}{c['wall_s']:10.1f}{cpu:>9}"
               f"  {c['status']}")
     ratio = result["t90_ratio_slider_over_no_slider"]
-    print(f"t90 ratio (slider / no slider): {ratio:.2f}" if ratio else "t90 ratio: -")
+    print(f"t90 ratio (slider / no slider): {ratio:.2f}" if ratio else
+          "t90 ratio: not available (t90 not reached in a run)")
     print(f"final skirt radius difference: {100 * result['final_radius_difference']:.2f} % "
           f"(required <= 5 %)")
     print(f"machine: {result['cpus']} CPUs, load average {result['load_average_1min']:.1f}")

@@ -167,6 +167,7 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
   ns.nominalStep = sv.dt;
   ns.lengthScale = modelSize(m);
   ns.verbose = options.verboseNewton;
+  ns.slackTautEvents = sv.slackTautEvents;
   GeneralizedAlpha integrator(
       sys, sv.rhoInf, sv.integrator == "bossak" ? AlphaScheme::Bossak : AlphaScheme::ChungHulbert,
       ns);
@@ -437,6 +438,7 @@ void writeSummary(const std::string& path, const CaseSpec& spec, const RunResult
                {"membrane_kernels", w.membrane},
                {"pressure_kernels", w.pressure},
                {"drag_kernels", w.drag},
+               {"face_drag_kernels", w.faceDrag},
                {"slider_searches", w.sliderSearch},
                {"energy_evaluations", w.energy},
                {"scene_frames", w.sceneFrames},
@@ -449,6 +451,7 @@ void writeSummary(const std::string& path, const CaseSpec& spec, const RunResult
       {"dt", spec.solver.dt},
       {"rho_inf", spec.solver.rhoInf},
       {"integrator", spec.solver.integrator},
+      {"slack_events", spec.solver.slackTautEvents},
       {"mass", spec.model.massKind == kernels::MassKind::Lumped ? "lumped" : "consistent"},
       {"search", spec.solver.search == SliderSearch::NearestLength ? "nearest_length"
                                                                    : "material_coordinate"}};

@@ -13,6 +13,7 @@ struct WorkCounters {
   long membrane = 0;      // membrane kernel (force, tangent, mass, weight of one element)
   long pressure = 0;      // follower-pressure kernel (one element)
   long drag = 0;          // line-drag kernel (one straight segment)
+  long faceDrag = 0;      // face-drag kernel (one membrane face)
   long sliderSearch = 0;  // active-element searches, one per slider per search pass
   long energy = 0;        // whole-system energy evaluations (probes, summary drift)
   long sceneFrames = 0;   // output frames built (geometry, fields, reactions)
@@ -22,6 +23,7 @@ struct WorkCounters {
   WorkCounters& operator+=(const WorkCounters& o) {
     lineElastic += o.lineElastic, sliding += o.sliding, lineMass += o.lineMass;
     pointMass += o.pointMass, membrane += o.membrane, pressure += o.pressure, drag += o.drag;
+    faceDrag += o.faceDrag;
     sliderSearch += o.sliderSearch, energy += o.energy, sceneFrames += o.sceneFrames;
     vtuSeries += o.vtuSeries, vtuFrames += o.vtuFrames;
     return *this;

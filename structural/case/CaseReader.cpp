@@ -784,6 +784,21 @@ CaseSpec readCaseFromString(const std::string& text, const std::string& file,
       t.finish();
       m.drags.push_back(d);
     }
+    // [[loads.face_drag]]: drag on the faces of a membrane set (README "Canopy mechanics").
+    for (auto& t : l.tables("face_drag")) {
+      FaceDragLoadDef d;
+      const std::string set = t.string("membranes");
+      for (size_t k = 0; k < m.membraneSets.size(); ++k)
+        if (m.membraneSets[k].name == set) d.set = static_cast<int>(k);
+      if (d.set < 0) t.fail("membranes", "unknown membrane set '" + set + "'");
+      const double cd = t.positive("cd");
+      const double rho = t.positive("air_density");
+      d.coefficient = 0.5 * rho * cd;
+      d.wind = t.vec3("wind", Vec3::Zero());
+      d.steadySubtracted = t.boolean("subtract_steady", false);
+      t.finish();
+      m.faceDrags.push_back(d);
+    }
     l.finish();
   }
   // [[events]] cut = "<cable set>", at = t: the set carries load up to t and is gone after it.
@@ -827,6 +842,7 @@ CaseSpec readCaseFromString(const std::string& text, const std::string& file,
                     : SliderSearch::MaterialCoordinate;
     sv.maxNewton = static_cast<int>(s.integer("newton_max_iterations", 25, 1, 1000));
     if (s.has("newton_tolerance")) sv.tolDisplacement = s.positive("newton_tolerance");
+    sv.slackTautEvents = s.boolean("slack_events", true);
     s.finish();
   }
   if (top.has("output")) {

@@ -38,6 +38,7 @@ struct SolverSpec {
   double dt = 1e-3, tEnd = 1.0, dtMin = 0.0, rhoInf = 0.9;
   int maxNewton = 25;
   double tolDisplacement = 0.0;  // 0: 1e-10 x model size
+  bool slackTautEvents = true;   // cut steps at cable slack / taut switches
   SliderSearch search = SliderSearch::MaterialCoordinate;
   std::string integrator = "bossak";  // or "generalized_alpha" (Chung-Hulbert)
   int loadSteps = 1;

@@ -87,6 +87,14 @@ struct DragLoadDef {
   Vec3 wind = Vec3::Zero();
 };
 
+// Drag on the faces of a membrane set (face drag, README "Canopy mechanics"; kernels/FaceDrag).
+struct FaceDragLoadDef {
+  int set = -1;              // membrane set
+  double coefficient = 0.0;  // (1/2) rho_air Cd
+  Vec3 wind = Vec3::Zero();
+  bool steadySubtracted = false;  // drag relative to the fabric at rest in the wind
+};
+
 // How a node's three dofs are constrained: free, or prescribed. A prescribed dof follows
 // x(t) = X + velocity t + amplitude sin(2 pi frequency t) (all zero: fixed where it starts).
 struct NodeConstraint {
@@ -123,6 +131,7 @@ struct Model {
 
   std::vector<PressureLoadDef> pressures;
   std::vector<DragLoadDef> drags;
+  std::vector<FaceDragLoadDef> faceDrags;
 
   Vec3 gravity = Vec3::Zero();
   double massDamping = 0.0;  // Rayleigh mass-proportional damping C = alpha M (membranes)

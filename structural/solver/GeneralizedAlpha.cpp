@@ -118,7 +118,7 @@ NewtonReport GeneralizedAlpha::newton(Eigen::VectorXd& x, double tol, MakePoint&
     // (the fraction of the step where it passes one, positions being linear in time to first
     // order).
     double stepEvent = 1.0;
-    if (stepStart) {
+    if (stepStart && newton_.slackTautEvents) {
       motion = x + dx - *stepStart;
       stepEvent = sys_->stepEventFraction(*stepStart, motion);
     }

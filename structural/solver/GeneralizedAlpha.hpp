@@ -26,6 +26,10 @@ struct NewtonSettings {
   double tolDisplacement = 1e-9;
   double nominalStep = 0.0;  // 0: no scaling
   double lengthScale = 1.0;
+  // Cut steps to end where a tension-only cable goes slack or taut (Term::stepEventFraction).
+  // Off: Newton crosses the kink within the step (scenes with hundreds of flapping tapes and
+  // lines, where each crossing would cut a step).
+  bool slackTautEvents = true;
   bool verbose = false;  // print the residual sequence of every iteration
 };
 

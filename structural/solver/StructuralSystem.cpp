@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "terms/FaceDragTerm.hpp"
 #include "terms/LineTerms.hpp"
 #include "terms/SurfaceTerms.hpp"
 
@@ -30,6 +31,7 @@ StructuralSystem::StructuralSystem(const Model& model, SliderSearch search,
     for (auto* g : groups_) states.push_back(&g->state());
     terms_.push_back(std::make_unique<DragTerm>(model, states));
   }
+  if (!model.faceDrags.empty()) terms_.push_back(std::make_unique<FaceDragTerm>(model));
   for (auto& t : extraTerms) terms_.push_back(std::move(t));
 
   std::vector<std::vector<int>> cliques;

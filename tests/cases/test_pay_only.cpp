@@ -118,6 +118,12 @@ diameter = 0.002
 cd = 1.2
 air_density = 1.2
 wind = [0.0, 0.0, 5.0]
+[[loads.face_drag]]
+membranes = "canopy"
+cd = 1.2
+air_density = 1.2
+wind = [0.0, 0.0, 5.0]
+subtract_steady = true
 )";
   s += kSolver;
   if (vtu) s += kVtu;
@@ -160,14 +166,14 @@ TEST(PayOnly, NoWorkForWhatTheSceneDoesNotDeclare) {
 
   std::printf(
       "\nwork counters (kernel evaluations per element per residual evaluation; searches per "
-      "slider)\n%-13s %6s %7s %7s %7s %6s %7s %7s %6s %7s %6s %6s %5s %5s  %s\n",
-      "scene", "steps", "line", "sliding", "lmass", "pmass", "membr", "press", "drag", "search",
-      "energy", "frames", "vtuS", "vtuF", "terms built");
+      "slider)\n%-13s %6s %7s %7s %7s %6s %7s %7s %6s %6s %7s %6s %6s %5s %5s  %s\n",
+      "scene", "steps", "line", "sliding", "lmass", "pmass", "membr", "press", "drag", "fdrag",
+      "search", "energy", "frames", "vtuS", "vtuF", "terms built");
   for (const auto& row : rows) {
     const auto& w = row.r.work;
-    std::printf("%-13s %6ld %7ld %7ld %7ld %6ld %7ld %7ld %6ld %7ld %6ld %6ld %5ld %5ld  %s\n",
+    std::printf("%-13s %6ld %7ld %7ld %7ld %6ld %7ld %7ld %6ld %6ld %7ld %6ld %6ld %5ld %5ld  %s\n",
                 row.name.c_str(), row.r.steps, w.lineElastic, w.sliding, w.lineMass, w.pointMass,
-                w.membrane, w.pressure, w.drag, w.sliderSearch, w.energy, w.sceneFrames,
+                w.membrane, w.pressure, w.drag, w.faceDrag, w.sliderSearch, w.energy, w.sceneFrames,
                 w.vtuSeries, w.vtuFrames, joined(row.terms).c_str());
   }
 
@@ -196,6 +202,7 @@ TEST(PayOnly, NoWorkForWhatTheSceneDoesNotDeclare) {
       EXPECT_EQ(w.membrane, 0);
       EXPECT_EQ(w.pressure, 0);
       EXPECT_EQ(w.drag, 0);
+      EXPECT_EQ(w.faceDrag, 0);
       EXPECT_EQ(w.sliding, 0);
       EXPECT_EQ(w.sliderSearch, 0);
       EXPECT_EQ(w.pointMass, 0);
@@ -210,16 +217,17 @@ TEST(PayOnly, NoWorkForWhatTheSceneDoesNotDeclare) {
       EXPECT_EQ(w.sliderSearch, 0);
       EXPECT_EQ(w.pressure, 0);
       EXPECT_EQ(w.drag, 0);
+      EXPECT_EQ(w.faceDrag, 0);
       EXPECT_EQ(w.pointMass, 0);
       EXPECT_EQ(row.r.timings.searches, 0);
       EXPECT_EQ(row.terms, std::vector<std::string>{"membranes"});
     }
     if (full) {
       for (long c : {w.lineElastic, w.sliding, w.lineMass, w.pointMass, w.membrane, w.pressure,
-                     w.drag, w.sliderSearch})
+                     w.drag, w.faceDrag, w.sliderSearch})
         EXPECT_GT(c, 0);
       EXPECT_EQ(row.r.timings.searches, w.sliderSearch);  // one group, one slider
-      EXPECT_EQ(row.terms.size(), 6u);
+      EXPECT_EQ(row.terms.size(), 7u);
     }
   }
   // The same scene with and without VTU does the same mechanical work; a VTU frame adds two

@@ -1,0 +1,52 @@
+#include "terms/FaceDragTerm.hpp"
+
+#include <algorithm>
+#include <type_traits>
+
+#include "kernels/FaceDrag.hpp"
+
+namespace chute {
+
+using kernels::Vec3;
+
+void FaceDragTerm::addCouplings(std::vector<std::vector<int>>& cliques) const {
+  for (const auto& e : m_->membranes)
+    if (std::any_of(m_->faceDrags.begin(), m_->faceDrags.end(),
+                    [&](const FaceDragLoadDef& d) { return d.set == e.set; }))
+      cliques.emplace_back(e.nodes.begin(), e.nodes.begin() + e.numNodes);
+}
+
+void FaceDragTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
+  if (!p.inertia) return;  // drag needs motion: nothing in statics
+  const bool wantJ = out.wantMatrix();
+  for (const auto& load : m_->faceDrags) {
+    const double coef = load.coefficient * p.loadFactor;  // an applied load, like the others
+    for (const auto& e : m_->membranes) {
+      if (e.set != load.set) continue;
+      auto one = [&](auto nodesTag) {
+        constexpr int N = decltype(nodesTag)::value;
+        std::array<Vec3, N> x, v;
+        std::array<int, N> ids;
+        for (int i = 0; i < N; ++i) {
+          ids[i] = e.nodes[i];
+          x[i] = p.x.segment<3>(3 * ids[i]);
+          v[i] = p.v.segment<3>(3 * ids[i]);
+        }
+        const auto d = kernels::faceDrag<N>(x, v, load.wind, coef, load.steadySubtracted, wantJ);
+        ++out.work().faceDrag;
+        if (!wantJ) {
+          out.add<N>(ids, d.residual, nullptr);
+          return;
+        }
+        const Eigen::Matrix<double, 3 * N, 3 * N> J = p.cx * d.dPosition + p.cv * d.dVelocity;
+        out.add<N>(ids, d.residual, &J);
+      };
+      if (e.numNodes == 3)
+        one(std::integral_constant<int, 3>{});
+      else
+        one(std::integral_constant<int, 4>{});
+    }
+  }
+}
+
+}  // namespace chute

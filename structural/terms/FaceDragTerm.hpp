@@ -1,0 +1,25 @@
+#pragma once
+// Face drag on membrane sets (README "Canopy mechanics", kernels/FaceDrag): the air's resistance
+// to the fabric moving normal to itself, with position and velocity tangents. Dissipative, so no
+// energy; nothing in statics (it needs motion), like the line drag.
+#include <vector>
+
+#include "assembly/Term.hpp"
+#include "model/Model.hpp"
+
+namespace chute {
+
+class FaceDragTerm final : public Term {
+ public:
+  explicit FaceDragTerm(const Model& m) : m_(&m) {}
+  const char* name() const override { return "face_drag"; }
+  void addCouplings(std::vector<std::vector<int>>& cliques) const override;
+  void assemble(const EvalPoint& p, SystemAssembler& out) override;
+  void addEnergy(const Eigen::VectorXd&, const Eigen::VectorXd&, EnergyBreakdown&) const override {}
+  bool symmetricJacobian() const override { return false; }
+
+ private:
+  const Model* m_;
+};
+
+}  // namespace chute
