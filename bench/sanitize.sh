@@ -9,8 +9,10 @@ cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh >/dev/null
 B=build-asan
 FLAGS="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
+# No -Werror here: gcc 12 with ASan reports -Wmaybe-uninitialized inside libstdc++ (std::regex,
+# std::function), false positives the CI build (-Werror, no sanitizers) does not see.
 if [ ! -f $B/CMakeCache.txt ]; then
-  cmake -S . -B $B -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCHUTE_WERROR=ON \
+  cmake -S . -B $B -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCHUTE_WERROR=OFF \
     -DCMAKE_CXX_FLAGS="$FLAGS" -DCMAKE_C_FLAGS="$FLAGS" \
     -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" >/dev/null
 fi

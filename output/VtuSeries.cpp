@@ -23,8 +23,10 @@ constexpr const char* kHeader =
     "<?xml version=\"1.0\"?>\n"
     "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
     "  <Collection>\n";
-constexpr size_t kCompressAbove = 64 * 1024;    // bytes of array data in a frame
-constexpr size_t kMaxQueuedBytes = 256u << 20;  // frames waiting for the background writer
+constexpr size_t kCompressAbove = 64 * 1024;         // bytes of array data in a frame
+constexpr size_t kMaxQueuedBytes = 256u << 20;       // frames waiting for the background writer
+constexpr size_t kWakeBatch = 16;                    // frames that wake the writer
+constexpr std::chrono::milliseconds kWriterPoll{5};  // else it looks every 5 ms
 constexpr const char* kFooter = "  </Collection>\n</VTKFile>\n";
 
 std::string entryLine(double t, const std::string& file) {
@@ -137,8 +139,15 @@ void VtuSeries::rethrowWriterError() {
 void VtuSeries::writerLoop() {
   std::unique_lock lock(mutex_);
   for (;;) {
-    queued_.wait(lock, [&] { return stopping_ || !queue_.empty(); });
-    if (queue_.empty()) return;  // stopping, nothing left
+    // Woken by a batch of frames (or a flush, or the end), else every few ms: a wake-up per frame
+    // would cost the stepping thread a futex call and often a context switch per step.
+    queued_.wait_for(lock, kWriterPoll, [&] {
+      return stopping_ || (!queue_.empty() && (flushWanted_ || queue_.size() >= kWakeBatch));
+    });
+    if (queue_.empty()) {
+      if (stopping_) return;
+      continue;
+    }
     auto [frame, index] = std::move(queue_.front());
     queue_.pop_front();
     busy_ = true;
@@ -167,7 +176,10 @@ void VtuSeries::writerLoop() {
 
 void VtuSeries::flush() {
   std::unique_lock lock(mutex_);
+  flushWanted_ = true;
+  queued_.notify_one();
   drained_.wait(lock, [&] { return queue_.empty() && !busy_; });
+  flushWanted_ = false;
   rethrowWriterError();
 }
 
@@ -210,8 +222,9 @@ void VtuSeries::write(SceneFrame f) {
   queuedBytes_ += frameBytes(f);
   queue_.emplace_back(std::move(f), frames_);
   ++frames_;
+  const bool wake = queue_.size() == kWakeBatch;
   lock.unlock();
-  queued_.notify_one();
+  if (wake) queued_.notify_one();
 }
 
 std::string VtuSeries::writeFile(const SceneFrame& f, int index) {

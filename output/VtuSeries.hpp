@@ -68,7 +68,7 @@ class VtuSeries {
   std::condition_variable queued_, drained_;
   std::deque<std::pair<SceneFrame, int>> queue_;
   size_t queuedBytes_ = 0;
-  bool busy_ = false, stopping_ = false;
+  bool busy_ = false, stopping_ = false, flushWanted_ = false;
   std::exception_ptr writerError_;
   double backgroundSeconds_ = 0.0;
   std::thread thread_;
