@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """The acceptance figures of issue 8 from the benchmark CSVs, as one markdown table:
-bench/results/summary.md (bench/run_all runs it last). Every number is read from a CSV the other
+bench/results/summary.md and the summary section of bench/README.md (bench/run_all runs it last). Every number is read from a CSV the other
 scripts wrote in the same sitting; nothing is typed in.
 
     /usr/bin/python3 bench/summarize.py
@@ -65,6 +65,15 @@ def main():
         loads = [l.split("load ")[1].split(",")[0] for l in open(machine) if "load " in l]
         text += f"\nMachine load (1-, 5-, 15-min) during the runs: {loads[0]} ... {loads[-1]} (bench/results/machine.txt).\n"
     open(os.path.join(RESULTS, "summary.md"), "w").write(text)
+    # The table also goes into bench/README.md between its summary markers (full runs only).
+    readme = os.path.join(ROOT, "bench", "README.md")
+    if os.path.samefile(RESULTS, os.path.join(ROOT, "bench", "results")) and os.path.exists(readme):
+        doc = open(readme).read()
+        a, b = "<!-- summary -->", "<!-- /summary -->"
+        if a in doc:
+            head, rest = doc.split(a, 1)
+            tail = rest.split(b, 1)[1] if b in rest else rest
+            open(readme, "w").write(head + a + "\n" + text + b + tail)
     print(text)
 
 
