@@ -19,7 +19,9 @@
 #include "SceneFrame.hpp"
 #include "VtuSeries.hpp"
 #include "app/Checkpoint.hpp"
+#include "case/SolverSetup.hpp"
 #include "solver/GeneralizedAlpha.hpp"
+#include "solver/StepController.hpp"
 #include "terms/LineTerms.hpp"
 #include "verification/HenckyReference.hpp"
 #include "verification/References.hpp"
@@ -27,12 +29,6 @@
 namespace chute {
 
 namespace {
-
-double modelSize(const Model& m) {
-  Vec3 lo = m.X.front(), hi = m.X.front();
-  for (const auto& x : m.X) lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
-  return std::max((hi - lo).norm(), 1e-300);
-}
 
 std::optional<ReferenceError> compareWithReference(const CaseSpec& spec, const RunResult& r,
                                                    const ProbeSet& probes) {
@@ -161,16 +157,9 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
   const Model& m = spec.model;
   const SolverSpec& sv = spec.solver;
   StructuralSystem sys(m, sv.search);
-  NewtonSettings ns;
-  ns.maxIterations = sv.maxNewton;
-  ns.tolDisplacement = sv.tolDisplacement > 0 ? sv.tolDisplacement : 1e-10 * modelSize(m);
-  ns.nominalStep = sv.dt;
-  ns.lengthScale = modelSize(m);
+  NewtonSettings ns = newtonSettings(sv, m);
   ns.verbose = options.verboseNewton;
-  ns.slackTautEvents = sv.slackTautEvents;
-  GeneralizedAlpha integrator(
-      sys, sv.rhoInf, sv.integrator == "bossak" ? AlphaScheme::Bossak : AlphaScheme::ChungHulbert,
-      ns);
+  GeneralizedAlpha integrator(sys, sv.rhoInf, alphaScheme(sv), ns);
   ProbeSet probes(m, spec.output.probes);
   r.columns = probes.columns();
 
@@ -256,8 +245,7 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
       integrator.computeInitialAcceleration(after);
       s.a = after.a;
     };
-    double dt = sv.dt, eventStep = 0.0;
-    int successesSinceCut = 0;
+    StepController control(sv.dt, sv.dtMin);
     if (restart) {
       const Checkpoint& c = *restart;
       state = c.state;
@@ -267,7 +255,8 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
         if (g < c.splits.size()) sys.slidingGroups()[g]->state().restoreSplits(c.splits[g]);
       }
       if (c.linearSolverLU) integrator.linearSolver().useLU();
-      dt = c.dt, eventStep = c.eventStep, successesSinceCut = c.successesSinceCut;
+      control.dt = c.dt, control.eventStep = c.eventStep;
+      control.successesSinceCut = c.successesSinceCut;
       probeClock.index = c.probeClockIndex, vtuClock.index = c.vtuClockIndex;
       vtuLast = c.vtuLast;
       r.steps = c.steps, r.rejectedSteps = c.rejectedSteps, r.eventRetries = c.eventRetries;
@@ -289,7 +278,8 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
       c.caseName = spec.name;
       c.modelHash = hash;
       c.state = state;
-      c.dt = dt, c.eventStep = eventStep, c.successesSinceCut = successesSinceCut;
+      c.dt = control.dt, c.eventStep = control.eventStep;
+      c.successesSinceCut = control.successesSinceCut;
       c.linearSolverLU =
           integrator.linearSolver().kind() == LinearSolver::Kind::Umfpack && sys.symmetric();
       c.probeClockIndex = probeClock.index, c.vtuClockIndex = vtuClock.index;
@@ -314,28 +304,21 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
     };
     const double tEnd = sv.tEnd;
     while (state.t < tEnd - 1e-12 * sv.dt) {
-      // The next stop: the end or the next output time. A step that would leave a sliver of
-      // less than a tenth of a step before it is stretched to reach it.
+      // The next stop: the end, the next output time or cable cut (StepController).
       const double stop =
           std::min({tEnd, probeClock.nextTime(), vtuClock.nextTime(), m.nextCutAfter(state.t)});
-      double h = std::min(dt, stop - state.t);
-      if (stop - state.t - h < 0.1 * h) h = stop - state.t;
-      if (eventStep > 0 && eventStep < h) h = eventStep;
-      const bool reachesStop = h == stop - state.t;
+      const double h = control.propose(state.t, stop);
+      const bool reachesStop = control.reachesStop();
       const NewtonReport rep = integrator.step(state, h);
       r.newtonIterations += rep.iterations;
-      eventStep = 0.0;
-      if (!rep.converged && rep.eventFraction > 0.0 && h * rep.eventFraction >= sv.dtMin) {
-        // Event location: retry the step so that it ends where the event happens.
-        ++r.eventRetries;
-        eventStep = h * rep.eventFraction;
+      const auto verdict = control.judge(rep, h);
+      if (verdict == StepController::Verdict::EventRetry) {
+        ++r.eventRetries;  // retried to end where the event happens
         continue;
       }
-      if (!rep.converged) {
+      if (verdict != StepController::Verdict::Accepted) {
         ++r.rejectedSteps;
-        dt = 0.5 * h;
-        successesSinceCut = 0;
-        if (dt < sv.dtMin) {
+        if (verdict == StepController::Verdict::BelowMinimum) {
           r.status = "diverged";
           r.reason = fmt::format(
               "step rejected at t = {:.9g} with dt = {:.3g} ({}); dt would fall below dt_min = "
@@ -349,8 +332,6 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
       ++r.steps;
       accelerationAfterCut(state);
       r.maxNewtonInStep = std::max(r.maxNewtonInStep, rep.iterations);
-      if (dt < sv.dt && ++successesSinceCut >= 4)
-        dt = std::min(2 * dt, sv.dt), successesSinceCut = 0;
       const bool last = state.t >= tEnd - 1e-12 * sv.dt;
       if (probeClock.due(state.t, r.steps, sv.dt) || last) record(state);
       if (vtuClock.due(state.t, r.steps, sv.dt) || last) writeVtu(state);
@@ -366,7 +347,8 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
         break;
       }
     }
-    progress.update(r.steps, state.t, tEnd, dt, 0, r.newtonPerStep(), r.rejectedSteps, true);
+    progress.update(r.steps, state.t, tEnd, control.dt, 0, r.newtonPerStep(), r.rejectedSteps,
+                    true);
     progress.finish();
     if (r.status != "completed") {  // the last good state
       if (r.times.empty() || r.times.back() != state.t) record(state);

@@ -843,6 +843,11 @@ CaseSpec readCaseFromString(const std::string& text, const std::string& file,
     sv.maxNewton = static_cast<int>(s.integer("newton_max_iterations", 25, 1, 1000));
     if (s.has("newton_tolerance")) sv.tolDisplacement = s.positive("newton_tolerance");
     sv.slackTautEvents = s.boolean("slack_events", true);
+    sv.sliderEvents = s.boolean("slider_events", true);
+    if (!sv.sliderEvents && sv.integrator != "bossak")
+      s.fail("slider_events",
+             "false needs integrator = \"bossak\" (forces at the step's end, where a slider "
+             "crossed inside the step is in its new element)");
     s.finish();
   }
   if (top.has("output")) {

@@ -39,6 +39,7 @@ struct SolverSpec {
   int maxNewton = 25;
   double tolDisplacement = 0.0;  // 0: 1e-10 x model size
   bool slackTautEvents = true;   // cut steps at cable slack / taut switches
+  bool sliderEvents = true;      // cut steps where a slider reaches a node (false: Bossak only)
   SliderSearch search = SliderSearch::MaterialCoordinate;
   std::string integrator = "bossak";  // or "generalized_alpha" (Chung-Hulbert)
   int loadSteps = 1;

@@ -4,17 +4,12 @@
 #include <cmath>
 #include <string>
 
+#include "case/SolverSetup.hpp"
 #include "terms/LineTerms.hpp"
 
 namespace chute::coupling {
 
 namespace {
-double modelSize(const Model& m) {
-  Vec3 lo = m.X.front(), hi = m.X.front();
-  for (const auto& x : m.X) lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
-  return std::max((hi - lo).norm(), 1e-300);
-}
-
 // The flow solver owns the pressure on the wet surface: drop the case's pressure on wet sets.
 CaseSpec withoutWetPressure(CaseSpec spec, const WetSurface& w) {
   auto& p = spec.model.pressures;
@@ -39,20 +34,14 @@ CouplingInterface::CouplingInterface(CaseSpec spec, const std::vector<std::strin
   loads_ = loads.get();
   extra.push_back(std::move(loads));
   sys_ = std::make_unique<StructuralSystem>(m, sv.search, std::move(extra));
-  NewtonSettings ns;
-  ns.maxIterations = sv.maxNewton;
-  ns.tolDisplacement = sv.tolDisplacement > 0 ? sv.tolDisplacement : 1e-10 * modelSize(m);
-  ns.nominalStep = sv.dt;
-  ns.lengthScale = modelSize(m);
-  integrator_ = std::make_unique<GeneralizedAlpha>(
-      *sys_, sv.rhoInf, sv.integrator == "bossak" ? AlphaScheme::Bossak : AlphaScheme::ChungHulbert,
-      ns);
+  integrator_ =
+      std::make_unique<GeneralizedAlpha>(*sys_, sv.rhoInf, alphaScheme(sv), newtonSettings(sv, m));
   // preCICE initialize(): the initial state at rest (or moving as the case prescribes), its
   // consistent acceleration under the loads known now (none from the flow yet).
   state_ = integrator_->initialState();
   integrator_->computeInitialAcceleration(state_);
   sys_->commit(state_.x);
-  dt_ = sv.dt;
+  control_ = StepController(sv.dt, sv.dtMin);
 }
 
 Eigen::VectorXd CouplingInterface::referenceCoordinates() const {
@@ -101,37 +90,27 @@ Eigen::VectorXd CouplingInterface::faceCentres() const {
 double CouplingInterface::advance(double dt) {
   if (!(dt > 0.0) || !std::isfinite(dt))
     throw CouplingError("advance: the time step must be positive, got " + std::to_string(dt));
-  const SolverSpec& sv = spec_.solver;
   const double target = state_.t + dt;
   while (state_.t < target - 1e-12 * dt) {
-    // As `chute run`: steps of at most the controlled dt, a sliver before the window's end is
-    // absorbed, a step passing a slider event is cut to end there.
-    const double left = target - state_.t;
-    double h = std::min(dt_, left);
-    if (left - h < 0.1 * h) h = left;
-    if (eventStep_ > 0 && eventStep_ < h) h = eventStep_;
-    const bool reachesEnd = h == left;
+    // As `chute run` (StepController): the window's end is a stop.
+    const double h = control_.propose(state_.t, target);
+    const bool reachesEnd = control_.reachesStop();
     const NewtonReport rep = integrator_->step(state_, h);
     counters_.newtonIterations += rep.iterations;
-    eventStep_ = 0.0;
-    if (!rep.converged && rep.eventFraction > 0.0 && h * rep.eventFraction >= sv.dtMin) {
+    const auto verdict = control_.judge(rep, h);
+    if (verdict == StepController::Verdict::EventRetry) {
       ++counters_.eventRetries;
-      eventStep_ = h * rep.eventFraction;
       continue;
     }
-    if (!rep.converged) {
+    if (verdict != StepController::Verdict::Accepted) {
       ++counters_.rejectedSteps;
-      dt_ = 0.5 * h;
-      successesSinceCut_ = 0;
-      if (dt_ < sv.dtMin)
+      if (verdict == StepController::Verdict::BelowMinimum)
         throw CouplingError("step rejected at t = " + std::to_string(state_.t) + " with dt = " +
                             std::to_string(h) + " (" + rep.failure + "); dt below dt_min");
       continue;
     }
     if (reachesEnd) state_.t = target;  // windows end exactly where the flow solver expects
     ++counters_.steps;
-    if (dt_ < sv.dt && ++successesSinceCut_ >= 4)
-      dt_ = std::min(2 * dt_, sv.dt), successesSinceCut_ = 0;
   }
   return dt;
 }
@@ -139,7 +118,7 @@ double CouplingInterface::advance(double dt) {
 WindowCheckpoint CouplingInterface::snapshot() const {
   WindowCheckpoint c;
   c.state = state_;  // Eigen vectors: copies
-  c.dt = dt_, c.eventStep = eventStep_, c.successesSinceCut = successesSinceCut_;
+  c.control = control_;
   for (const auto* g : sys_->slidingGroups()) c.groups.push_back(g->state());
   if (const auto* mt = sys_->membranes()) c.membranes = mt->elementStates();
   return c;
@@ -151,7 +130,7 @@ void CouplingInterface::saveCheckpoint() {
 
 void CouplingInterface::restore(const WindowCheckpoint& c) {
   state_ = c.state;
-  dt_ = c.dt, eventStep_ = c.eventStep, successesSinceCut_ = c.successesSinceCut;
+  control_ = c.control;
   for (size_t g = 0; g < c.groups.size(); ++g) sys_->slidingGroups()[g]->state() = c.groups[g];
   if (auto* mt = sys_->membranes()) mt->setElementStates(c.membranes);
 }

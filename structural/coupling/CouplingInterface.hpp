@@ -31,6 +31,7 @@
 #include "coupling/ExternalLoadTerm.hpp"
 #include "coupling/WetSurface.hpp"
 #include "solver/GeneralizedAlpha.hpp"
+#include "solver/StepController.hpp"
 #include "terms/SurfaceTerms.hpp"
 
 namespace chute::coupling {
@@ -53,8 +54,7 @@ class NoCheckpointError : public CouplingError {
 // output consistent; it is copied anyway, never referenced.
 struct WindowCheckpoint {
   DynamicState state;
-  double dt = 0.0, eventStep = 0.0;
-  int successesSinceCut = 0;
+  StepController control{0.0, 0.0};
   std::vector<SlidingGroupState> groups;
   std::vector<MembraneTerm::ElementState> membranes;
 };
@@ -123,8 +123,7 @@ class CouplingInterface {
   std::unique_ptr<StructuralSystem> sys_;
   std::unique_ptr<GeneralizedAlpha> integrator_;
   DynamicState state_;
-  double dt_ = 0.0, eventStep_ = 0.0;
-  int successesSinceCut_ = 0;
+  StepController control_{0.0, 0.0};
   StructuralCounters counters_;
   std::unique_ptr<WindowCheckpoint> checkpoint_;
 };

@@ -74,8 +74,17 @@ int SlidingGroupState::search(const Eigen::VectorXd& x, SliderSearch kind) {
       // to move the slider.
       const int current = best;
       double bestScore = lengthMismatch(static_cast<int>(s), best, x);
+      // Within the arrival radius of the node it shares with a neighbour, the slider stays:
+      // there both fit to within the strains' difference, and F12 alone could hand a slider
+      // just handed over across the node (arriveAtNodes) straight back.
+      const Vec3 xs = nodePos(x, def_->sliders[s]);
+      const double radius = kernels::kArrivalFraction * def_->refLength[current];
+      auto atSharedNode = [&](int k) {
+        return std::abs(k - current) == 1 &&
+               (xs - nodePos(x, def_->chain[std::max(k, current)])).norm() <= radius;
+      };
       for (int k = 0; k < nEl; ++k) {
-        if (k == best || takenByOther(k)) continue;
+        if (k == best || takenByOther(k) || atSharedNode(k)) continue;
         const double margin =
             k == current ? 0.0 : kernels::kArrivalFraction * def_->refLength[current];
         const double score = lengthMismatch(static_cast<int>(s), k, x);

@@ -108,7 +108,7 @@ NewtonReport GeneralizedAlpha::newton(Eigen::VectorXd& x, double tol, MakePoint&
     if (newton_.verbose)
       std::fprintf(stderr, "    newton %2d  |R| = %.3e  |dx| = %.3e  changes %d%s\n", it, rn, un,
                    lastChanges, passage < 1.0 ? "  passes an event" : "");
-    if (passage < 1.0 && crossInPlace) {
+    if (passage < 1.0 && (crossInPlace || !newton_.sliderEvents)) {
       x += passage * dx;  // to where slider and node meet, then across
       sys_->crossNow(x);
       onUpdate();

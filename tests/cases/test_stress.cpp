@@ -97,9 +97,15 @@ TEST(Stress, SliderSwingsAlongAFiftyElementRopeAcrossItsNodes) {
   // (a2) the free-swinging bead: 4 s here (> 80 node passages); bench/stress.py runs 40 s (> 1000
   // passages).
   const auto s = run("swing50 (4 s)", "stress_swing50");
-  printTable({s});
+  // The same with each crossing made inside its step (solver.slider_events = false).
+  const auto inStep =
+      run("swing50, in-step (4 s)", "stress_swing50", {"solver.slider_events=false"});
+  printTable({s, inStep});
   expectBounded(s, 1e-3);
+  expectBounded(inStep, 1e-3);
   EXPECT_GE(s.handovers(), 80);
+  EXPECT_EQ(inStep.handovers(), s.handovers());
+  EXPECT_EQ(inStep.r.eventRetries, 0);
 }
 
 TEST(Stress, SliderStartingExactlyOnANode) {

@@ -384,7 +384,7 @@ dofs = "xyz"
     ++compared;
     const bool equal =
         a.state.t == b.state.t && a.state.x == b.state.x && a.state.v == b.state.v &&
-        a.state.a == b.state.a && a.dt == b.dt &&
+        a.state.a == b.state.a && a.control.dt == b.control.dt &&
         a.groups[0].committedActiveElement(0) == b.groups[0].committedActiveElement(0) &&
         a.groups[0].materialCoordinate(0, a.state.x) ==
             b.groups[0].materialCoordinate(0, b.state.x) &&
