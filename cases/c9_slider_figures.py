@@ -28,6 +28,7 @@ ROOT = os.path.dirname(HERE)
 CASES = ("c9_slider", "c9_no_slider")
 FIG11_TIMES = ("0.25", "0.5", "0.75", "1.0")
 RADIUS = "skirt.mean"  # mean distance of the skirt nodes from the confluence -> vent axis
+SLIDER = "slider_0.s"  # grommet 0's reference arc length from the skirt along line 0 (ft)
 FINAL_WINDOW = 0.1  # the final radius: mean over the last 10 % of the run (breathing averaged)
 
 
@@ -53,10 +54,14 @@ def run_case(chute, name, out, overrides):
     return {"exit_status": status, "wall_s_measured": wall, "cpu_s": cpu}
 
 
-def read_radius(out):
+def read_column(out, name):
     with open(os.path.join(out, "probes.csv"), newline="") as f:
         rows = list(csv.DictReader(f))
-    return [float(r["t"]) for r in rows], [float(r[RADIUS]) for r in rows]
+    return [float(r[name]) for r in rows] if rows and name in rows[0] else []
+
+
+def read_radius(out):
+    return read_column(out, "t"), read_column(out, RADIUS)
 
 
 def inflation_figures(t, r):
@@ -108,9 +113,14 @@ def main():
                     "rejected_steps": s["rejected_steps"],
                     "newton_per_step": s["newton_iterations_per_step"],
                     "max_newton_in_a_step": s["max_newton_iterations_in_a_step"],
+                    "event_retries": s["event_retries"],
+                    "slider_handovers": sum(s.get("sliding_handovers", [])),
                     "wall_s": s["wall_time"]["total"],
                     "wall_s_per_simulated_s": s["wall_time"]["total"] / fig["t_end"]})
         fig.update(timing.get(n, {}))
+        slider = read_column(runs[n], SLIDER)
+        if slider:  # where the slider settled: line length from the skirt to its grommet
+            fig["slider_position_at_end"] = slider[-1]
         result["cases"][n] = fig
     ws, wo = result["cases"]["c9_slider"], result["cases"]["c9_no_slider"]
     result["t90_ratio_slider_over_no_slider"] = (ws["t90"] / wo["t90"]
@@ -136,6 +146,9 @@ def main():
           "t90 ratio: not available (t90 not reached in a run)")
     print(f"final skirt radius difference: {100 * result['final_radius_difference']:.2f} % "
           f"(required <= 5 %)")
+    if "slider_position_at_end" in ws:
+        print(f"slider at the end: {ws['slider_position_at_end']:.2f} ft down the lines from the "
+              f"skirt; {ws['slider_handovers']} line nodes passed, {ws['event_retries']} steps cut")
     print(f"machine: {result['cpus']} CPUs, load average {result['load_average_1min']:.1f}")
     print(f"figures in {a.out}: fig11/, fig12_skirt_radius.png, c9_slider_acceptance.json")
     ok = all(result["cases"][n]["status"] == "completed" for n in CASES)
