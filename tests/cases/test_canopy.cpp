@@ -12,6 +12,7 @@
 #include "app/Simulation.hpp"
 #include "case/CaseSpec.hpp"
 #include "solver/StructuralSystem.hpp"
+#include "support/AssembledJacobian.hpp"
 #include "support/FiniteDifference.hpp"
 
 using namespace chute;
@@ -108,29 +109,8 @@ dt = 1e-3
 t_end = 1e-3
 )"));
   StructuralSystem sys(spec.model, spec.solver.search);
-  const int n = 3 * spec.model.numNodes();
-  Eigen::VectorXd x0(n), v(n), a(n);
-  for (int i = 0; i < spec.model.numNodes(); ++i) x0.segment<3>(3 * i) = spec.model.X[i];
-  for (int k = 0; k < n; ++k) {  // a stretched, curved, moving state
-    x0[k] *= 1.02;
-    if (k % 3 == 2) x0[k] += 0.05 * std::sin(1.3 * k);
-    v[k] = 5.0 * std::cos(0.7 * k);
-    a[k] = std::sin(1.0 + k);
-  }
-  sys.updateState(x0);
-  const double cx = 0.8, cv = 30.0, ca = 4000.0;
-  auto residual = [&](const Eigen::VectorXd& xeq) -> Eigen::VectorXd {
-    Eigen::VectorXd y = x0;
-    for (int d = 0, e = 0; d < n; ++d)
-      if (sys.dofs().eqOfDof(d) >= 0) y[d] = xeq[e++];
-    const Eigen::VectorXd vy = v + (cv / cx) * (y - x0), ay = a + (ca / cx) * (y - x0);
-    sys.assemble(EvalPoint{y, vy, ay, 0.5, cx, cv, ca, true, 1.0}, false);
-    return sys.residual();
-  };
-  sys.assemble(EvalPoint{x0, v, a, 0.5, cx, cv, ca, true, 1.0}, true);
-  const Eigen::MatrixXd J = Eigen::MatrixXd(sys.matrix()) / cx;
-  const Eigen::MatrixXd Jfd = chute::testing::fdJacobian(residual, sys.gatherEquations(x0), 1e-7);
-  const double err = chute::testing::relativeError(J, Jfd);
+  const double err = chute::testing::assembledJacobianError(
+      sys, chute::testing::movingState(spec.model, 1.02, 0.05, 5.0, 1.0));
   std::printf(
       "membranes, pressure (uniform, per element), drag (lines, membrane edge), cables: "
       "assembled J vs FD relative error %.2e "

@@ -13,6 +13,7 @@
 #include "coupling/CouplingInterface.hpp"
 #include "coupling/QuasiSteadyFlow.hpp"
 #include "solver/GeneralizedAlpha.hpp"
+#include "support/AssembledJacobian.hpp"
 #include "support/FiniteDifference.hpp"
 #include "terms/LineTerms.hpp"
 
@@ -140,27 +141,8 @@ t_end = 1e-3
   law.wind = Vec3(0.5, -0.2, 1.0);
   extra.push_back(std::make_unique<QuasiSteadyPressureTerm>(w, law));
   StructuralSystem sys(spec.model, spec.solver.search, std::move(extra));
-  const int n = 3 * spec.model.numNodes();
-  Eigen::VectorXd x0(n), v(n), a(n);
-  for (int i = 0; i < spec.model.numNodes(); ++i) x0.segment<3>(3 * i) = spec.model.X[i];
-  for (int k = 0; k < n; ++k) {
-    x0[k] = 1.02 * x0[k] + (k % 3 == 2 ? 0.05 * std::sin(1.3 * k) : 0.0);
-    v[k] = 3.0 * std::cos(0.7 * k);
-    a[k] = 40.0 * std::sin(1.0 + k);
-  }
-  const double cx = 0.8, cv = 30.0, ca = 4000.0;
-  auto residual = [&](const Eigen::VectorXd& xeq) -> Eigen::VectorXd {
-    Eigen::VectorXd y = x0;
-    for (int d = 0, e = 0; d < n; ++d)
-      if (sys.dofs().eqOfDof(d) >= 0) y[d] = xeq[e++];
-    const Eigen::VectorXd vy = v + (cv / cx) * (y - x0), ay = a + (ca / cx) * (y - x0);
-    sys.assemble(EvalPoint{y, vy, ay, 0.5, cx, cv, ca, true, 1.0}, false);
-    return sys.residual();
-  };
-  sys.assemble(EvalPoint{x0, v, a, 0.5, cx, cv, ca, true, 1.0}, true);
-  const Eigen::MatrixXd J = Eigen::MatrixXd(sys.matrix()) / cx;
-  const Eigen::MatrixXd Jfd = chute::testing::fdJacobian(residual, sys.gatherEquations(x0), 1e-7);
-  const double err = chute::testing::relativeError(J, Jfd);
+  const double err = chute::testing::assembledJacobianError(
+      sys, chute::testing::movingState(spec.model, 1.02, 0.05, 3.0, 40.0));
   std::printf(
       "external face + vertex pressures, vertex forces, quasi-steady flow term (x, v, a): "
       "assembled J vs FD %.2e (%d equations)\n",
