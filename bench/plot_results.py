@@ -16,6 +16,16 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 RESULTS = os.environ.get("CHUTE_BENCH_RESULTS", os.path.join(ROOT, "bench", "results"))
 
 
+
+def finish(plt, fig, ax, name, grid=True):
+    """Legend (and log grid), tight layout, written to RESULTS/name and closed."""
+    if grid:
+        ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(os.path.join(RESULTS, name), dpi=110)
+    plt.close(fig)
+
 def fit_exponent(xs, ys):
     """Least-squares slope of log y against log x (positive values only)."""
     pts = [(math.log(x), math.log(y)) for x, y in zip(xs, ys) if x > 0 and y > 0]
@@ -54,11 +64,7 @@ def scaling(plt):
     ax.set_xlabel("degrees of freedom")
     ax.set_ylabel("seconds per Newton iteration")
     ax.set_title("Pressurised canopy with 28 lines: cost of a Newton iteration")
-    ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(os.path.join(RESULTS, "scaling.png"), dpi=110)
-    plt.close(fig)
+    finish(plt, fig, ax, "scaling.png")
 
     fig, ax = plt.subplots(figsize=(6, 4))
     mem = [float(r["peak_rss_mb"]) for r in rows]
@@ -67,11 +73,7 @@ def scaling(plt):
     ax.loglog(dof, mem, "C3-o", label=f"peak resident memory (~ dof^{p:.2f})")
     ax.set_xlabel("degrees of freedom")
     ax.set_ylabel("MB")
-    ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(os.path.join(RESULTS, "scaling_memory.png"), dpi=110)
-    plt.close(fig)
+    finish(plt, fig, ax, "scaling_memory.png")
     ratios = ", ".join(f"{d}: {float(r['ratio_to_floor']):.2f}" for d, r in zip(dof, rows))
     print("iteration / one factorisation by dof:", ratios)
     with open(os.path.join(RESULTS, "scaling_fit.csv"), "w", newline="") as f:
@@ -102,10 +104,7 @@ def peer(plt):
     ax.set_yscale("log")
     ax.set_ylabel("wall time (s, median)")
     ax.set_title("Peer problem: wall time and displacement difference / max displacement")
-    ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(os.path.join(RESULTS, "peer_calculix.png"), dpi=110)
-    plt.close(fig)
+    finish(plt, fig, ax, "peer_calculix.png", grid=False)
 
 
 def main():
