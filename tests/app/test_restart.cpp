@@ -20,6 +20,7 @@
 #include "VtuSeries.hpp"
 #include "app/Simulation.hpp"
 #include "case/CaseSpec.hpp"
+#include "support/TempDir.hpp"
 
 namespace fs = std::filesystem;
 using namespace chute;
@@ -29,9 +30,7 @@ namespace {
 const std::string kChute = CHUTE_BINARY;
 
 fs::path freshDir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("chute_test_restart_" + name);
-  fs::remove_all(d);
-  return d;
+  return chute::testing::freshTempDir("chute_test_restart_", name);
 }
 
 std::string readFile(const fs::path& p) {

@@ -12,15 +12,15 @@
 #include <filesystem>
 #include <string>
 
+#include "support/TempDir.hpp"
+
 namespace fs = std::filesystem;
 
 namespace {
 const std::string kChute = CHUTE_BINARY;
 
 fs::path freshDir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("chute_test_render_" + name);
-  fs::remove_all(d);
-  return d;
+  return chute::testing::freshTempDir("chute_test_render_", name);
 }
 
 int run(const std::string& args) {

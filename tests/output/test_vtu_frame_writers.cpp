@@ -25,16 +25,14 @@
 #include "VtuRawFrame.hpp"
 #include "VtuSeries.hpp"
 #include "VtuVtkFrame.hpp"
+#include "support/TempDir.hpp"
 
 using namespace chute;
 namespace fs = std::filesystem;
 
 namespace {
 fs::path freshDir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("chute_test_vtu_writers_" + name);
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
+  return chute::testing::freshTempDir("chute_test_vtu_writers_", name, true);
 }
 
 // Every shape, NaN and -1 fields, 1-, 2- and 3-component arrays, several parts.

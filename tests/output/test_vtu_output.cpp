@@ -20,15 +20,14 @@
 #include "VtuSeries.hpp"
 #include "app/Simulation.hpp"
 #include "case/CaseSpec.hpp"
+#include "support/TempDir.hpp"
 
 using namespace chute;
 namespace fs = std::filesystem;
 
 namespace {
 fs::path freshDir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("chute_test_vtu_" + name);
-  fs::remove_all(d);
-  return d;
+  return chute::testing::freshTempDir("chute_test_vtu_", name);
 }
 
 vtkSmartPointer<vtkUnstructuredGrid> readVtu(const fs::path& p) {
