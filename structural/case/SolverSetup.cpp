@@ -4,18 +4,21 @@
 
 namespace chute {
 
+namespace {
+// Diagonal of the reference bounding box: the length scale of tolerances.
 double modelSize(const Model& m) {
   Vec3 lo = m.X.front(), hi = m.X.front();
   for (const auto& x : m.X) lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
   return std::max((hi - lo).norm(), 1e-300);
 }
+}  // namespace
 
 NewtonSettings newtonSettings(const SolverSpec& sv, const Model& m) {
   NewtonSettings ns;
   ns.maxIterations = sv.maxNewton;
-  ns.tolDisplacement = sv.tolDisplacement > 0 ? sv.tolDisplacement : 1e-10 * modelSize(m);
-  ns.nominalStep = sv.dt;
   ns.lengthScale = modelSize(m);
+  ns.tolDisplacement = sv.tolDisplacement > 0 ? sv.tolDisplacement : 1e-10 * ns.lengthScale;
+  ns.nominalStep = sv.dt;
   ns.slackTautEvents = sv.slackTautEvents;
   ns.sliderEvents = sv.sliderEvents;
   return ns;

@@ -6,7 +6,6 @@
 
 namespace chute {
 
-double modelSize(const Model& m);  // diagonal of the reference bounding box
 NewtonSettings newtonSettings(const SolverSpec& sv, const Model& m);
 AlphaScheme alphaScheme(const SolverSpec& sv);
 

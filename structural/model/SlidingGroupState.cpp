@@ -85,8 +85,7 @@ int SlidingGroupState::search(const Eigen::VectorXd& x, SliderSearch kind) {
       };
       for (int k = 0; k < nEl; ++k) {
         if (k == best || takenByOther(k) || atSharedNode(k)) continue;
-        const double margin =
-            k == current ? 0.0 : kernels::kArrivalFraction * def_->refLength[current];
+        const double margin = k == current ? 0.0 : radius;
         const double score = lengthMismatch(static_cast<int>(s), k, x);
         if (score < bestScore - margin) best = k, bestScore = score;
       }
