@@ -20,15 +20,20 @@ RunResult runShipped(const std::string& name, double tEnd) {
   return runCase(spec, RunOptions{});
 }
 
-// Probe column `name` at the output time nearest t.
-double at(const RunResult& r, const std::string& name, double t) {
+// Index of probe column `name`.
+long column(const RunResult& r, const std::string& name) {
   const auto col = std::find(r.columns.begin(), r.columns.end(), name) - r.columns.begin();
   EXPECT_LT(col, static_cast<long>(r.columns.size())) << name;
+  return col;
+}
+
+// Probe column `name` at the output time nearest t.
+double at(const RunResult& r, const std::string& name, double t) {
   const auto i =
       std::min_element(r.times.begin(), r.times.end(),
                        [&](double a, double b) { return std::abs(a - t) < std::abs(b - t); }) -
       r.times.begin();
-  return r.rows[i][col];
+  return r.rows[i][column(r, name)];
 }
 }  // namespace
 
@@ -41,8 +46,9 @@ TEST(C9Slider, ReefsAndComesDownTheLinesWithoutCuttingSteps) {
   const double r75 = at(slider, "skirt.mean", 0.75), r100 = at(slider, "skirt.mean", 1.0);
   const double open75 = at(open, "skirt.mean", 0.75);
   double least = r75;
+  const long radius = column(slider, "skirt.mean");
   for (size_t i = 0; i < slider.times.size(); ++i)
-    if (slider.times[i] >= 0.75) least = std::min(least, at(slider, "skirt.mean", slider.times[i]));
+    if (slider.times[i] >= 0.75) least = std::min(least, slider.rows[i][radius]);
   std::printf(
       "c9_slider to 1 s: %ld steps, %ld rejected, %ld event retries, %ld line nodes passed, "
       "%.2f Newton/step, %.1f s wall\n  skirt radius at 0.75 s %.3f ft (no slider %.3f), at "
