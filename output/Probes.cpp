@@ -85,7 +85,7 @@ std::array<double, 3> radiusAboutAxis(const ProbeSpec& p, const Eigen::VectorXd&
 }
 }  // namespace
 
-std::vector<double> ProbeSet::evaluate(const StructuralSystem& sys, const DynamicState& s,
+std::vector<double> ProbeSet::evaluate(const StructuralSystem& sys, const StructuralState& s,
                                        const EnergyBreakdown& e) const {
   std::vector<double> out;
   for (const auto& p : probes_) {
@@ -159,7 +159,7 @@ CsvWriter::CsvWriter(const std::string& path, const std::vector<std::string>& co
 }
 
 CsvWriter::CsvWriter(const std::string& path, const std::vector<std::string>& columns,
-                     double resumeAfter, std::vector<double>& times,
+                     size_t keepRows, std::vector<double>& times,
                      std::vector<std::vector<double>>& rows) {
   std::string header = "t";
   for (const auto& c : columns) header += "," + c;
@@ -168,16 +168,28 @@ CsvWriter::CsvWriter(const std::string& path, const std::vector<std::string>& co
     std::string line;
     if (std::getline(in, line) && line != header)
       throw std::runtime_error(path + ": its columns are not this case's probes");
-    while (std::getline(in, line)) {
+    while (kept.size() < keepRows && std::getline(in, line)) {
       std::vector<double> values;
       std::stringstream ss(line);
-      for (std::string cell; std::getline(ss, cell, ',');) values.push_back(std::stod(cell));
-      if (values.empty() || values.size() != columns.size() + 1 || values[0] > resumeAfter) break;
+      for (std::string cell; std::getline(ss, cell, ',');) {
+        char* end = nullptr;
+        values.push_back(std::strtod(cell.c_str(), &end));
+        if (end == cell.c_str() || *end != '\0')
+          throw std::runtime_error(path + ": row " + std::to_string(kept.size() + 1) +
+                                   " is not a row of numbers");
+      }
+      if (values.size() != columns.size() + 1)
+        throw std::runtime_error(path + ": row " + std::to_string(kept.size() + 1) +
+                                 " has the wrong number of columns");
       times.push_back(values[0]);
       rows.emplace_back(values.begin() + 1, values.end());
       kept.push_back(line);
     }
   }
+  if (kept.size() < keepRows)
+    throw std::runtime_error(path + ": " + std::to_string(kept.size()) +
+                             " rows where the checkpoint was taken after " +
+                             std::to_string(keepRows) + " (not this run's output)");
   const std::string tmp = path + ".tmp";
   f_ = std::fopen(tmp.c_str(), "w");
   if (!f_) throw std::runtime_error("cannot write " + tmp);

@@ -15,7 +15,7 @@ class ProbeSet {
   ProbeSet(const Model& model, std::vector<ProbeSpec> probes);
   std::vector<std::string> columns() const;
   // energy: the system's energy at s (the run needs it anyway for its drift: evaluated once).
-  std::vector<double> evaluate(const StructuralSystem& sys, const DynamicState& s,
+  std::vector<double> evaluate(const StructuralSystem& sys, const StructuralState& s,
                                const EnergyBreakdown& energy) const;
   const std::vector<ProbeSpec>& probes() const { return probes_; }
   // Offset of probe p's first column in an evaluate() row.
@@ -30,9 +30,10 @@ class ProbeSet {
 class CsvWriter {
  public:
   CsvWriter(const std::string& path, const std::vector<std::string>& columns);
-  // Continues the file of a restarted run: rows after resumeAfter are dropped; the rows kept
-  // are returned through times and rows (as written: 15 significant digits).
-  CsvWriter(const std::string& path, const std::vector<std::string>& columns, double resumeAfter,
+  // Continues the file of a restarted run: its first keepRows rows (those written up to the
+  // checkpoint) are kept and returned through times and rows, whatever follows them is dropped.
+  // Throws if the file has fewer rows or other columns (not the output of this run).
+  CsvWriter(const std::string& path, const std::vector<std::string>& columns, size_t keepRows,
             std::vector<double>& times, std::vector<std::vector<double>>& rows);
   ~CsvWriter();
   CsvWriter(const CsvWriter&) = delete;

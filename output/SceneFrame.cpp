@@ -97,7 +97,7 @@ void FrameFields::select(const std::vector<std::string>& chosen) {
   }
 }
 
-SceneFrame buildFrame(StructuralSystem& sys, const DynamicState& s, const FrameFields& fields,
+SceneFrame buildFrame(StructuralSystem& sys, const StructuralState& s, const FrameFields& fields,
                       bool inertia) {
   const Model& m = sys.model();
   ++sys.workCounters().sceneFrames;

@@ -56,7 +56,7 @@ struct FrameFields {
 };
 
 // Builds frames of a system; the system's terms hold the element states it reports.
-SceneFrame buildFrame(StructuralSystem& sys, const DynamicState& s, const FrameFields& fields,
+SceneFrame buildFrame(StructuralSystem& sys, const StructuralState& s, const FrameFields& fields,
                       bool inertia);
 
 }  // namespace chute

@@ -71,18 +71,22 @@ VtuSeries::VtuSeries(std::string dir, std::string name, Writing writing)
   startThread();
 }
 
-VtuSeries::VtuSeries(std::string dir, std::string name, double resumeAfter, Writing writing)
+VtuSeries::VtuSeries(std::string dir, std::string name, int keepFrames, Writing writing)
     : dir_(std::move(dir)), name_(std::move(name)), writing_(writing) {
   std::filesystem::create_directories(dir_);
   std::vector<PvdEntry> kept;
   if (std::filesystem::exists(pvdPath())) {
     for (const auto& e : readPvd(pvdPath())) {
-      if (e.t <= resumeAfter)
+      if (static_cast<int>(kept.size()) < keepFrames)
         kept.push_back(e);
       else
         std::filesystem::remove(std::filesystem::path(dir_) / e.file);
     }
   }
+  if (static_cast<int>(kept.size()) < keepFrames)
+    throw std::runtime_error(pvdPath() + ": " + std::to_string(kept.size()) +
+                             " frames where the checkpoint was taken after " +
+                             std::to_string(keepFrames) + " (not this run's output)");
   frames_ = static_cast<int>(kept.size());
   start(kept);
   startThread();

@@ -32,10 +32,10 @@ class VtuSeries {
  public:
   // Starts a series `<dir>/<name>.pvd`; an existing collection of that name is replaced.
   VtuSeries(std::string dir, std::string name, Writing writing = Writing::InCaller);
-  // Continues the series of a restarted run: frames after resumeAfter are dropped (collection
-  // entries and files), so no output time appears twice.
-  VtuSeries(std::string dir, std::string name, double resumeAfter,
-            Writing writing = Writing::InCaller);
+  // Continues the series of a restarted run: its first keepFrames frames (those written up to
+  // the checkpoint) are kept, the others dropped (collection entries and files). Throws if the
+  // collection has fewer (not the output of this run).
+  VtuSeries(std::string dir, std::string name, int keepFrames, Writing writing = Writing::InCaller);
   ~VtuSeries();  // writes what is queued
   VtuSeries(const VtuSeries&) = delete;
   VtuSeries& operator=(const VtuSeries&) = delete;

@@ -10,7 +10,7 @@
 
 #include "CalculixInp.hpp"
 #include "PeerProblem.hpp"
-#include "app/Simulation.hpp"
+#include "app/RunCase.hpp"
 
 int main(int argc, char** argv) {
   using namespace chute;

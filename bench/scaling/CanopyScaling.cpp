@@ -96,9 +96,9 @@ int main(int argc, char** argv) {
     ns.nominalStep = 1e-3;
     ns.lengthScale = 14.0;
     GeneralizedAlpha integrator(sys, 0.9, AlphaScheme::Bossak, ns);
-    DynamicState s = integrator.initialState();
+    StructuralState s = integrator.initialState();
     integrator.computeInitialAcceleration(s);
-    sys.commit(s.x);
+    sys.commit(CommitPoint{s.x, s.t, 0.0, s.t});
     sys.timings() = Timings{};
     const int steps = 3;
     long iterations = 0;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "case/SolverSetup.hpp"
@@ -10,6 +11,10 @@
 namespace chute::coupling {
 
 namespace {
+// advance() refuses windows longer than this many steps of dt_min (a window of 1e300 would
+// never return).
+constexpr double kMaxStepsPerWindow = 1e9;
+
 // The flow solver owns the pressure on the wet surface: drop the case's pressure on wet sets.
 CaseSpec withoutWetPressure(CaseSpec spec, const WetSurface& w) {
   auto& p = spec.model.pressures;
@@ -36,12 +41,10 @@ CouplingInterface::CouplingInterface(CaseSpec spec, const std::vector<std::strin
   sys_ = std::make_unique<StructuralSystem>(m, sv.search, std::move(extra));
   integrator_ =
       std::make_unique<GeneralizedAlpha>(*sys_, sv.rhoInf, alphaScheme(sv), newtonSettings(sv, m));
+  stepper_ = std::make_unique<TimeStepper>(*sys_, *integrator_, sv.dt, sv.dtMin);
   // preCICE initialize(): the initial state at rest (or moving as the case prescribes), its
   // consistent acceleration under the loads known now (none from the flow yet).
-  state_ = integrator_->initialState();
-  integrator_->computeInitialAcceleration(state_);
-  sys_->commit(state_.x);
-  control_ = StepController(sv.dt, sv.dtMin);
+  state_ = stepper_->start();
 }
 
 Eigen::VectorXd CouplingInterface::referenceCoordinates() const {
@@ -91,53 +94,38 @@ double CouplingInterface::advance(double dt) {
   if (!(dt > 0.0) || !std::isfinite(dt))
     throw CouplingError("advance: the time step must be positive, got " + std::to_string(dt));
   const double target = state_.t + dt;
-  while (state_.t < target - 1e-12 * dt) {
-    // As `chute run` (StepController): the window's end is a stop.
-    const double h = control_.propose(state_.t, target);
-    const bool reachesEnd = control_.reachesStop();
-    const NewtonReport rep = integrator_->step(state_, h);
-    counters_.newtonIterations += rep.iterations;
-    const auto verdict = control_.judge(rep, h);
-    if (verdict == StepController::Verdict::EventRetry) {
-      ++counters_.eventRetries;
-      continue;
-    }
-    if (verdict != StepController::Verdict::Accepted) {
-      ++counters_.rejectedSteps;
-      if (verdict == StepController::Verdict::BelowMinimum)
-        throw CouplingError("step rejected at t = " + std::to_string(state_.t) + " with dt = " +
-                            std::to_string(h) + " (" + rep.failure + "); dt below dt_min");
-      continue;
-    }
-    if (reachesEnd) state_.t = target;  // windows end exactly where the flow solver expects
-    ++counters_.steps;
-  }
+  // A window too short to move time, or one that would take more steps than any run can.
+  if (target == state_.t)
+    throw CouplingError("advance: the time step " + std::to_string(dt) +
+                        " is below the resolution of the time " + std::to_string(state_.t));
+  if (dt / spec_.solver.dtMin > kMaxStepsPerWindow)
+    throw CouplingError("advance: a window of " + std::to_string(dt) + " would take more than " +
+                        std::to_string(kMaxStepsPerWindow) + " steps of dt_min");
+  // As `chute run` (TimeStepper): the window's end is a stop, and so are the case's cut events.
+  const auto before = stepper_->counters();
+  const auto result = stepper_->advanceTo(
+      state_, target, [](double) { return std::numeric_limits<double>::infinity(); },
+      [](const StructuralState&, int) { return true; });
+  const auto& after = stepper_->counters();
+  counters_.steps += after.steps - before.steps;
+  counters_.rejectedSteps += after.rejectedSteps - before.rejectedSteps;
+  counters_.eventRetries += after.eventRetries - before.eventRetries;
+  counters_.newtonIterations += after.newtonIterations - before.newtonIterations;
+  if (result.outcome == TimeStepper::Outcome::BelowMinimum) throw CouplingError(result.reason);
   return dt;
 }
 
 WindowCheckpoint CouplingInterface::snapshot() const {
-  WindowCheckpoint c;
-  c.state = state_;  // Eigen vectors: copies
-  c.control = control_;
-  for (const auto* g : sys_->slidingGroups()) c.groups.push_back(g->state());
-  if (const auto* mt = sys_->membranes()) c.membranes = mt->elementStates();
-  return c;
+  return sys_->saveState(state_);
 }
 
 void CouplingInterface::saveCheckpoint() {
   checkpoint_ = std::make_unique<WindowCheckpoint>(snapshot());
 }
 
-void CouplingInterface::restore(const WindowCheckpoint& c) {
-  state_ = c.state;
-  control_ = c.control;
-  for (size_t g = 0; g < c.groups.size(); ++g) sys_->slidingGroups()[g]->state() = c.groups[g];
-  if (auto* mt = sys_->membranes()) mt->setElementStates(c.membranes);
-}
-
 void CouplingInterface::restoreCheckpoint() {
   if (!checkpoint_) throw NoCheckpointError("restoreCheckpoint: no checkpoint saved");
-  restore(*checkpoint_);  // the checkpoint stays: a window may be repeated many times
+  state_ = sys_->loadState(*checkpoint_);  // the checkpoint stays: a window may be repeated
 }
 
 }  // namespace chute::coupling

@@ -31,7 +31,7 @@
 #include "coupling/ExternalLoadTerm.hpp"
 #include "coupling/WetSurface.hpp"
 #include "solver/GeneralizedAlpha.hpp"
-#include "solver/StepController.hpp"
+#include "solver/TimeStepper.hpp"
 #include "terms/SurfaceTerms.hpp"
 
 namespace chute::coupling {
@@ -46,18 +46,10 @@ class NoCheckpointError : public CouplingError {
   using CouplingError::CouplingError;
 };
 
-// A deep copy of everything a time window changes, kept in memory: positions, velocities,
-// accelerations and time; the step-size control; every sliding group's whole history (trial and
-// committed active elements, slider distances, pending hand-overs: a copy of its
-// SlidingGroupState), and the membranes' wrinkling states. Wrinkling is not history in chute (a
-// function of the current strain, recomputed at every assembly), so restoring it only keeps
-// output consistent; it is copied anyway, never referenced.
-struct WindowCheckpoint {
-  DynamicState state;
-  StepController control{0.0, 0.0};
-  std::vector<SlidingGroupState> groups;
-  std::vector<MembraneTerm::ElementState> membranes;
-};
+// Everything a time window changes, kept in memory: the structure's state and step control with
+// every term's history (StructuralSystem::saveState, the snapshot checkpoints and step
+// rejection use too).
+using WindowCheckpoint = SystemSnapshot;
 
 // Counters of a coupled run so far (structural side).
 struct StructuralCounters {
@@ -109,21 +101,19 @@ class CouplingInterface {
   bool hasCheckpoint() const { return static_cast<bool>(checkpoint_); }
   WindowCheckpoint snapshot() const;  // the same deep copy, for comparisons
 
-  const DynamicState& state() const { return state_; }
+  const StructuralState& state() const { return state_; }
   const StructuralSystem& system() const { return *sys_; }
   const CaseSpec& spec() const { return spec_; }
   const StructuralCounters& counters() const { return counters_; }
 
  private:
-  void restore(const WindowCheckpoint& c);
-
   CaseSpec spec_;  // owns the model the system points to
   WetSurface surface_;
   ExternalLoadTerm* loads_ = nullptr;  // owned by sys_
   std::unique_ptr<StructuralSystem> sys_;
   std::unique_ptr<GeneralizedAlpha> integrator_;
-  DynamicState state_;
-  StepController control_{0.0, 0.0};
+  std::unique_ptr<TimeStepper> stepper_;
+  StructuralState state_;
   StructuralCounters counters_;
   std::unique_ptr<WindowCheckpoint> checkpoint_;
 };

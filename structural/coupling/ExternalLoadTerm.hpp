@@ -20,7 +20,8 @@ class ExternalLoadTerm final : public Term {
   const char* name() const override { return "external_load"; }
   void addCouplings(std::vector<std::vector<int>>& cliques) const override;
   void assemble(const EvalPoint& p, SystemAssembler& out) override;
-  void addEnergy(const Eigen::VectorXd&, const Eigen::VectorXd&, EnergyBreakdown&) const override {}
+  void addEnergy(const Eigen::VectorXd&, const Eigen::VectorXd&, double,
+                 EnergyBreakdown&) const override {}
   bool symmetricJacobian() const override { return false; }
 
   // Sizes: one per face; one per vertex; three per vertex. Throw std::invalid_argument otherwise.

@@ -30,7 +30,8 @@ struct LineSet {
   std::string name;
   bool sliding = false;
   double cutAt = std::numeric_limits<double>::infinity();
-  bool cutBy(double t) const { return t > cutAt; }
+  bool cutBy(double t) const { return t > cutAt; }    // in the forces of a step ending at t
+  bool goneAt(double t) const { return t >= cutAt; }  // in the state at t, after its events
 };
 
 // A chain of sliding elements and the slider points allowed to pass along it (formulation.md 4).

@@ -24,6 +24,8 @@ SlidingGroupState::SlidingGroupState(const SlidingGroupDef& def)
       frTrial_(def.sliders.size()),
       frCommitted_(def.sliders.size()) {
   cumulativeRef_.assign(def.chain.size(), 0.0);
+  // Sized from the start (set by every commit) so that the history record has one shape.
+  for (auto& d : committedDistance_) d.assign(def.sliders.size(), 0.0);
   for (int k = 0; k < def.numElements(); ++k)
     cumulativeRef_[k + 1] = cumulativeRef_[k] + def.refLength[k];
 }
@@ -258,17 +260,6 @@ void SlidingGroupState::commit(const Eigen::VectorXd& x) {
   std::fill(pendingHandover_.begin(), pendingHandover_.end(), 0);
 }
 
-void SlidingGroupState::restore(const std::vector<int>& active, long handovers,
-                                const Eigen::VectorXd& x) {
-  if (active.size() != trial_.size())
-    throw std::out_of_range("checkpoint: wrong number of sliders in group " + def_->name);
-  for (size_t s = 0; s < active.size(); ++s) setActiveElement(static_cast<int>(s), active[s]);
-  initSplits(x);  // friction splits: uniform, unless restoreSplits() follows
-  std::fill(handoverAtCommit_.begin(), handoverAtCommit_.end(), 0);
-  handovers_ = handovers;
-  commit(x);
-}
-
 void SlidingGroupState::revert() {
   trial_ = committed_;
   frTrial_ = frCommitted_;
@@ -301,11 +292,43 @@ void SlidingGroupState::initSplits(const Eigen::VectorXd& x) {
   splitsInitialised_ = true;
 }
 
-void SlidingGroupState::restoreSplits(const std::vector<double>& splits) {
-  if (splits.size() != trial_.size())
-    throw std::out_of_range("checkpoint: wrong number of slider splits in group " + def_->name);
-  for (size_t s = 0; s < splits.size(); ++s)
-    splitStart_[s] = frTrial_[s].s = frCommitted_[s].s = splits[s];
+void SlidingGroupState::save(History& h) const {
+  h.put(trial_);
+  h.put(committed_);
+  for (const auto& d : committedDistance_) h.put(d);
+  h.put(pendingHandover_);
+  h.put(handoverAtCommit_);
+  h.put(static_cast<std::int64_t>(handovers_));
+  h.put(splitsInitialised_);
+  h.put(splitStart_);
+  for (const auto* fr : {&frTrial_, &frCommitted_})
+    for (const auto& f : *fr) {
+      h.put(f.s), h.put(f.slipRate), h.put(f.N1), h.put(f.N2), h.put(f.wrapAngle);
+      h.put(static_cast<int>(f.state));
+    }
+}
+
+void SlidingGroupState::load(HistoryReader& h) {
+  const size_t n = trial_.size();
+  const int last = def_->numElements() - 1;
+  trial_ = h.ints(n, 0, last);
+  committed_ = h.ints(n, 0, last);
+  for (auto& d : committedDistance_) d = h.reals(n);
+  pendingHandover_ = h.ints(n, -1, 1);
+  handoverAtCommit_ = h.ints(n, -1, 1);
+  handovers_ = static_cast<long>(h.integer(0, std::numeric_limits<std::int64_t>::max()));
+  splitsInitialised_ = h.flag();
+  splitStart_ = h.reals(n);
+  for (auto* fr : {&frTrial_, &frCommitted_})
+    for (auto& f : *fr) {
+      f.s = h.finiteReal(), f.slipRate = h.finiteReal(), f.N1 = h.finiteReal();
+      f.N2 = h.finiteReal(), f.wrapAngle = h.finiteReal();
+      f.state = static_cast<kernels::SliderStick>(h.integer(-1, 1));
+    }
+  for (size_t s = 0; s < n; ++s)
+    if (splitStart_[s] < 0.0 || splitStart_[s] > def_->refLength[trial_[s]] ||
+        !std::isfinite(splitStart_[s]))
+      h.fail("slider split outside its element");
 }
 
 double SlidingGroupState::FrictionState::tensionRatio() const {

@@ -4,6 +4,7 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "model/History.hpp"
 #include "model/Model.hpp"
 
 namespace chute {
@@ -56,16 +57,16 @@ class SlidingGroupState {
 
   void commit(const Eigen::VectorXd& x);  // x: the converged positions
   void revert();
+  // Everything the group remembers (trial and committed), exactly; load() checks each value.
+  void save(History& h) const;
+  void load(HistoryReader& h);
 
   const SlidingGroupDef& def() const { return *def_; }
   int activeElement(int slider) const { return trial_[slider]; }
   int committedActiveElement(int slider) const { return committed_[slider]; }
-  void setActiveElement(int slider, int element);  // restart / checkpoint restore
-  // Restores a committed state saved from committedActiveElement() and committedHandovers()
-  // at converged positions x (what commit(x) derives from x is derived again).
-  void restore(const std::vector<int>& active, long handovers, const Eigen::VectorXd& x);
-  bool isActive(int element) const;        // active for some slider (trial state)
-  int sliderOfElement(int element) const;  // -1 if inactive
+  void setActiveElement(int slider, int element);  // tests: put a slider in an element
+  bool isActive(int element) const;                // active for some slider (trial state)
+  int sliderOfElement(int element) const;          // -1 if inactive
 
   // Reference arc length from the chain's first node to the slider (uniform strain in the
   // active element: the slider splits its reference length as l1 : l2).
@@ -91,8 +92,6 @@ class SlidingGroupState {
   // Converged friction state of a slider at the end of the step, before commit(x).
   void setConvergedFriction(int slider, const FrictionState& f) { frTrial_[slider] = f; }
   const FrictionState& friction(int slider) const { return frCommitted_[slider]; }
-  // Restores committed splits saved from friction(s).s (checkpoints), after restore().
-  void restoreSplits(const std::vector<double>& splits);
   // Splits start uniform at the first positions seen (search or commit).
   void ensureSplits(const Eigen::VectorXd& x) {
     if (!splitsInitialised_) initSplits(x);

@@ -4,27 +4,28 @@
 
 namespace chute {
 
-double StepController::propose(double t, double stop) {
-  double h = std::min(dt, stop - t);
+double StepController::propose(const StepControl& c, double t, double stop) {
+  double h = std::min(c.dt, stop - t);
   if (stop - t - h < 0.1 * h) h = stop - t;
-  if (eventStep > 0 && eventStep < h) h = eventStep;
+  if (c.eventStep > 0 && c.eventStep < h) h = c.eventStep;
   reachesStop_ = h == stop - t;
   return h;
 }
 
-StepController::Verdict StepController::judge(const NewtonReport& rep, double h) {
-  eventStep = 0.0;
+StepController::Verdict StepController::judge(StepControl& c, const NewtonReport& rep,
+                                              double h) const {
+  c.eventStep = 0.0;
   if (!rep.converged && rep.eventFraction > 0.0 && h * rep.eventFraction >= dtMin_) {
-    eventStep = h * rep.eventFraction;
+    c.eventStep = h * rep.eventFraction;
     return Verdict::EventRetry;
   }
   if (!rep.converged) {
-    dt = 0.5 * h;
-    successesSinceCut = 0;
-    return dt < dtMin_ ? Verdict::BelowMinimum : Verdict::Rejected;
+    c.dt = 0.5 * h;
+    c.successesSinceCut = 0;
+    return c.dt < dtMin_ ? Verdict::BelowMinimum : Verdict::Rejected;
   }
-  if (dt < dtNominal_ && ++successesSinceCut >= 4)
-    dt = std::min(2 * dt, dtNominal_), successesSinceCut = 0;
+  if (c.dt < dtNominal_ && ++c.successesSinceCut >= 4)
+    c.dt = std::min(2 * c.dt, dtNominal_), c.successesSinceCut = 0;
   return Verdict::Accepted;
 }
 

@@ -1,20 +1,21 @@
 #pragma once
-// Step-size control shared by `chute run` and the coupling interface. Steps are at most the
-// case's dt; a sliver of less than a tenth of a step before a stop (output time, end, cut) is
-// absorbed; a step in which Newton finds an event (a slider at a node, a cable slack / taut) is
-// tried again ending there; a failed step is halved and the step doubles back after four
-// successes.
-#include "solver/GeneralizedAlpha.hpp"
+// Step-size control. Steps are at most the case's dt; a sliver of less than a tenth of a step
+// before a stop (output time, end, cut) is absorbed; a step in which Newton finds an event (a
+// slider at a node, a cable slack / taut) is tried again ending there; a failed step is halved
+// and the step doubles back after four successes. What it remembers is StepControl, part of the
+// StructuralState (so checkpoints and coupling windows carry it).
+#include "solver/Newton.hpp"
+#include "solver/StructuralState.hpp"
 
 namespace chute {
 
 class StepController {
  public:
-  StepController(double dtNominal, double dtMin)
-      : dt(dtNominal), dtNominal_(dtNominal), dtMin_(dtMin) {}
+  StepController(double dtNominal, double dtMin) : dtNominal_(dtNominal), dtMin_(dtMin) {}
+  StepControl initial() const { return StepControl{dtNominal_, 0.0, 0}; }
 
   // Length of the next step from time t towards `stop`.
-  double propose(double t, double stop);
+  double propose(const StepControl& c, double t, double stop);
   bool reachesStop() const { return reachesStop_; }  // the last proposal ends at the stop
 
   enum class Verdict {
@@ -23,13 +24,10 @@ class StepController {
     Rejected,      // Newton failed: the step is halved
     BelowMinimum,  // halving would fall below dt_min: the run cannot go on
   };
-  Verdict judge(const NewtonReport& rep, double h);
+  Verdict judge(StepControl& c, const NewtonReport& rep, double h) const;
 
-  // History (saved with checkpoints): the controlled step, the pending event step, successes
-  // since the last cut.
-  double dt;
-  double eventStep = 0.0;
-  int successesSinceCut = 0;
+  double nominal() const { return dtNominal_; }
+  double minimum() const { return dtMin_; }
 
  private:
   double dtNominal_, dtMin_;

@@ -1,6 +1,8 @@
 #include "solver/StructuralSystem.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <string>
 
 #include "terms/FaceDragTerm.hpp"
 #include "terms/LineTerms.hpp"
@@ -34,9 +36,18 @@ StructuralSystem::StructuralSystem(const Model& model, SliderSearch search,
   if (!model.faceDrags.empty()) terms_.push_back(std::make_unique<FaceDragTerm>(model));
   for (auto& t : extraTerms) terms_.push_back(std::move(t));
 
+  for (const auto& t : terms_)
+    if (auto* e = t->events()) events_.push_back(e);
+
   std::vector<std::vector<int>> cliques;
   for (const auto& t : terms_) t->addCouplings(cliques);
   assembler_.buildPattern(cliques);
+}
+
+const std::vector<std::string>& StructuralSystem::termKinds() {
+  static const std::vector<std::string> kinds{
+      "cables", "sliding_group", "point_masses", "membranes", "pressure", "drag", "face_drag"};
+  return kinds;
 }
 
 int StructuralSystem::updateState(const Eigen::VectorXd& x) {
@@ -95,57 +106,108 @@ bool StructuralSystem::symmetric() const {
 
 double StructuralSystem::passageFraction(const Eigen::VectorXd& x, const Eigen::VectorXd& dx) {
   double f = 1.0;
-  for (const auto& t : terms_) f = std::min(f, t->passageFraction(x, dx));
+  for (auto* e : events_) f = std::min(f, e->passageFraction(x, dx));
   return f;
 }
 
 double StructuralSystem::stepEventFraction(const Eigen::VectorXd& start,
                                            const Eigen::VectorXd& motion) {
   double f = 1.0;
-  for (const auto& t : terms_) f = std::min(f, t->stepEventFraction(start, motion));
+  for (auto* e : events_) f = std::min(f, e->stepEventFraction(start, motion));
   return f;
 }
 
 bool StructuralSystem::crossNow(Eigen::VectorXd& x) {
   bool changed = false;
-  for (const auto& t : terms_) changed |= t->crossNow(x);
+  for (auto* e : events_) changed |= e->crossNow(x);
   return changed;
 }
 
 bool StructuralSystem::drivesKinks() const {
-  return std::any_of(terms_.begin(), terms_.end(), [](const auto& t) { return t->drivesKinks(); });
+  return std::any_of(events_.begin(), events_.end(),
+                     [](const auto* e) { return e->drivesKinks(); });
 }
 
 int StructuralSystem::crossDriven(const Eigen::VectorXd& from, Eigen::VectorXd& to) {
   int changes = 0;
-  for (const auto& t : terms_) changes += t->crossDriven(from, to);
+  for (auto* e : events_) changes += e->crossDriven(from, to);
   return changes;
 }
 
 double StructuralSystem::displacementFloor() const {
   double f = 0.0;
-  for (const auto& t : terms_) f = std::max(f, t->displacementFloor());
+  for (const auto* e : events_) f = std::max(f, e->displacementFloor());
   return f;
 }
 
 bool StructuralSystem::onConverged(Eigen::VectorXd& x) {
   bool changed = false;
-  for (const auto& t : terms_) changed |= t->onConverged(x);
+  for (auto* e : events_) changed |= e->onConverged(x);
   return changed;
 }
 
-EnergyBreakdown StructuralSystem::energy(const Eigen::VectorXd& x, const Eigen::VectorXd& v) const {
+EnergyBreakdown StructuralSystem::energy(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
+                                         double t) const {
   ++energyEvaluations_;
   EnergyBreakdown e;
-  for (const auto& t : terms_) t->addEnergy(x, v, e);
+  for (const auto& term : terms_) term->addEnergy(x, v, t, e);
   return e;
 }
 
-void StructuralSystem::commit(const Eigen::VectorXd& x) {
-  for (const auto& t : terms_) t->commit(x);
+void StructuralSystem::commit(const CommitPoint& c) {
+  for (const auto& t : terms_) t->commit(c);
 }
 void StructuralSystem::revert() {
   for (const auto& t : terms_) t->revert();
+}
+
+SystemSnapshot StructuralSystem::saveState(const StructuralState& s) const {
+  SystemSnapshot snap;
+  snap.state = s;
+  for (const auto& t : terms_) {
+    snap.termNames.emplace_back(t->name());
+    snap.histories.emplace_back();
+    t->save(snap.histories.back());
+  }
+  return snap;
+}
+
+StructuralState StructuralSystem::loadState(const SystemSnapshot& snap) {
+  const auto& s = snap.state;
+  const long n = 3L * model_->numNodes();
+  if (s.x.size() != n || s.v.size() != n || s.a.size() != n)
+    throw HistoryError("state of " + std::to_string(s.x.size() / 3) + " nodes for a model of " +
+                       std::to_string(n / 3));
+  if (!s.x.allFinite() || !s.v.allFinite() || !s.a.allFinite() || !std::isfinite(s.t))
+    throw HistoryError("state not finite");
+  if (!std::isfinite(s.control.dt) || !(s.control.dt > 0.0) ||
+      !std::isfinite(s.control.eventStep) || s.control.eventStep < 0.0 ||
+      s.control.successesSinceCut < 0)
+    throw HistoryError("step control out of range");
+  if (snap.histories.size() != terms_.size() || snap.termNames.size() != terms_.size())
+    throw HistoryError("the snapshot has " + std::to_string(snap.histories.size()) +
+                       " terms, the model " + std::to_string(terms_.size()));
+  for (size_t k = 0; k < terms_.size(); ++k)
+    if (snap.termNames[k] != terms_[k]->name())
+      throw HistoryError("term " + std::to_string(k) + " is " + snap.termNames[k] +
+                         " in the snapshot, " + terms_[k]->name() + " in the model");
+  // Every record is checked on a copy of the histories first: a bad one changes nothing.
+  std::vector<History> current(terms_.size());
+  for (size_t k = 0; k < terms_.size(); ++k) terms_[k]->save(current[k]);
+  try {
+    for (size_t k = 0; k < terms_.size(); ++k) {
+      HistoryReader r(snap.histories[k], snap.termNames[k]);
+      terms_[k]->load(r);
+      r.finish();
+    }
+  } catch (...) {
+    for (size_t k = 0; k < terms_.size(); ++k) {
+      HistoryReader r(current[k], terms_[k]->name());
+      terms_[k]->load(r);
+    }
+    throw;
+  }
+  return s;
 }
 
 void StructuralSystem::addToDofs(const Eigen::VectorXd& eqVec, Eigen::VectorXd& dofVec,

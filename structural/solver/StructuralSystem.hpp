@@ -2,12 +2,14 @@
 // The discrete system of one scene: its dof map, the terms the scene needs (and only those),
 // the sparsity pattern built once, and timing of assembly and search.
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "assembly/SystemAssembler.hpp"
 #include "assembly/Term.hpp"
 #include "model/Model.hpp"
 #include "model/SlidingGroupState.hpp"
+#include "solver/StructuralState.hpp"
 #include "solver/Timings.hpp"
 
 namespace chute {
@@ -22,6 +24,10 @@ class StructuralSystem {
   StructuralSystem(const Model& model, SliderSearch search,
                    std::vector<std::unique_ptr<Term>> extraTerms = {});
 
+  // The names of every kind of term the constructor may create (Term::name()), for the test
+  // that every kind's history round-trips.
+  static const std::vector<std::string>& termKinds();
+
   const Model& model() const { return *model_; }
   const DofMap& dofs() const { return dofs_; }
   int numEquations() const { return dofs_.numEquations(); }
@@ -32,14 +38,15 @@ class StructuralSystem {
   const Eigen::VectorXd& residual() const { return assembler_.residual(); }
   const SparseMatrix& matrix() const { return assembler_.matrix(); }
   bool symmetric() const;
+  // The terms' event sources taken together (assembly/EventSource.hpp): the least fraction,
+  // any change, the largest floor.
   double passageFraction(const Eigen::VectorXd& x, const Eigen::VectorXd& dx);
   double stepEventFraction(const Eigen::VectorXd& start, const Eigen::VectorXd& motion);
   bool onConverged(Eigen::VectorXd& x);
   bool crossNow(Eigen::VectorXd& x);
-  // Kinks passed by prescribed motion (driven sliders at nodes), see Term::crossDriven.
   bool drivesKinks() const;
   int crossDriven(const Eigen::VectorXd& from, Eigen::VectorXd& to);
-  double displacementFloor() const;  // the largest of the terms' (Term::displacementFloor)
+  double displacementFloor() const;
 
   // Nodal forces over all dofs at a converged state (for output): the support reactions
   // (the residual at constrained dofs, zero elsewhere) and the applied loads (gravity, pressure,
@@ -50,9 +57,18 @@ class StructuralSystem {
   NodalForces nodalForces(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
                           const Eigen::VectorXd& a, double t, bool inertia);
 
-  EnergyBreakdown energy(const Eigen::VectorXd& x, const Eigen::VectorXd& v) const;
-  void commit(const Eigen::VectorXd& x);
+  EnergyBreakdown energy(const Eigen::VectorXd& x, const Eigen::VectorXd& v, double t) const;
+  EnergyBreakdown energy(const StructuralState& s) const { return energy(s.x, s.v, s.t); }
+
+  // History (Term::commit / revert / save / load) of every term.
+  void commit(const CommitPoint& c);
   void revert();
+  // The one snapshot of a run's state: s with every term's history.
+  SystemSnapshot saveState(const StructuralState& s) const;
+  // Restores the terms' histories and returns the state; checks the snapshot against this
+  // system first (sizes, term names, finite values) and throws HistoryError naming what is
+  // wrong, before anything is changed.
+  StructuralState loadState(const SystemSnapshot& snap);
 
   // Scatter equation-space vectors to / from full dof vectors.
   void addToDofs(const Eigen::VectorXd& eqVec, Eigen::VectorXd& dofVec, double scale = 1.0) const;
@@ -80,6 +96,7 @@ class StructuralSystem {
   const Model* model_;
   DofMap dofs_;
   std::vector<std::unique_ptr<Term>> terms_;
+  std::vector<EventSource*> events_;
   std::vector<SlidingGroupTerm*> groups_;
   MembraneTerm* membranes_ = nullptr;
   SystemAssembler assembler_;

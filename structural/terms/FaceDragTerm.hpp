@@ -15,7 +15,8 @@ class FaceDragTerm final : public Term {
   const char* name() const override { return "face_drag"; }
   void addCouplings(std::vector<std::vector<int>>& cliques) const override;
   void assemble(const EvalPoint& p, SystemAssembler& out) override;
-  void addEnergy(const Eigen::VectorXd&, const Eigen::VectorXd&, EnergyBreakdown&) const override {}
+  void addEnergy(const Eigen::VectorXd&, const Eigen::VectorXd&, double,
+                 EnergyBreakdown&) const override {}
   bool symmetricJacobian() const override { return false; }
 
  private:

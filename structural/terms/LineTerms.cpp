@@ -88,15 +88,14 @@ void CableTerm::addCouplings(std::vector<std::vector<int>>& cliques) const {
 }
 
 void CableTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
-  time_ = p.t;
   for (const auto& c : m_->cables)
     if (!m_->lineSets[c.set].cutBy(p.t)) assembleCable(*m_, c.a, c.b, c.L, c.material, p, out);
 }
 
-void CableTerm::addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
+void CableTerm::addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v, double t,
                           EnergyBreakdown& e) const {
   for (const auto& c : m_->cables)
-    if (!m_->lineSets[c.set].cutBy(time_)) cableEnergy(*m_, c.a, c.b, c.L, c.material, x, v, e);
+    if (!m_->lineSets[c.set].goneAt(t)) cableEnergy(*m_, c.a, c.b, c.L, c.material, x, v, e);
 }
 
 double CableTerm::stepEventFraction(const Eigen::VectorXd& x, const Eigen::VectorXd& dx) {
@@ -185,17 +184,18 @@ void addSlackPartTangents(const kernels::FrictionSlidingResult& res,
 }
 }  // namespace
 
-void SlidingGroupTerm::commit(const Eigen::VectorXd& x) {
+void SlidingGroupTerm::commit(const CommitPoint& c) {
+  const Eigen::VectorXd& x = c.x;
   state_.ensureSplits(x);
   const auto& g = state_.def();
   for (size_t s = 0; s < g.sliders.size(); ++s) {
     const int si = static_cast<int>(s);
     if (!g.frictionOf(si)) continue;
-    const auto res = frictionElement(*m_, state_, si, x, lastT_, lastDt_, false);
+    const auto res = frictionElement(*m_, state_, si, x, c.tForces, c.dt, false);
     SlidingGroupState::FrictionState f;
     f.s = res.s;
     f.state = res.state;
-    f.slipRate = lastDt_ > 0.0 ? (res.s - state_.splitStart(si)) / lastDt_ : 0.0;
+    f.slipRate = c.dt > 0.0 ? (res.s - state_.splitStart(si)) / c.dt : 0.0;
     f.N1 = res.N1;
     f.N2 = res.N2;
     f.wrapAngle = res.wrapAngle;
@@ -203,6 +203,20 @@ void SlidingGroupTerm::commit(const Eigen::VectorXd& x) {
   }
   state_.commit(x);
   committedX_ = x;
+  committedT_ = c.tForces;
+}
+
+void SlidingGroupTerm::save(History& h) const {
+  state_.save(h);
+  h.put(committedT_);
+  h.put(committedX_);
+}
+
+void SlidingGroupTerm::load(HistoryReader& h) {
+  state_.load(h);
+  committedT_ = h.finiteReal();
+  committedX_ = h.vector(3 * m_->numNodes());
+  if (!committedX_.allFinite()) h.fail("committed positions not finite");
 }
 
 SlidingGroupTerm::ActiveParts SlidingGroupTerm::activeParts(int element,
@@ -210,7 +224,7 @@ SlidingGroupTerm::ActiveParts SlidingGroupTerm::activeParts(int element,
   const auto& g = state_.def();
   const int s = state_.sliderOfElement(element);
   if (s >= 0 && g.frictionOf(s)) {
-    const auto r = frictionElement(*m_, state_, s, x, lastT_, 0.0, false);
+    const auto r = frictionElement(*m_, state_, s, x, committedT_, 0.0, false);
     return {r.N1, r.strain1, r.N2, r.strain2};
   }
   const auto& mat = m_->materials[g.material];
@@ -243,7 +257,6 @@ void SlidingGroupTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
     Vec9 r;
     Mat9 J;
     if (g.frictionOf(s)) {  // capstan friction, lock or one-way flow (docs/friction.md)
-      lastT_ = p.t, lastDt_ = p.dt;
       // FR15: the first iteration of a step, at the converged positions of a slipping slider,
       // takes the tangent of the slip continuing (the stick predictor is on the limit there).
       const auto& committed = state_.friction(s);
@@ -280,7 +293,7 @@ void SlidingGroupTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
   }
 }
 
-void SlidingGroupTerm::addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
+void SlidingGroupTerm::addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v, double,
                                  EnergyBreakdown& e) const {
   const auto& g = state_.def();
   const auto& mat = m_->materials[g.material];
@@ -294,7 +307,7 @@ void SlidingGroupTerm::addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd
     const int n3 = g.sliders[s];
     const double L = g.refLength[k];
     const Vec3 x1 = pos(x, n1), x2 = pos(x, n2), x3 = pos(x, n3);
-    e.strain += g.frictionOf(s) ? frictionElement(*m_, state_, s, x, lastT_, 0.0, false).energy
+    e.strain += g.frictionOf(s) ? frictionElement(*m_, state_, s, x, committedT_, 0.0, false).energy
                                 : kernels::slidingForce(x1, x2, x3, L, mat, false).energy;
     if (mat.density > 0.0) {
       const Vec9 vv = gather3(v, n1, n2, n3);
@@ -330,7 +343,7 @@ void PointMassTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
   }
 }
 
-void PointMassTerm::addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
+void PointMassTerm::addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v, double,
                               EnergyBreakdown& e) const {
   for (int n : nodes_) {
     const double mass = m_->pointMass[n];

@@ -12,29 +12,27 @@
 
 namespace chute {
 
-class CableTerm final : public Term {
+class CableTerm final : public Term, public EventSource {
  public:
   explicit CableTerm(const Model& m) : m_(&m) {}
   const char* name() const override { return "cables"; }
   bool loadDependent() const override { return m_->hasGravity(); }  // gravity only
   void addCouplings(std::vector<std::vector<int>>& cliques) const override;
   void assemble(const EvalPoint& p, SystemAssembler& out) override;
-  void addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
+  void addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v, double t,
                  EnergyBreakdown& e) const override;
   // Slack / taut switches are located in time like a slider at a node: a step whose motion
   // takes a tension-only cable across zero strain is cut to end there, so no step straddles
   // the kink of its energy (the trapezoidal rule conserves the energy of each smooth piece).
   // Measured along the step's whole motion: Newton's later updates may take a cable across.
   double stepEventFraction(const Eigen::VectorXd& start, const Eigen::VectorXd& motion) override;
+  EventSource* events() override { return this; }
 
  private:
   const Model* m_;
-  // Time of the last assembly (the state being solved or just converged): cut sets
-  // (LineSet::cutAt) are left out of the energy from then on.
-  double time_ = 0.0;
 };
 
-class SlidingGroupTerm final : public Term {
+class SlidingGroupTerm final : public Term, public EventSource {
  public:
   SlidingGroupTerm(const Model& m, int group, SliderSearch search);
   const char* name() const override { return "sliding_group"; }
@@ -42,7 +40,7 @@ class SlidingGroupTerm final : public Term {
   void addCouplings(std::vector<std::vector<int>>& cliques) const override;
   int updateState(const Eigen::VectorXd& x) override { return state_.search(x, search_); }
   void assemble(const EvalPoint& p, SystemAssembler& out) override;
-  void addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
+  void addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v, double t,
                  EnergyBreakdown& e) const override;
   // Configuration-dependent mass and gravity make the consistent Jacobian non-symmetric.
   bool symmetricJacobian() const override;
@@ -63,10 +61,14 @@ class SlidingGroupTerm final : public Term {
     return state_.arriveAtNodes(*m_, x, kernels::kArrivalFraction, kernels::kSeparationFraction,
                                 true);
   }
-  // Sliders with friction: the converged split at x is found (docs/friction.md) and committed.
-  void commit(const Eigen::VectorXd& x) override;
   double displacementFloor() const override { return floor_; }
+  EventSource* events() override { return this; }
+  // Sliders with friction: the converged split at x is found (docs/friction.md) and committed.
+  bool hasHistory() const override { return true; }
+  void commit(const CommitPoint& c) override;
   void revert() override { state_.revert(); }
+  void save(History& h) const override;
+  void load(HistoryReader& h) override;
   const SlidingGroupState& state() const { return state_; }
   SlidingGroupState& state() { return state_; }
 
@@ -81,9 +83,11 @@ class SlidingGroupTerm final : public Term {
   const Model* m_;
   SlidingGroupState state_;
   SliderSearch search_;
-  double lastT_ = 0.0, lastDt_ = 0.0;  // of the last assembly: the step being solved
-  Eigen::VectorXd committedX_;         // positions of the last commit (friction: FR15)
-  double floor_ = 0.0;                 // round-off floor of the last assembly (FR16)
+  // Of the last commit: the time the step's forces were evaluated at (a lock's time is compared
+  // with it) and the positions (friction: FR15).
+  double committedT_ = 0.0;
+  Eigen::VectorXd committedX_;
+  double floor_ = 0.0;  // round-off floor of the last assembly (FR16)
 };
 
 class PointMassTerm final : public Term {
@@ -93,7 +97,7 @@ class PointMassTerm final : public Term {
   bool loadDependent() const override { return m_->hasGravity(); }  // gravity only
   void addCouplings(std::vector<std::vector<int>>&) const override {}
   void assemble(const EvalPoint& p, SystemAssembler& out) override;
-  void addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
+  void addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v, double t,
                  EnergyBreakdown& e) const override;
 
  private:

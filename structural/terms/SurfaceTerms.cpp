@@ -117,7 +117,7 @@ void MembraneTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
   }
 }
 
-void MembraneTerm::addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
+void MembraneTerm::addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v, double,
                              EnergyBreakdown& en) const {
   auto one = [&](const auto& ref, const MembraneElement& e, auto nodesTag) {
     constexpr int N = decltype(nodesTag)::value;
@@ -224,6 +224,36 @@ void DragTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
         }
       }
     }
+  }
+}
+
+}  // namespace chute
+
+namespace chute {
+
+// The element states are a function of the strain at the last assembly, not memory the
+// mechanics needs; they are kept with the history so that output after a restore (coupling
+// window, checkpoint) shows the restored state, not the last trial's.
+void MembraneTerm::save(History& h) const {
+  std::vector<int> wrinkle(states_.size());
+  std::vector<double> values;
+  values.reserve(4 * states_.size());
+  for (size_t k = 0; k < states_.size(); ++k) {
+    wrinkle[k] = static_cast<int>(states_[k].state);
+    for (int c = 0; c < 2; ++c) values.push_back(states_[k].principalStress[c]);
+    for (int c = 0; c < 2; ++c) values.push_back(states_[k].principalStrain[c]);
+  }
+  h.put(wrinkle);
+  h.put(values);
+}
+
+void MembraneTerm::load(HistoryReader& h) {
+  const auto wrinkle = h.ints(states_.size(), 0, static_cast<int>(kernels::WrinkleState::Slack));
+  const auto values = h.reals(4 * states_.size());
+  for (size_t k = 0; k < states_.size(); ++k) {
+    states_[k].state = static_cast<kernels::WrinkleState>(wrinkle[k]);
+    states_[k].principalStress = Eigen::Vector2d(values[4 * k], values[4 * k + 1]);
+    states_[k].principalStrain = Eigen::Vector2d(values[4 * k + 2], values[4 * k + 3]);
   }
 }
 

@@ -20,7 +20,7 @@ class MembraneTerm final : public Term {
   bool loadDependent() const override { return m_->hasGravity(); }  // gravity only
   void addCouplings(std::vector<std::vector<int>>& cliques) const override;
   void assemble(const EvalPoint& p, SystemAssembler& out) override;
-  void addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
+  void addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v, double t,
                  EnergyBreakdown& e) const override;
   // Wrinkling state and principal stresses / strains of each element at the last assembly.
   struct ElementState {
@@ -31,7 +31,9 @@ class MembraneTerm final : public Term {
   // A function of the current strain, recomputed at every assembly (not history); kept so that
   // output after a coupling checkpoint is restored shows the restored state.
   const std::vector<ElementState>& elementStates() const { return states_; }
-  void setElementStates(const std::vector<ElementState>& s) { states_ = s; }
+  bool hasHistory() const override { return true; }
+  void save(History& h) const override;
+  void load(HistoryReader& h) override;
   // Elements around a node, for stress probes.
   std::vector<int> elementsAt(int node) const;
 
@@ -52,7 +54,8 @@ class PressureTerm final : public Term {
   const char* name() const override { return "pressure"; }
   void addCouplings(std::vector<std::vector<int>>& cliques) const override;
   void assemble(const EvalPoint& p, SystemAssembler& out) override;
-  void addEnergy(const Eigen::VectorXd&, const Eigen::VectorXd&, EnergyBreakdown&) const override {}
+  void addEnergy(const Eigen::VectorXd&, const Eigen::VectorXd&, double,
+                 EnergyBreakdown&) const override {}
   bool symmetricJacobian() const override { return false; }
 
  private:
@@ -67,7 +70,8 @@ class DragTerm final : public Term {
   const char* name() const override { return "drag"; }
   void addCouplings(std::vector<std::vector<int>>& cliques) const override;
   void assemble(const EvalPoint& p, SystemAssembler& out) override;
-  void addEnergy(const Eigen::VectorXd&, const Eigen::VectorXd&, EnergyBreakdown&) const override {}
+  void addEnergy(const Eigen::VectorXd&, const Eigen::VectorXd&, double,
+                 EnergyBreakdown&) const override {}
   bool symmetricJacobian() const override { return false; }
 
  private:

@@ -8,7 +8,7 @@
 #include <algorithm>
 #include <numeric>
 
-#include "app/Simulation.hpp"
+#include "app/RunCase.hpp"
 #include "case/CaseSpec.hpp"
 
 using namespace chute;

@@ -9,7 +9,7 @@
 #include <iomanip>
 #include <sstream>
 
-#include "app/Simulation.hpp"
+#include "app/RunCase.hpp"
 #include "case/CaseSpec.hpp"
 #include "solver/StructuralSystem.hpp"
 #include "support/AssembledJacobian.hpp"

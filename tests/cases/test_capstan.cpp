@@ -7,9 +7,10 @@
 #include <cmath>
 #include <numbers>
 
-#include "app/Simulation.hpp"
+#include "app/RunCase.hpp"
 #include "case/CaseSpec.hpp"
 #include "solver/GeneralizedAlpha.hpp"
+#include "solver/StaticLoadStepper.hpp"
 #include "terms/LineTerms.hpp"
 
 using namespace chute;
@@ -66,11 +67,11 @@ TEST(Capstan, TwoMassesHoldBelowTheCapstanLimitAndSlipAbove) {
   CaseSpec spec = shipped("capstan_masses", {"point_masses.1.mass=1.8"});
   StructuralSystem sys(spec.model, spec.solver.search);
   GeneralizedAlpha integ(sys, 0.9, AlphaScheme::Bossak, NewtonSettings{});
-  DynamicState s = integ.initialState();
-  sys.commit(s.x);
+  StructuralState s = integ.initialState();
+  sys.commit(CommitPoint{s.x, s.t, 0.0, s.t});
   const auto& st = sys.slidingGroups()[0]->state();
   const double split0 = st.friction(0).s;
-  ASSERT_TRUE(integ.solveStatic(s, 1).converged);
+  ASSERT_TRUE(StaticLoadStepper(sys, integ.newton()).solve(s, 1).converged);
   EXPECT_EQ(st.friction(0).state, kernels::SliderStick::Stick);
   const int heavy = spec.model.nodeId("heavy");
   const double zStatic = s.x[3 * heavy + 2];
@@ -173,18 +174,18 @@ TEST(Capstan, BeltThroughTwoRingsSharingANode) {
   NewtonSettings ns;
   ns.tolDisplacement = 1e-12;
   GeneralizedAlpha integ(sys, 0.9, AlphaScheme::Bossak, ns);
-  DynamicState s = integ.initialState();
-  sys.commit(s.x);
+  StructuralState s = integ.initialState();
+  sys.commit(CommitPoint{s.x, s.t, 0.0, s.t});
   const Model& m = spec.model;
   const int load = m.nodeId("load_ring"), pull = m.nodeId("pull");
-  ASSERT_TRUE(integ.solveStatic(s, 1).converged);
+  ASSERT_TRUE(StaticLoadStepper(sys, integ.newton()).solve(s, 1).converged);
   const double z0 = s.x[3 * load + 2];
   // Pull 2.25 ft of belt out in 45 increments, each a static equilibrium.
   const int n = 45;
   int iterations = 0;
   for (int i = 0; i < n; ++i) {
     s.x[3 * pull] += 2.25 / n;
-    const auto rep = integ.solveStatic(s, 1);
+    const auto rep = StaticLoadStepper(sys, integ.newton()).solve(s, 1);
     ASSERT_TRUE(rep.converged) << rep.failure;
     iterations += rep.iterations;
   }
@@ -212,9 +213,9 @@ TEST(Capstan, NewtonStaysQuadraticInSlip) {
   NewtonSettings ns;
   ns.tolDisplacement = 1e-13;
   GeneralizedAlpha integ(sys, 0.9, AlphaScheme::Bossak, ns);
-  DynamicState s = integ.initialState();
+  StructuralState s = integ.initialState();
   integ.computeInitialAcceleration(s);
-  sys.commit(s.x);
+  sys.commit(CommitPoint{s.x, s.t, 0.0, s.t});
   double bestOrder = 0.0;
   for (int k = 0; k < 3; ++k) {
     const NewtonReport rep = integ.step(s, 0.1);

@@ -3,7 +3,7 @@
 
 #include <filesystem>
 
-#include "app/Simulation.hpp"
+#include "app/RunCase.hpp"
 #include "case/CaseSpec.hpp"
 
 using namespace chute;

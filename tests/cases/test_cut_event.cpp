@@ -10,7 +10,7 @@
 #include <fstream>
 #include <string>
 
-#include "app/Simulation.hpp"
+#include "app/RunCase.hpp"
 #include "case/CaseError.hpp"
 #include "case/CaseSpec.hpp"
 

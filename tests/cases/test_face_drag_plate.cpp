@@ -6,7 +6,7 @@
 #include <cmath>
 #include <fstream>
 
-#include "app/Simulation.hpp"
+#include "app/RunCase.hpp"
 #include "case/CaseSpec.hpp"
 #include "solver/StructuralSystem.hpp"
 #include "support/AssembledJacobian.hpp"

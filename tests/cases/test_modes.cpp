@@ -4,7 +4,7 @@
 #include <cmath>
 #include <fstream>
 
-#include "app/Simulation.hpp"
+#include "app/RunCase.hpp"
 #include "case/CaseSpec.hpp"
 
 using namespace chute;

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "app/Simulation.hpp"
+#include "app/RunCase.hpp"
 #include "case/CaseSpec.hpp"
 #include "solver/StructuralSystem.hpp"
 

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "app/Simulation.hpp"
+#include "app/RunCase.hpp"
 #include "case/CaseSpec.hpp"
 
 using namespace chute;

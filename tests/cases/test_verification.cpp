@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "app/Simulation.hpp"
+#include "app/RunCase.hpp"
 #include "case/CaseSpec.hpp"
 
 using namespace chute;
@@ -97,10 +97,11 @@ TEST(Verification, SlidersCrossedInsideTheStepAgreeWithLocatedCrossings) {
     return runShipped("bead_5", sets);
   };
   const auto l20 = withEvents(true), s20 = withEvents(false);
-  std::printf("  rho_inf = 1, 20 s: energy drift located %.3e, inside the step %.3e (max kinetic "
-              "%.3e), hand-overs %ld / %ld, steps %ld / %ld\n",
-              l20.energyMaxDrift, s20.energyMaxDrift, s20.kineticMax, l20.handovers.at(0),
-              s20.handovers.at(0), l20.steps, s20.steps);
+  std::printf(
+      "  rho_inf = 1, 20 s: energy drift located %.3e, inside the step %.3e (max kinetic "
+      "%.3e), hand-overs %ld / %ld, steps %ld / %ld\n",
+      l20.energyMaxDrift, s20.energyMaxDrift, s20.kineticMax, l20.handovers.at(0),
+      s20.handovers.at(0), l20.steps, s20.steps);
   ASSERT_EQ(s20.status, "completed");
   EXPECT_EQ(s20.handovers.at(0), l20.handovers.at(0));
   EXPECT_LE(s20.energyMaxDrift, 1e-3 * s20.kineticMax);

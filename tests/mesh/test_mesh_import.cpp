@@ -6,7 +6,7 @@
 #include <fstream>
 #include <regex>
 
-#include "app/Simulation.hpp"
+#include "app/RunCase.hpp"
 #include "case/CaseError.hpp"
 #include "case/CaseSpec.hpp"
 

@@ -11,7 +11,7 @@
 #include "GmshMesh.hpp"
 #include "ParachuteCaseWriter.hpp"
 #include "ParachuteGenerator.hpp"
-#include "app/Simulation.hpp"
+#include "app/RunCase.hpp"
 #include "case/CaseSpec.hpp"
 #include "solver/StructuralSystem.hpp"
 

@@ -10,7 +10,7 @@
 #include <iomanip>
 #include <string>
 
-#include "app/Simulation.hpp"
+#include "app/RunCase.hpp"
 #include "case/CaseSpec.hpp"
 
 using namespace chute;

@@ -18,7 +18,7 @@
 #include <string>
 
 #include "VtuSeries.hpp"
-#include "app/Simulation.hpp"
+#include "app/RunCase.hpp"
 #include "case/CaseSpec.hpp"
 #include "support/TempDir.hpp"
 

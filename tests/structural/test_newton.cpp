@@ -16,9 +16,9 @@ void checkQuadratic(const std::string& caseFile, double dt, int steps, double rh
   NewtonSettings ns;
   ns.tolDisplacement = 1e-13 * 100.0;  // iterate close to round-off to see the whole sequence
   GeneralizedAlpha integ(sys, rhoInf, AlphaScheme::Bossak, ns);
-  DynamicState s = integ.initialState();
+  StructuralState s = integ.initialState();
   integ.computeInitialAcceleration(s);
-  sys.commit(s.x);
+  sys.commit(CommitPoint{s.x, s.t, 0.0, s.t});
   double bestOrder = 0.0;
   for (int k = 0; k < steps; ++k) {
     const NewtonReport rep = integ.step(s, dt);

@@ -159,11 +159,11 @@ TEST(SlidingGroupSystem, MassAndWeightInvariantAsTheSliderMoves) {
       sys.updateState(x);
       Eigen::VectorXd v = Eigen::VectorXd::Zero(x.size());
       for (int k = 2; k < v.size(); k += 3) v[k] = 1.0;
-      const auto e = sys.energy(x, v);
+      const auto e = sys.energy(x, v, 0.0);
       EXPECT_NEAR(2 * e.kinetic, mTotal, 1e-12 * mTotal);
       Eigen::VectorXd shifted = x;
       for (int k = 2; k < x.size(); k += 3) shifted[k] += 0.25;
-      const double weight = (sys.energy(shifted, v).gravity - e.gravity) / (0.25 * 9.81);
+      const double weight = (sys.energy(shifted, v, 0.0).gravity - e.gravity) / (0.25 * 9.81);
       EXPECT_NEAR(weight, mTotal, 1e-10 * mTotal);
     }
   }

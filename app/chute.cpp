@@ -5,13 +5,18 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
+#include <string_view>
 #include <vector>
 
+#include "app/StopSignals.hpp"
 #include "app/cli/Command.hpp"
 #include "app/cli/Dispatch.hpp"
 
 int main(int argc, char** argv) {
   using namespace chute::cli;
+  // `chute run` handles SIGINT / SIGTERM from its first instruction (checkpoint, valid output);
+  // the other verbs keep the default (they end at once).
+  if (argc > 1 && std::string_view(argv[1]) == "run") chute::installStopHandlers();
   CLI::App app{"chute: structural finite elements for parachute systems"};
   app.require_subcommand(1);
   const std::vector<Command> commands = {addRunCommand(app), addRenderCommand(app),

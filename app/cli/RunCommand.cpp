@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "app/Simulation.hpp"
+#include "app/RunCase.hpp"
 #include "app/cli/Command.hpp"
 #include "case/CaseError.hpp"
 #include "case/CaseSpec.hpp"

@@ -1,0 +1,42 @@
+#pragma once
+// A run's checkpoint on disk, so that `chute run --restart FILE` continues it bit for bit: the
+// system snapshot (state, step control, every term's history: StructuralSystem::saveState),
+// the step counters, and what the output had written when it was taken. CBOR keeps every double
+// exact. Format 2 carries a checksum over its payload; every field is validated on reading, and
+// the snapshot again by StructuralSystem::loadState, before anything of a run is touched.
+// Written atomically (a temporary file renamed over the old one).
+#include <cstdint>
+#include <string>
+
+#include "model/Model.hpp"
+#include "solver/StructuralState.hpp"
+#include "solver/TimeStepper.hpp"
+
+namespace chute {
+
+// What a run's output had written when the checkpoint was taken (app/RunOutput.hpp).
+struct OutputMark {
+  long probeRows = 0, vtuFrames = 0;
+  long probeClockIndex = 1, vtuClockIndex = 1;
+  double vtuLast = 0.0;
+  double energyInitial = 0.0, energyMaxDrift = 0.0, kineticMax = 0.0;
+};
+
+struct Checkpoint {
+  std::string caseName;
+  std::uint64_t modelHash = 0;  // of the model's nodes, elements and constraints
+  SystemSnapshot snapshot;
+  bool linearSolverLU = false;  // Cholesky had fallen back to LU
+  StepCounters counters;
+  OutputMark output;
+};
+
+std::uint64_t modelHash(const Model& m);
+
+// Throws std::runtime_error naming the file on any failure (including a full disk).
+void writeCheckpoint(const std::string& path, const Checkpoint& c);
+// Throws std::runtime_error naming the file and the field for anything that is not a whole,
+// unaltered checkpoint of this format with values in range.
+Checkpoint readCheckpoint(const std::string& path);
+
+}  // namespace chute

@@ -1,0 +1,306 @@
+#include "app/RunCase.hpp"
+
+#include <fmt/core.h>
+#include <signal.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "app/CheckpointFile.hpp"
+#include "app/RunOutput.hpp"
+#include "app/StopSignals.hpp"
+#include "case/SolverSetup.hpp"
+#include "solver/GeneralizedAlpha.hpp"
+#include "solver/StaticLoadStepper.hpp"
+#include "solver/TimeStepper.hpp"
+#include "terms/LineTerms.hpp"
+#include "verification/HenckyReference.hpp"
+#include "verification/References.hpp"
+
+namespace chute {
+
+namespace {
+
+std::optional<ReferenceError> compareWithReference(const CaseSpec& spec, const RunResult& r,
+                                                   const ProbeSet& probes) {
+  if (!spec.reference) return std::nullopt;
+  const auto& ref = *spec.reference;
+  const Model& m = spec.model;
+  const int node = probes.probes()[ref.probe].node;
+  const int off = probes.columnOffset(ref.probe);
+  std::vector<Vec3> expected;
+  if (ref.kind == "pulley") {
+    const Vec3 d = m.X[node] - m.X[ref.pulley];
+    verification::PulleyReference p{ref.ropeLength, d.norm(), m.gravity.norm(), m.X[ref.pulley],
+                                    d.normalized()};
+    for (double t : r.times) expected.push_back(p.endPosition(t));
+  } else if (ref.kind == "hencky") {
+    // Static: the final state against the Foeppl-Hencky centre deflection.
+    const verification::HenckyReference h{ref.E, ref.nu, ref.thickness, std::abs(ref.pressure),
+                                          ref.radius};
+    const double w0 = h.centreDeflection();
+    const Vec3 d = (ref.pressure > 0 ? 1.0 : -1.0) * ref.direction;
+    ReferenceError e;
+    e.kind = ref.kind;
+    e.probe = probes.probes()[ref.probe].name;
+    const auto& last = r.rows.back();
+    e.maxError = (Vec3(last[off], last[off + 1], last[off + 2]) - (m.X[node] + w0 * d)).norm();
+    e.motionSize = w0;
+    return e;
+  } else if (ref.kind == "free_fall") {
+    for (double t : r.times) expected.push_back(m.X[node] + 0.5 * t * t * m.gravity);
+  } else {
+    verification::BeadEllipseReference b(m.X[ref.anchor1], m.X[ref.anchor2], m.X[node], m.gravity);
+    expected = b.positions(r.times);
+  }
+  ReferenceError e;
+  e.kind = ref.kind;
+  e.probe = probes.probes()[ref.probe].name;
+  for (size_t k = 0; k < r.times.size(); ++k) {
+    const Vec3 x(r.rows[k][off], r.rows[k][off + 1], r.rows[k][off + 2]);
+    e.maxError = std::max(e.maxError, (x - expected[k]).norm());
+    e.motionSize = std::max(e.motionSize, (expected[k] - expected.front()).norm());
+  }
+  return e;
+}
+
+class Progress {
+ public:
+  explicit Progress(bool on) : on_(on && isatty(STDERR_FILENO)) {}
+  void update(long step, double t, double tEnd, double dt, int newton, double avg, long rejected,
+              bool force = false) {
+    if (!on_) return;
+    const auto now = std::chrono::steady_clock::now();
+    if (!force && now - last_ < std::chrono::milliseconds(200)) return;
+    last_ = now;
+    std::fprintf(stderr,
+                 "\r  step %7ld  t = %-10.6g / %-8.4g dt = %-9.3g newton %2d (avg %.2f)  "
+                 "rejected %ld   ",
+                 step, t, tEnd, dt, newton, avg, rejected);
+  }
+  void finish() {
+    if (on_) std::fputc('\n', stderr);
+  }
+
+ private:
+  bool on_;
+  std::chrono::steady_clock::time_point last_{};
+};
+
+}  // namespace
+
+RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
+  const auto wall0 = std::chrono::steady_clock::now();
+  RunResult r;
+  const Model& m = spec.model;
+  const SolverSpec& sv = spec.solver;
+  StructuralSystem sys(m, sv.search);
+  NewtonSettings ns = newtonSettings(sv, m);
+  ns.verbose = options.verboseNewton;
+  GeneralizedAlpha integrator(sys, sv.rhoInf, alphaScheme(sv), ns);
+  TimeStepper stepper(sys, integrator, sv.dt, sv.dtMin);
+  const bool dynamic = sv.type != "static";
+
+  // The model's fingerprint: checked against a restart file and written into every checkpoint.
+  const auto hash = modelHash(m);
+  StructuralState state;
+  std::optional<Checkpoint> restart;
+  if (!options.restartFile.empty()) {
+    if (!dynamic) throw std::runtime_error("static runs cannot be restarted");
+    // Read and validated whole (file, fields, every term's history) before any output is cut.
+    restart = readCheckpoint(options.restartFile);
+    if (restart->caseName != spec.name || restart->modelHash != hash)
+      throw std::runtime_error(options.restartFile + ": a checkpoint of another case or model");
+    try {
+      state = sys.loadState(restart->snapshot);
+    } catch (const HistoryError& e) {
+      throw std::runtime_error(options.restartFile + ": not a valid chute checkpoint (" + e.what() +
+                               ")");
+    }
+    if (restart->linearSolverLU) integrator.linearSolver().useLU();
+    stepper.counters() = restart->counters;
+  }
+  const bool write = !options.outDir.empty();
+  RunOutput out(spec, sys, options.outDir, restart ? &restart->output : nullptr, r);
+
+  Progress progress(options.progress);
+  if (!dynamic) {
+    state = integrator.initialState();
+    state.control = StepControl{sv.dt, 0.0, 0};
+    sys.updateState(state.x);
+    sys.commit(CommitPoint{state.x, state.t, 0.0, state.t});
+    StaticLoadStepper statics(sys, integrator.newton());
+    const auto rep = statics.solve(state, sv.loadSteps, sv.initialLoadFactor);
+    r.newtonIterations = rep.iterations;
+    r.steps = sv.loadSteps;
+    if (!rep.converged) r.status = "diverged", r.reason = rep.failure;
+    state.t = 1.0;
+    out.record(state);
+    out.frame(state);
+  } else {
+    if (!restart) {
+      state = stepper.start();
+      out.record(state);
+      out.frame(state);
+    }
+    auto checkpoint = [&] {
+      if (!write) return;
+      ScopedTimer timer(sys.timings().output);
+      out.flush();  // the frames up to the checkpoint are on disk before it is
+      Checkpoint c;
+      c.caseName = spec.name;
+      c.modelHash = hash;
+      c.snapshot = sys.saveState(state);
+      c.linearSolverLU =
+          integrator.linearSolver().kind() == LinearSolver::Kind::Umfpack && sys.symmetric();
+      c.counters = stepper.counters();
+      c.output = out.mark();
+      writeCheckpoint(options.outDir + "/checkpoint.cbor", c);
+      ++r.checkpoints;
+    };
+    const double tEnd = sv.tEnd;
+    const auto result = stepper.advanceTo(
+        state, tEnd, [&](double) { return out.nextStop(); },
+        [&](const StructuralState& s, int newton) {
+          const auto& n = stepper.counters();
+          const bool last = stepper.reached(s.t, tEnd);
+          out.afterStep(s, n.steps, last);
+          if (options.checkpointEvery > 0 && n.steps % options.checkpointEvery == 0 && !last)
+            checkpoint();
+          progress.update(n.steps, s.t, tEnd, s.control.dt, newton, n.newtonPerStep(),
+                          n.rejectedSteps);
+          if (options.handleSignals && stopRequested() && !last) {
+            r.status = "interrupted";
+            r.reason = fmt::format("stopped by a signal at t = {:.9g}; restart with --restart {}",
+                                   s.t, write ? options.outDir + "/checkpoint.cbor" : "(none)");
+            // The checkpoint is the state the output ends with: a restart cuts the output back
+            // to it (RunOutput), so rows written after it never reach the restarted run.
+            return false;
+          }
+          return true;
+        });
+    if (result.outcome == TimeStepper::Outcome::BelowMinimum) {
+      r.status = "diverged";
+      r.reason = result.reason;
+    }
+    if (r.status == "interrupted") checkpoint();
+    const auto& n = stepper.counters();
+    progress.update(n.steps, state.t, tEnd, state.control.dt, 0, n.newtonPerStep(), n.rejectedSteps,
+                    true);
+    progress.finish();
+    if (r.status != "completed") out.lastGoodState(state);
+    r.steps = n.steps, r.rejectedSteps = n.rejectedSteps, r.eventRetries = n.eventRetries;
+    r.newtonIterations = n.newtonIterations, r.maxNewtonInStep = n.maxNewtonInStep;
+  }
+  r.finalTime = state.t;
+  out.flush();
+  sys.timings().outputBackground = out.backgroundSeconds();
+  r.vtuFrames = out.vtuFrames();
+  r.timings = sys.timings();
+  r.work = sys.work();
+  r.work.vtuSeries = spec.output.vtu.write && write ? 1 : 0;
+  r.work.vtuFrames = r.vtuFrames;
+  r.linearSolver = integrator.linearSolver().kindName();
+  r.symbolicAnalyses = integrator.linearSolver().analyses();
+  r.equations = sys.numEquations();
+  r.nonZeros = sys.matrix().nonZeros();
+  for (const auto* g : sys.slidingGroups()) r.handovers.push_back(g->state().committedHandovers());
+  r.wallTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  {
+    // The reference is not part of the run: timed apart, not in wall_time.total.
+    const auto ref0 = std::chrono::steady_clock::now();
+    r.reference = compareWithReference(spec, r, out.probes());
+    r.referenceTime =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - ref0).count();
+  }
+  if (write) writeSummary(options.outDir + "/summary.json", spec, r);
+  return r;
+}
+
+void writeSummary(const std::string& path, const CaseSpec& spec, const RunResult& r) {
+  using nlohmann::json;
+  const auto& t = r.timings;
+  json j;
+  j["case"] = spec.name;
+  j["case_file"] = spec.file;
+  j["status"] = r.status;
+  if (!r.reason.empty()) j["reason"] = r.reason;
+  j["steps"] = r.steps;
+  j["rejected_steps"] = r.rejectedSteps;
+  j["event_retries"] = r.eventRetries;  // steps cut to end where a slider meets a node
+  j["newton_iterations"] = r.newtonIterations;
+  j["newton_iterations_per_step"] = r.newtonPerStep();
+  j["max_newton_iterations_in_a_step"] = r.maxNewtonInStep;
+  j["final_time"] = r.finalTime;
+  const double accounted = t.assembly + t.search + t.factorisation + t.solve + t.output;
+  j["wall_time"] = {{"total", r.wallTime},
+                    {"assembly", t.assembly},
+                    {"search", t.search},
+                    {"factorisation", t.factorisation},
+                    {"solve", t.solve},
+                    {"output", t.output},
+                    {"other", std::max(0.0, r.wallTime - accounted)},
+                    {"output_background", t.outputBackground}};
+  j["counts"] = {{"assemblies", t.assemblies},
+                 {"searches", t.searches},
+                 {"factorisations", t.factorisations},
+                 {"solves", t.solves},
+                 {"symbolic_analyses", r.symbolicAnalyses}};
+  const auto& w = r.work;
+  j["work"] = {{"line_elastic_kernels", w.lineElastic},
+               {"sliding_kernels", w.sliding},
+               {"line_mass_kernels", w.lineMass},
+               {"point_mass_kernels", w.pointMass},
+               {"membrane_kernels", w.membrane},
+               {"pressure_kernels", w.pressure},
+               {"drag_kernels", w.drag},
+               {"face_drag_kernels", w.faceDrag},
+               {"slider_searches", w.sliderSearch},
+               {"energy_evaluations", w.energy},
+               {"scene_frames", w.sceneFrames},
+               {"vtu_series", w.vtuSeries},
+               {"vtu_frames", w.vtuFrames}};
+  j["system"] = {
+      {"equations", r.equations}, {"nonzeros", r.nonZeros}, {"linear_solver", r.linearSolver}};
+  j["solver"] = {
+      {"type", spec.solver.type},
+      {"dt", spec.solver.dt},
+      {"rho_inf", spec.solver.rhoInf},
+      {"integrator", spec.solver.integrator},
+      {"slack_events", spec.solver.slackTautEvents},
+      {"mass", spec.model.massKind == kernels::MassKind::Lumped ? "lumped" : "consistent"},
+      {"search", spec.solver.search == SliderSearch::NearestLength ? "nearest_length"
+                                                                   : "material_coordinate"}};
+  j["sliding_handovers"] = r.handovers;
+  j["output"] = {
+      {"probe_rows", r.times.size()}, {"vtu_frames", r.vtuFrames}, {"checkpoints", r.checkpoints}};
+  if (!spec.units.empty()) j["units"] = spec.units;
+  j["energy"] = {
+      {"initial", r.energyInitial}, {"max_drift", r.energyMaxDrift}, {"max_kinetic", r.kineticMax}};
+  if (r.reference) {
+    const auto& e = *r.reference;
+    j["reference"] = {{"kind", e.kind},
+                      {"evaluation_time", r.referenceTime},
+                      {"probe", e.probe},
+                      {"max_error", e.maxError},
+                      {"motion_size", e.motionSize},
+                      {"relative_max_error", e.relative()}};
+  }
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream f(tmp);
+    f << j.dump(2) << "\n";
+  }
+  std::filesystem::rename(tmp, path);
+}
+
+}  // namespace chute

@@ -1,0 +1,68 @@
+#pragma once
+// What a run writes while it goes: probe rows (probes.csv), VTU frames (the .pvd series), on
+// their clocks (every N steps or at multiples of an interval, where the stepping stops), and the
+// energy figures of the rows. On a restart the output is first cut back to what it held when
+// the checkpoint was taken (OutputMark), whatever was written after it, so a restarted run's
+// output is the uninterrupted run's.
+#include <limits>
+#include <memory>
+#include <string>
+
+#include "Probes.hpp"
+#include "VtuSeries.hpp"
+#include "app/CheckpointFile.hpp"
+#include "app/RunCase.hpp"
+
+namespace chute {
+
+// When output is due: every N steps, or at multiples of an interval (the stepping stops there).
+struct OutputClock {
+  bool on = true;
+  int every = 1;
+  double interval = 0.0;
+  long index = 1;
+  double nextTime() const {
+    return on && interval > 0 ? static_cast<double>(index) * interval
+                              : std::numeric_limits<double>::infinity();
+  }
+  bool due(double t, long steps, double dt);
+};
+
+class RunOutput {
+ public:
+  // outDir empty: rows are kept in r only, nothing is written. resume: cut the output in outDir
+  // back to this mark and go on from it (throws, before changing anything, if the output there
+  // is not the checkpointed run's).
+  RunOutput(const CaseSpec& spec, StructuralSystem& sys, const std::string& outDir,
+            const OutputMark* resume, RunResult& r);
+  ~RunOutput();
+
+  // The next output time after t (infinity: none), where the stepping must stop.
+  double nextStop() const { return std::min(probeClock_.nextTime(), vtuClock_.nextTime()); }
+  // After an accepted step: rows and frames that are due (and both at the last step).
+  void afterStep(const StructuralState& s, long steps, bool last);
+  // The state a run starts from, and the last good state of a run that stops early.
+  void record(const StructuralState& s);
+  void frame(const StructuralState& s);
+  void lastGoodState(const StructuralState& s);
+
+  OutputMark mark() const;
+  void flush();  // every frame given so far is on disk
+  int vtuFrames() const { return vtu_ ? vtu_->frames() : 0; }
+  double backgroundSeconds() const { return vtu_ ? vtu_->backgroundSeconds() : 0.0; }
+  const ProbeSet& probes() const { return probes_; }
+
+ private:
+  const CaseSpec* spec_;
+  StructuralSystem* sys_;
+  RunResult* r_;
+  ProbeSet probes_;
+  std::unique_ptr<CsvWriter> csv_;
+  std::unique_ptr<VtuSeries> vtu_;
+  FrameFields fields_;
+  bool inertia_;
+  double vtuLast_ = -std::numeric_limits<double>::infinity();
+  OutputClock probeClock_, vtuClock_;
+};
+
+}  // namespace chute

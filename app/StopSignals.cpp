@@ -1,0 +1,32 @@
+#include "app/StopSignals.hpp"
+
+#include <signal.h>
+
+#include <csignal>
+
+namespace chute {
+
+namespace {
+volatile std::sig_atomic_t gStopRequested = 0;
+extern "C" void requestStop(int) {
+  gStopRequested = 1;
+}
+}  // namespace
+
+void installStopHandlers() {
+  struct sigaction sa {};
+  sa.sa_handler = requestStop;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+}
+
+bool stopRequested() {
+  return gStopRequested != 0;
+}
+
+void clearStopRequest() {
+  gStopRequested = 0;
+}
+
+}  // namespace chute

@@ -1,0 +1,64 @@
+#include "solver/StaticLoadStepper.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace chute {
+
+namespace {
+// The static evaluation point: no velocity, no inertia, loads scaled by the factor.
+class StaticProblem final : public NewtonProblem {
+ public:
+  StaticProblem(const Eigen::VectorXd& x, double t, double loadFactor)
+      : x_(x), zero_(Eigen::VectorXd::Zero(x.size())), t_(t), loadFactor_(loadFactor) {}
+  EvalPoint point() override {
+    return EvalPoint{x_, zero_, zero_, t_, 1.0, 0.0, 0.0, false, loadFactor_, 0.0};
+  }
+  void afterUpdate() override {}
+
+ private:
+  const Eigen::VectorXd& x_;
+  Eigen::VectorXd zero_;
+  double t_, loadFactor_;
+};
+}  // namespace
+
+NewtonReport StaticLoadStepper::solve(StructuralState& s, int nSteps, double initialFactor) {
+  NewtonReport total;
+  Eigen::VectorXd x = s.x;
+  double lambda = 0.0, increment = 1.0 / nSteps;
+  const bool geometric = initialFactor < 1.0 && nSteps > 1;
+  const double growth = geometric ? std::pow(1.0 / initialFactor, 1.0 / (nSteps - 1)) : 1.0;
+  if (geometric) increment = initialFactor;
+  const double tol = newton_->settings().tolDisplacement;
+  while (lambda < 1.0 - 1e-12) {
+    const double target = std::min(1.0, lambda + increment);
+    StaticProblem problem(x, s.t, target);
+    const Eigen::VectorXd start = x;
+    NewtonReport rep = newton_->solve(x, tol, problem, true, nullptr);
+    total.iterations += rep.iterations;
+    total.residualNorms.insert(total.residualNorms.end(), rep.residualNorms.begin(),
+                               rep.residualNorms.end());
+    if (!rep.converged) {
+      x = start;
+      sys_->revert();
+      increment *= 0.5;
+      if (increment < 1e-9) {
+        total.failure = rep.failure + " at load factor " + std::to_string(target);
+        return total;
+      }
+      continue;
+    }
+    sys_->commit(CommitPoint{x, s.t, 0.0, s.t});
+    lambda = target;
+    increment = geometric ? std::max(increment, lambda * (growth - 1.0)) : increment;
+  }
+  total.converged = true;
+  s.x = x;
+  s.v.setZero();
+  s.a.setZero();
+  return total;
+}
+
+}  // namespace chute

@@ -1,0 +1,21 @@
+#pragma once
+// Static equilibrium under the loads, applied in increments of the load factor: equal, or
+// growing geometrically from an initial factor to 1 (a flat membrane under pressure stiffens
+// with its deflection: w ~ p^(1/3)). A slider reaching a node is handed over within the solve (no
+// step straddles it in statics); a failed increment is halved.
+#include "solver/Newton.hpp"
+#include "solver/StructuralState.hpp"
+
+namespace chute {
+
+class StaticLoadStepper {
+ public:
+  StaticLoadStepper(StructuralSystem& sys, Newton& newton) : sys_(&sys), newton_(&newton) {}
+  NewtonReport solve(StructuralState& s, int nSteps, double initialFactor = 1.0);
+
+ private:
+  StructuralSystem* sys_;
+  Newton* newton_;
+};
+
+}  // namespace chute

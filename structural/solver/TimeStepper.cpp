@@ -1,0 +1,84 @@
+#include "solver/TimeStepper.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace chute {
+
+TimeStepper::TimeStepper(StructuralSystem& sys, GeneralizedAlpha& integrator, double dtNominal,
+                         double dtMin)
+    : sys_(&sys), integrator_(&integrator), control_(dtNominal, dtMin) {}
+
+StructuralState TimeStepper::start() {
+  StructuralState s = integrator_->initialState();
+  s.control = control_.initial();
+  integrator_->computeInitialAcceleration(s);
+  accelerationAfterCut(s);
+  sys_->commit(CommitPoint{s.x, s.t, 0.0, s.t});
+  return s;
+}
+
+void TimeStepper::accelerationAfterCut(StructuralState& s) {
+  if (!sys_->model().hasCutAt(s.t)) return;
+  StructuralState after = s;
+  after.t = std::nextafter(s.t, std::numeric_limits<double>::infinity());
+  for (int d = 0; d < after.a.size(); ++d)
+    if (sys_->dofs().eqOfDof(d) >= 0) after.a[d] = 0.0;
+  integrator_->computeInitialAcceleration(after);
+  s.a = after.a;
+}
+
+TimeStepper::Result TimeStepper::advanceTo(
+    StructuralState& s, double tStop, const std::function<double(double)>& nextStop,
+    const std::function<bool(const StructuralState&, int)>& afterStep) {
+  Result result;
+  const Model& m = sys_->model();
+  while (!reached(s.t, tStop)) {
+    // The next stop: the target, the caller's next stop, the next cable cut.
+    const double stop = std::min({tStop, nextStop(s.t), m.nextCutAfter(s.t)});
+    const double h = control_.propose(s.control, s.t, stop);
+    const bool reachesStop = control_.reachesStop();
+    // The state the step starts from: a failed try goes back to exactly this.
+    const SystemSnapshot before = sys_->saveState(s);
+    const NewtonReport rep = integrator_->step(s, h);
+    counters_.newtonIterations += rep.iterations;
+    if (!rep.converged) {
+      StepControl control = s.control;
+      s = sys_->loadState(before);
+      s.control = control;
+    }
+    const auto verdict = control_.judge(s.control, rep, h);
+    if (verdict == StepController::Verdict::EventRetry) {
+      ++counters_.eventRetries;  // retried to end where the event happens
+      continue;
+    }
+    if (verdict != StepController::Verdict::Accepted) {
+      ++counters_.rejectedSteps;
+      if (verdict == StepController::Verdict::BelowMinimum) {
+        std::ostringstream why;
+        why.precision(9);
+        why << "step rejected at t = " << s.t;
+        why.precision(3);
+        why << " with dt = " << h << " (" << rep.failure
+            << "); dt would fall below dt_min = " << control_.minimum();
+        result.outcome = Outcome::BelowMinimum;
+        result.reason = why.str();
+        return result;
+      }
+      continue;
+    }
+    if (reachesStop) s.t = stop;  // no round-off drift of output times
+    ++counters_.steps;
+    accelerationAfterCut(s);
+    counters_.maxNewtonInStep = std::max(counters_.maxNewtonInStep, rep.iterations);
+    if (!afterStep(s, rep.iterations)) {
+      result.outcome = Outcome::Stopped;
+      return result;
+    }
+  }
+  return result;
+}
+
+}  // namespace chute
