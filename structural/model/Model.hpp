@@ -33,7 +33,8 @@ struct LineSet {
   bool cutBy(double t) const { return t > cutAt; }
 };
 
-// A chain of sliding elements and the slider points allowed to pass along it (formulation.md 4).
+// A chain of sliding elements and the slider points allowed to pass along it
+// (docs/formulation.md section 4).
 struct SlidingGroupDef {
   std::string name;
   int material = -1;
@@ -79,7 +80,7 @@ struct PressureLoadDef {
 };
 
 // Drag on the line elements of a line set, or on the edges joining consecutive nodes of a node
-// set (membrane edges, e.g. a slider's four edges) (formulation.md section 6).
+// set (membrane edges, e.g. a slider's four edges) (docs/formulation.md section 6).
 struct DragLoadDef {
   int lineSet = -1;
   std::vector<std::array<int, 2>> edges;  // used when lineSet < 0

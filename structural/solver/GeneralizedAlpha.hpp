@@ -1,5 +1,5 @@
 #pragma once
-// Implicit generalized-alpha time integration (Chung & Hulbert 1993, formulation.md section 7)
+// Implicit generalized-alpha time integration (Chung & Hulbert 1993, docs/formulation.md section 7)
 // with full Newton on the residual and the consistent tangent, plus a static mode with load
 // stepping. The integrator sees one matrix J = cx K + cv C + ca M assembled from the terms.
 #include <Eigen/Core>
