@@ -1,4 +1,4 @@
-// Case file -> CaseSpec. The schema is documented in README.md ("Case files").
+// Case file -> CaseSpec. The schema is documented in docs/case-files.md.
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cctype>
@@ -784,7 +784,7 @@ CaseSpec readCaseFromString(const std::string& text, const std::string& file,
       t.finish();
       m.drags.push_back(d);
     }
-    // [[loads.face_drag]]: drag on the faces of a membrane set (README "Canopy mechanics").
+    // [[loads.face_drag]]: drag on the faces of a membrane set (docs/formulation.md FD1).
     for (auto& t : l.tables("face_drag")) {
       FaceDragLoadDef d;
       const std::string set = t.string("membranes");

@@ -88,7 +88,7 @@ struct DragLoadDef {
   Vec3 wind = Vec3::Zero();
 };
 
-// Drag on the faces of a membrane set (face drag, README "Canopy mechanics"; kernels/FaceDrag).
+// Drag on the faces of a membrane set (docs/formulation.md FD1; kernels/FaceDrag).
 struct FaceDragLoadDef {
   int set = -1;              // membrane set
   double coefficient = 0.0;  // (1/2) rho_air Cd

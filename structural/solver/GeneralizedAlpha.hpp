@@ -33,7 +33,7 @@ struct NewtonSettings {
   // Cut steps to end where a slider reaches a node. Off: Newton hands the slider over at the
   // node inside the step, as in statics (Bossak only: forces at the step's end, where the slider
   // is in its new element). Keeps the step, and with it the numerical damping of unresolved
-  // fabric modes (C-9); measured no worse in energy drift (README "Parachute applications").
+  // fabric modes (C-9); measured no worse in energy drift (docs/applications/c9.md).
   bool sliderEvents = true;
   bool verbose = false;  // print the residual sequence of every iteration
 };
