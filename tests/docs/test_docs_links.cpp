@@ -1,0 +1,94 @@
+// The documentation holds together: every page under docs/ is linked from the README, every
+// relative link in the README and the pages points at a file of the repository, and no file
+// cites the design notes that lived outside it.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace {
+const fs::path kRoot = CHUTE_SOURCE_DIR;
+
+std::string readAll(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::vector<fs::path> docPages() {
+  std::vector<fs::path> pages;
+  for (const auto& e : fs::recursive_directory_iterator(kRoot / "docs"))
+    if (e.path().extension() == ".md") pages.push_back(e.path());
+  return pages;
+}
+
+// Relative link targets of a Markdown file ("](target)" and "](target#anchor)"), web links left
+// out.
+std::vector<std::string> links(const std::string& text) {
+  static const std::regex link(R"(\]\(([^)#\s]+)(#[^)]*)?\))");
+  std::vector<std::string> out;
+  for (std::sregex_iterator it(text.begin(), text.end(), link), end; it != end; ++it) {
+    const std::string target = (*it)[1];
+    if (target.find("://") == std::string::npos && target.rfind("mailto:", 0) != 0)
+      out.push_back(target);
+  }
+  return out;
+}
+}  // namespace
+
+TEST(Docs, EveryPageIsLinkedFromTheReadme) {
+  std::set<fs::path> linked;
+  for (const auto& l : links(readAll(kRoot / "README.md")))
+    linked.insert(fs::weakly_canonical(kRoot / l));
+  const auto pages = docPages();
+  for (const auto& page : pages)
+    EXPECT_TRUE(linked.count(fs::weakly_canonical(page)))
+        << fs::relative(page, kRoot) << " is not linked from README.md";
+  std::printf("%zu pages under docs/, all checked against the README's links\n", pages.size());
+  EXPECT_GE(pages.size(), 10u);
+}
+
+TEST(Docs, EveryRelativeLinkPointsAtAFileOfTheRepository) {
+  auto files = docPages();
+  files.push_back(kRoot / "README.md");
+  int checked = 0;
+  for (const auto& f : files)
+    for (const auto& l : links(readAll(f))) {
+      const fs::path target = fs::weakly_canonical(f.parent_path() / l);
+      EXPECT_TRUE(fs::exists(target)) << fs::relative(f, kRoot) << ": link to " << l;
+      const auto rel = fs::relative(target, fs::weakly_canonical(kRoot)).string();
+      EXPECT_FALSE(rel.rfind("..", 0) == 0)
+          << fs::relative(f, kRoot) << ": " << l << " leaves the repository";
+      ++checked;
+    }
+  std::printf("%d relative links checked\n", checked);
+  EXPECT_GT(checked, 20);
+}
+
+TEST(Docs, NoFileCitesDesignNotesOutsideTheRepository) {
+  int scanned = 0;
+  for (auto it = fs::recursive_directory_iterator(kRoot); it != fs::recursive_directory_iterator();
+       ++it) {
+    const auto name = it->path().filename().string();
+    if (it->is_directory() && (name == ".git" || name == "out" || name.rfind("build", 0) == 0)) {
+      it.disable_recursion_pending();
+      continue;
+    }
+    if (!it->is_regular_file() || it->file_size() > 2'000'000) continue;
+    const std::string text = readAll(it->path());
+    if (text.find('\0') != std::string::npos) continue;  // binary (meshes are text, PNGs not)
+    ++scanned;
+    EXPECT_EQ(text.find("shared/"
+                        "design"),
+              std::string::npos)
+        << fs::relative(it->path(), kRoot);
+  }
+  std::printf("%d text files scanned\n", scanned);
+}
