@@ -21,7 +21,13 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 echo "install-paraview: unpacking python3-paraview $version into $PREFIX" >&2
 # As root, apt's download sandbox user cannot write to a private temporary directory.
-(cd "$tmp" && apt-get download -q -o APT::Sandbox::User=root "python3-paraview=$version" >&2)
+download() { (cd "$tmp" && apt-get download -q -o APT::Sandbox::User=root "python3-paraview=$version" >&2); }
+if ! download; then  # no package lists yet (a fresh image): fetch them once and retry
+  SUDO=""
+  [ "$(id -u)" -eq 0 ] || SUDO="sudo"
+  $SUDO apt-get update -qq
+  download
+fi
 rm -rf "$PREFIX/usr" "$PREFIX/version"  # only what an earlier unpacking left
 mkdir -p "$PREFIX"
 dpkg-deb -x "$tmp"/python3-paraview_*.deb "$PREFIX"

@@ -423,7 +423,8 @@ int membraneMaterialRef(const Model& m, TomlTable& t) {
 }
 
 // Why a membrane element is unusable ("" if it is fine): a repeated node, no area, or (quads) a
-// corner that is not convex about the normal the kernel uses (F-membrane reference frame).
+// corner that is not convex about the normal the kernel uses (its reference frame,
+// docs/formulation.md M1).
 std::string degenerateElement(const Model& m, const MembraneElement& e) {
   const int n = e.numNodes;
   for (int i = 0; i < n; ++i)

@@ -1,6 +1,7 @@
 // The documentation holds together: every page under docs/ is linked from the README, every
-// relative link in the README and the pages points at a file of the repository, and no file
-// cites the design notes that lived outside it.
+// relative link in the README and the pages points at a file of the repository, no file cites
+// the design notes that lived outside it, and every equation tag and section of
+// docs/formulation.md / docs/friction.md the code cites exists there.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -91,4 +92,41 @@ TEST(Docs, NoFileCitesDesignNotesOutsideTheRepository) {
         << fs::relative(it->path(), kRoot);
   }
   std::printf("%d text files scanned\n", scanned);
+}
+
+TEST(Docs, EveryEquationTagAndSectionTheCodeCitesExists) {
+  const std::string formulation = readAll(kRoot / "docs/formulation.md");
+  const std::string friction = readAll(kRoot / "docs/friction.md");
+  // A tag is defined where it heads a table row ("| F12 |") or stands in parentheses ("(FR3)").
+  auto defined = [](const std::string& page, const std::string& tag) {
+    return page.find("| " + tag + " |") != std::string::npos ||
+           page.find("(" + tag + ")") != std::string::npos;
+  };
+  static const std::regex tag(R"(\b(F[0-9]{1,2}|FR[0-9]{1,2}|FD[0-9]|RG[0-9]|WR[0-9]|TI[0-9])\b)");
+  static const std::regex section(R"(formulation\.md sections? ([0-9])(?:-([0-9]))?)");
+  std::set<std::string> tags;
+  int sections = 0;
+  for (const char* dir : {"structural", "output", "mesh", "cases", "tests", "bench"})
+    for (const auto& e : fs::recursive_directory_iterator(kRoot / dir)) {
+      const auto ext = e.path().extension();
+      if (ext != ".cpp" && ext != ".hpp" && ext != ".h" && ext != ".toml" && ext != ".py") continue;
+      const std::string text = readAll(e.path());
+      for (std::sregex_iterator it(text.begin(), text.end(), tag), end; it != end; ++it)
+        tags.insert((*it)[1]);
+      for (std::sregex_iterator it(text.begin(), text.end(), section), end; it != end; ++it)
+        for (int g : {1, 2}) {
+          if (!(*it)[g].matched) continue;
+          ++sections;
+          EXPECT_NE(formulation.find("\n## " + (*it)[g].str() + ". "), std::string::npos)
+              << fs::relative(e.path(), kRoot) << " cites formulation.md section " << (*it)[g];
+        }
+    }
+  for (const auto& t : tags) {
+    const bool fr = t.rfind("FR", 0) == 0;
+    EXPECT_TRUE(defined(fr ? friction : formulation, t))
+        << t << " is cited in the code but not defined in docs/"
+        << (fr ? "friction" : "formulation") << ".md";
+  }
+  std::printf("%zu distinct tags and %d section citations checked\n", tags.size(), sections);
+  EXPECT_GT(tags.size(), 20u);
 }
