@@ -41,7 +41,7 @@ Eigen::VectorXd fromVector(const std::vector<double>& v) {
 }
 
 nlohmann::json payloadOf(const Checkpoint& c) {
-  const auto& s = c.snapshot.state;
+  const auto& s = c.stepping.snapshot.state;
   nlohmann::json j;
   j["case"] = c.caseName;
   j["model_hash"] = c.modelHash;
@@ -53,12 +53,13 @@ nlohmann::json payloadOf(const Checkpoint& c) {
   j["event_step"] = s.control.eventStep;
   j["successes_since_cut"] = s.control.successesSinceCut;
   j["terms"] = nlohmann::json::array();
-  for (size_t k = 0; k < c.snapshot.histories.size(); ++k)
-    j["terms"].push_back({{"name", c.snapshot.termNames[k]},
-                          {"reals", c.snapshot.histories[k].reals()},
-                          {"ints", c.snapshot.histories[k].ints()}});
-  j["linear_solver_lu"] = c.linearSolverLU;
-  const auto& n = c.counters;
+  const auto& snap = c.stepping.snapshot;
+  for (size_t k = 0; k < snap.histories.size(); ++k)
+    j["terms"].push_back({{"name", snap.termNames[k]},
+                          {"reals", snap.histories[k].reals()},
+                          {"ints", snap.histories[k].ints()}});
+  j["linear_solver_lu"] = c.stepping.linearSolverLU;
+  const auto& n = c.stepping.counters;
   j["counters"] = {n.steps, n.rejectedSteps, n.eventRetries, n.newtonIterations,
                    static_cast<long>(n.maxNewtonInStep)};
   const auto& o = c.output;
@@ -89,7 +90,7 @@ Checkpoint checkpointOf(const nlohmann::json& j) {
   constexpr long kMax = std::numeric_limits<long>::max();
   c.caseName = j.at("case").get<std::string>();
   c.modelHash = j.at("model_hash").get<std::uint64_t>();
-  auto& s = c.snapshot.state;
+  auto& s = c.stepping.snapshot.state;
   s.t = finite(j, "t");
   s.x = fromVector(j.at("x").get<std::vector<double>>());
   s.v = fromVector(j.at("v").get<std::vector<double>>());
@@ -99,18 +100,19 @@ Checkpoint checkpointOf(const nlohmann::json& j) {
   s.control.successesSinceCut =
       static_cast<int>(count(j.at("successes_since_cut"), "successes_since_cut", 0, 1 << 20));
   for (const auto& t : j.at("terms")) {
-    c.snapshot.termNames.push_back(t.at("name").get<std::string>());
-    c.snapshot.histories.push_back(History::fromRecords(
+    c.stepping.snapshot.termNames.push_back(t.at("name").get<std::string>());
+    c.stepping.snapshot.histories.push_back(History::fromRecords(
         t.at("reals").get<std::vector<double>>(), t.at("ints").get<std::vector<std::int64_t>>()));
   }
-  c.linearSolverLU = j.at("linear_solver_lu").get<bool>();
+  c.stepping.linearSolverLU = j.at("linear_solver_lu").get<bool>();
   const auto& n = j.at("counters");
   if (!n.is_array() || n.size() != 5) throw std::runtime_error("counters: 5 integers expected");
-  c.counters.steps = count(n[0], "steps", 0, kMax);
-  c.counters.rejectedSteps = count(n[1], "rejected_steps", 0, kMax);
-  c.counters.eventRetries = count(n[2], "event_retries", 0, kMax);
-  c.counters.newtonIterations = count(n[3], "newton_iterations", 0, kMax);
-  c.counters.maxNewtonInStep = static_cast<int>(count(n[4], "max_newton_in_step", 0, 1 << 20));
+  c.stepping.counters.steps = count(n[0], "steps", 0, kMax);
+  c.stepping.counters.rejectedSteps = count(n[1], "rejected_steps", 0, kMax);
+  c.stepping.counters.eventRetries = count(n[2], "event_retries", 0, kMax);
+  c.stepping.counters.newtonIterations = count(n[3], "newton_iterations", 0, kMax);
+  c.stepping.counters.maxNewtonInStep =
+      static_cast<int>(count(n[4], "max_newton_in_step", 0, 1 << 20));
   const auto& o = j.at("output");
   c.output.probeRows = count(o.at("probe_rows"), "probe_rows", 0, kMax);
   c.output.vtuFrames = count(o.at("vtu_frames"), "vtu_frames", 0, 1 << 30);

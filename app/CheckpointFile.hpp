@@ -25,9 +25,7 @@ struct OutputMark {
 struct Checkpoint {
   std::string caseName;
   std::uint64_t modelHash = 0;  // of the model's nodes, elements and constraints
-  SystemSnapshot snapshot;
-  bool linearSolverLU = false;  // Cholesky had fallen back to LU
-  StepCounters counters;
+  TimeStepper::Saved stepping;  // the system snapshot, the counters, the linear solver's kind
   OutputMark output;
 };
 

@@ -121,13 +121,11 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
     if (restart->caseName != spec.name || restart->modelHash != hash)
       throw std::runtime_error(options.restartFile + ": a checkpoint of another case or model");
     try {
-      state = sys.loadState(restart->snapshot);
+      state = stepper.resume(restart->stepping);
     } catch (const HistoryError& e) {
       throw std::runtime_error(options.restartFile + ": not a valid chute checkpoint (" + e.what() +
                                ")");
     }
-    if (restart->linearSolverLU) integrator.linearSolver().useLU();
-    stepper.counters() = restart->counters;
   }
   const bool write = !options.outDir.empty();
   RunOutput out(spec, sys, options.outDir, restart ? &restart->output : nullptr, r);
@@ -135,15 +133,11 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
   Progress progress(options.progress);
   if (!dynamic) {
     state = integrator.initialState();
-    state.control = StepControl{sv.dt, 0.0, 0};
-    sys.updateState(state.x);
-    sys.commit(CommitPoint{state.x, state.t, 0.0, state.t});
     StaticLoadStepper statics(sys, integrator.newton());
-    const auto rep = statics.solve(state, sv.loadSteps, sv.initialLoadFactor);
+    const auto rep = statics.solveFromStart(state, sv.loadSteps, sv.initialLoadFactor);
     r.newtonIterations = rep.iterations;
     r.steps = sv.loadSteps;
     if (!rep.converged) r.status = "diverged", r.reason = rep.failure;
-    state.t = 1.0;
     out.record(state);
     out.frame(state);
   } else {
@@ -159,10 +153,7 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
       Checkpoint c;
       c.caseName = spec.name;
       c.modelHash = hash;
-      c.snapshot = sys.saveState(state);
-      c.linearSolverLU =
-          integrator.linearSolver().kind() == LinearSolver::Kind::Umfpack && sys.symmetric();
-      c.counters = stepper.counters();
+      c.stepping = stepper.save(state);
       c.output = out.mark();
       writeCheckpoint(options.outDir + "/checkpoint.cbor", c);
       ++r.checkpoints;

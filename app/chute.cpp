@@ -1,4 +1,4 @@
-// chute: command-line front end (interfaces.md "Command line"). A thin layer over the libraries;
+// chute: command-line front end (docs/cli.md). A thin layer over the libraries;
 // each verb is in app/cli/<Verb>Command.cpp.
 #include <fmt/core.h>
 

@@ -16,7 +16,8 @@ def rows(name):
     return list(csv.DictReader(open(path))) if os.path.exists(path) else []
 
 
-def main():
+def summary_table():
+    """The acceptance table (markdown), every number read from the CSVs of bench/results."""
     out = ["| figure | required | measured | source |", "|---|---|---|---|"]
     wp = [r for r in rows("work_precision.csv") if r["status"] == "completed"]
     ok = [r for r in wp if r["case"] == "bead_5" and float(r["relative_max_error"]) <= 0.005]
@@ -64,6 +65,11 @@ def main():
     if os.path.exists(machine):
         loads = [l.split("load ")[1].split(",")[0] for l in open(machine) if "load " in l]
         text += f"\nMachine load (1-, 5-, 15-min) during the runs: {loads[0]} ... {loads[-1]} (bench/results/machine.txt).\n"
+    return text
+
+
+def main():
+    text = summary_table()
     open(os.path.join(RESULTS, "summary.md"), "w").write(text)
     # The table also goes into bench/README.md between its summary markers (full runs only).
     readme = os.path.join(ROOT, "bench", "README.md")

@@ -1,5 +1,5 @@
 #pragma once
-// Probe quantities of a run (interfaces.md: probes.csv, one column per "<probe>.<quantity>")
+// Probe quantities of a run (docs/output.md: probes.csv, one column per "<probe>.<quantity>")
 // and the CSV file they go to, flushed row by row so a run stopped half-way leaves valid rows.
 #include <cstdio>
 #include <string>

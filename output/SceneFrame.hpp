@@ -1,6 +1,6 @@
 #pragma once
 // One output time of a run as plain arrays (no VTK here): the current geometry as cells, and the
-// point and cell fields the VTU files carry (interfaces.md, "Output directory of a run").
+// point and cell fields the VTU files carry (docs/output.md).
 //  - lines: cables and trusses as two-node cells; an inactive sliding element likewise; an active
 //    sliding element as its two straight parts through the slider;
 //  - membranes: triangles and quadrilaterals; point masses: vertices.

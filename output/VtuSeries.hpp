@@ -1,5 +1,5 @@
 #pragma once
-// The VTU time series of a run (interfaces.md): one `<case>_NNNNNN.vtu` per output time (binary,
+// The VTU time series of a run (docs/output.md): one `<case>_NNNNNN.vtu` per output time (binary,
 // appended; frames above 64 KiB of arrays LZ4-compressed through VTK's XML writer, smaller ones
 // raw, written by VtuRawFrame) and a `<case>.pvd` collection with the physical times. The
 // collection is valid at every moment: each new entry and the closing tags go to the file in one

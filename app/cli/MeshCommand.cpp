@@ -2,7 +2,7 @@
 //  [--vent-diameter d] [--line-elements n] [--slider SIDE] [--payload-mass m] [--payload-box
 //  a,b,c] [--riser-length l] [--start flat|folded|inflated] [--case FILE.toml]
 //  [--config PARAMS.toml]`:
-// a flat circular canopy with lines, slider and payload meshed with gmsh (README "Meshes").
+// a flat circular canopy with lines, slider and payload meshed with gmsh (docs/meshing.md).
 #include <fmt/core.h>
 
 #include <cstdio>

@@ -31,8 +31,10 @@ Command addRenderCommand(CLI::App& app) {
       ->delimiter(',');
   cmd->add_flag("--all", a->o.allFrames, "every frame of the series");
   cmd->add_option("--view", a->o.view, "side, below or iso")->default_val("iso");
-  cmd->add_option("--color", a->o.color, "point or cell field (vectors by magnitude)")
-      ->default_val("displacement");
+  cmd->add_option("--color", a->o.color,
+                  "stress (membranes by max principal stress, lines by axial force) or one point "
+                  "or cell field for everything (vectors by magnitude)")
+      ->default_val("stress");
   cmd->add_option("--compare", a->o.compareDir, "a second run shown side by side");
   cmd->add_option("--size", a->size, "image size WxH")->default_val("1280x720");
   cmd->add_option("--out", a->o.outDir, "directory for the PNG files (default RUN_DIR/snapshots)");

@@ -1,4 +1,4 @@
-// `chute run CASE [--out DIR] [--set k=v ...] [--quiet] [--newton-log]` (interfaces.md).
+// `chute run CASE [--out DIR] [--set k=v ...] [--quiet] [--newton-log]` (docs/cli.md).
 #include <fmt/core.h>
 
 #include <cstdio>

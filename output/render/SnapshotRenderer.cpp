@@ -18,6 +18,7 @@
 #include <vtkSmartPointer.h>
 #include <vtkTextActor.h>
 #include <vtkTextProperty.h>
+#include <vtkThreshold.h>
 #include <vtkTubeFilter.h>
 #include <vtkUnstructuredGrid.h>
 #include <vtkWindowToImageFilter.h>
@@ -31,6 +32,7 @@
 #include <stdexcept>
 
 #include "VtuSeries.hpp"
+#include "render/ColourLayers.hpp"
 #include "render/VirtualDisplay.hpp"
 
 namespace chute::render {
@@ -89,67 +91,71 @@ vtkSmartPointer<vtkUnstructuredGrid> load(const Run& r, int frame) {
   return grid;
 }
 
-// Where the colour field lives: 1 point data, 2 cell data.
-int fieldLocation(vtkUnstructuredGrid* g, const std::string& name) {
-  if (g->GetPointData()->GetArray(name.c_str())) return 1;
-  if (g->GetCellData()->GetArray(name.c_str())) return 2;
-  std::string known;
-  for (int i = 0; i < g->GetPointData()->GetNumberOfArrays(); ++i)
-    known += std::string(known.empty() ? "" : ", ") + g->GetPointData()->GetArrayName(i);
-  for (int i = 0; i < g->GetCellData()->GetNumberOfArrays(); ++i)
-    known += std::string(known.empty() ? "" : ", ") + g->GetCellData()->GetArrayName(i);
-  throw std::runtime_error("no field '" + name + "' in the run (fields: " + known + ")");
-}
-
-vtkDataArray* fieldArray(vtkUnstructuredGrid* g, const std::string& name) {
-  return fieldLocation(g, name) == 1 ? g->GetPointData()->GetArray(name.c_str())
-                                     : g->GetCellData()->GetArray(name.c_str());
-}
-
+// One actor per layer and per drawing style: membranes as lit surfaces, lines as tubes, point
+// masses as spheres. Each layer takes its cells by their "kind" and its own lookup table.
 struct Scene {
-  vtkSmartPointer<vtkActor> surface, tubes;
+  std::vector<vtkSmartPointer<vtkActor>> actors;
   vtkSmartPointer<vtkTextActor> label;
 };
 
-Scene buildScene(vtkUnstructuredGrid* grid, const std::string& field, vtkLookupTable* lut,
-                 const std::array<double, 2>& range, double tubeRadius, const std::string& text,
-                 int fontSize) {
+void colourBy(vtkPolyDataMapper* m, vtkUnstructuredGrid* grid, const ColourLayer& layer,
+              vtkLookupTable* lut) {
+  if (layer.field.empty()) {
+    m->ScalarVisibilityOff();
+    return;
+  }
+  if (grid->GetPointData()->GetArray(layer.field.c_str()))
+    m->SetScalarModeToUsePointFieldData();
+  else
+    m->SetScalarModeToUseCellFieldData();
+  m->SelectColorArray(layer.field.c_str());
+  m->SetLookupTable(lut);
+  m->SetUseLookupTableScalarRange(true);
+  m->SetColorModeToMapScalars();
+  m->ScalarVisibilityOn();
+}
+
+Scene buildScene(vtkUnstructuredGrid* grid, const std::vector<ColourLayer>& layers,
+                 const std::vector<vtkSmartPointer<vtkLookupTable>>& luts, double tubeRadius,
+                 const std::string& text, int fontSize) {
   Scene s;
-  vtkNew<vtkGeometryFilter> geometry;
-  geometry->SetInputData(grid);
-  const bool onPoints = fieldLocation(grid, field) == 1;
-  auto colour = [&](vtkPolyDataMapper* m) {
-    if (onPoints)
-      m->SetScalarModeToUsePointFieldData();
-    else
-      m->SetScalarModeToUseCellFieldData();
-    m->SelectColorArray(field.c_str());
-    m->SetLookupTable(lut);
-    m->SetUseLookupTableScalarRange(true);
-    m->SetColorModeToMapScalars();
-    m->ScalarVisibilityOn();
-  };
-  vtkNew<vtkPolyDataMapper> surfaceMapper;
-  surfaceMapper->SetInputConnection(geometry->GetOutputPort());
-  colour(surfaceMapper);
-  s.surface = vtkSmartPointer<vtkActor>::New();
-  s.surface->SetMapper(surfaceMapper);
-  s.surface->GetProperty()->SetPointSize(10.0);
-  s.surface->GetProperty()->SetRenderPointsAsSpheres(true);
-  s.surface->GetProperty()->SetSpecular(0.2);
+  for (size_t i = 0; i < layers.size(); ++i) {
+    const ColourLayer& layer = layers[i];
+    vtkNew<vtkThreshold> cells;
+    cells->SetInputData(grid);
+    cells->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_CELLS, "kind");
+    cells->SetLowerThreshold(layer.kindLo - 0.5);
+    cells->SetUpperThreshold(layer.kindHi + 0.5);
+    cells->SetThresholdFunction(vtkThreshold::THRESHOLD_BETWEEN);
+    cells->Update();
+    if (cells->GetOutput()->GetNumberOfCells() == 0) continue;
+    vtkNew<vtkGeometryFilter> geometry;
+    geometry->SetInputConnection(cells->GetOutputPort());
 
-  vtkNew<vtkTubeFilter> tubes;
-  tubes->SetInputConnection(geometry->GetOutputPort());
-  tubes->SetRadius(tubeRadius);
-  tubes->SetNumberOfSides(10);
-  tubes->CappingOn();
-  vtkNew<vtkPolyDataMapper> tubeMapper;
-  tubeMapper->SetInputConnection(tubes->GetOutputPort());
-  colour(tubeMapper);
-  s.tubes = vtkSmartPointer<vtkActor>::New();
-  s.tubes->SetMapper(tubeMapper);
-  (void)range;
+    vtkNew<vtkPolyDataMapper> surfaceMapper;
+    surfaceMapper->SetInputConnection(geometry->GetOutputPort());
+    colourBy(surfaceMapper, grid, layer, luts[i]);
+    auto surface = vtkSmartPointer<vtkActor>::New();
+    surface->SetMapper(surfaceMapper);
+    surface->GetProperty()->SetPointSize(10.0);
+    surface->GetProperty()->SetRenderPointsAsSpheres(true);
+    surface->GetProperty()->SetSpecular(0.2);
+    if (layer.field.empty()) surface->GetProperty()->SetColor(0.45, 0.45, 0.45);
+    s.actors.push_back(surface);
 
+    vtkNew<vtkTubeFilter> tubes;  // lines only: the filter passes no polygons
+    tubes->SetInputConnection(geometry->GetOutputPort());
+    tubes->SetRadius(tubeRadius);
+    tubes->SetNumberOfSides(10);
+    tubes->CappingOn();
+    vtkNew<vtkPolyDataMapper> tubeMapper;
+    tubeMapper->SetInputConnection(tubes->GetOutputPort());
+    colourBy(tubeMapper, grid, layer, luts[i]);
+    auto tube = vtkSmartPointer<vtkActor>::New();
+    tube->SetMapper(tubeMapper);
+    if (layer.field.empty()) tube->GetProperty()->SetColor(0.45, 0.45, 0.45);
+    s.actors.push_back(tube);
+  }
   s.label = vtkSmartPointer<vtkTextActor>::New();
   s.label->SetInput(text.c_str());
   s.label->GetTextProperty()->SetFontSize(fontSize);
@@ -170,12 +176,55 @@ void placeCamera(vtkCamera* cam, const std::array<double, 6>& b, const std::stri
     const double n = std::sqrt(1 + 1 + 0.64);
     d[0] = 1 / n, d[1] = 1 / n, d[2] = -0.8 / n;
   }
-  // Far enough that the bounding sphere fits the 30-degree view in both directions.
-  const double fit = 0.5 * diag / std::tan(15.0 * M_PI / 180.0) / std::min(1.0, aspect) * 1.05;
-  cam->SetFocalPoint(c);
-  cam->SetPosition(c[0] - fit * d[0], c[1] - fit * d[1], c[2] - fit * d[2]);
+  // Far enough that the bounding sphere fits the 30-degree view in height and in the left
+  // kModelWidth of the width; the camera then moves right so that the model stands there, clear
+  // of the colour bars on the right.
+  constexpr double kModelWidth = 0.62;
+  const double t = std::tan(15.0 * M_PI / 180.0);
+  const double fit = 1.05 * diag * std::max(0.5 / t, 1.0 / (2.0 * t * aspect * kModelWidth));
+  const double shift = (0.5 - kModelWidth / 2) * 2.0 * fit * t * aspect;
+  const double right[3] = {d[1] * up[2] - d[2] * up[1], d[2] * up[0] - d[0] * up[2],
+                           d[0] * up[1] - d[1] * up[0]};
+  const double rn = std::sqrt(right[0] * right[0] + right[1] * right[1] + right[2] * right[2]);
+  double f[3];
+  for (int k = 0; k < 3; ++k) f[k] = c[k] + shift * right[k] / rn;
+  cam->SetFocalPoint(f);
+  cam->SetPosition(f[0] - fit * d[0], f[1] - fit * d[1], f[2] - fit * d[2]);
   cam->SetViewUp(up);
   cam->SetViewAngle(30.0);
+}
+
+// One bar per coloured layer that has values, side by side at the right of the last panel.
+void addColourBars(vtkRenderer* ren, const std::vector<ColourLayer>& layers,
+                   const std::vector<vtkSmartPointer<vtkLookupTable>>& luts, size_t panels,
+                   int fontSize) {
+  std::vector<size_t> shown;
+  for (size_t i = 0; i < layers.size(); ++i)
+    if (!layers[i].field.empty() && layers[i].seen) shown.push_back(i);
+  const double width = 0.08 * panels, step = 0.16 * panels;
+  for (size_t j = 0; j < shown.size(); ++j) {
+    const auto& layer = layers[shown[j]];
+    vtkNew<vtkScalarBarActor> bar;
+    bar->SetLookupTable(luts[shown[j]]);
+    bar->SetTitle(layer.title.c_str());
+    if (layer.above) {
+      bar->DrawAboveRangeSwatchOn();
+      bar->SetAboveRangeAnnotation(fmt::format("to {:.3g}", layer.largest).c_str());
+    }
+    bar->SetNumberOfLabels(5);
+    bar->SetWidth(width);
+    bar->SetHeight(0.6);
+    // Its title is centred over it and wider than the bar: the last bar's centre at 0.86 of the
+    // view leaves the title room to the right edge; others stand one step to its left.
+    const double right = 0.86 - 0.04 * panels - step * (shown.size() - 1 - j);
+    bar->SetPosition(right, 0.2);
+    bar->GetTitleTextProperty()->SetColor(0.1, 0.1, 0.1);
+    bar->GetLabelTextProperty()->SetColor(0.1, 0.1, 0.1);
+    bar->UnconstrainedFontSizeOn();
+    bar->GetTitleTextProperty()->SetFontSize(fontSize);
+    bar->GetLabelTextProperty()->SetFontSize(fontSize * 4 / 5);
+    ren->AddActor2D(bar);
+  }
 }
 
 }  // namespace
@@ -188,13 +237,13 @@ std::vector<std::string> renderSnapshots(const SnapshotOptions& o) {
   std::vector<Run> runs = {openRun(o.runDir)};
   if (!o.compareDir.empty()) runs.push_back(openRun(o.compareDir));
 
-  // Load every frame first: the camera and colour range are common to all images.
+  // Load the frames shown first: the camera is common to all images. The colour ranges are over
+  // every frame of every run, shown or not (render/ColourLayers.hpp).
   std::vector<std::vector<vtkSmartPointer<vtkUnstructuredGrid>>> grids(runs.size());
   std::vector<std::vector<double>> times(runs.size());
   const auto picks = pickFrames(runs[0], o);
   std::array<double, 6> bounds = {1e300, -1e300, 1e300, -1e300, 1e300, -1e300};
-  std::array<double, 2> range = {std::numeric_limits<double>::infinity(),
-                                 -std::numeric_limits<double>::infinity()};
+  std::vector<ColourLayer> layers;
   for (size_t r = 0; r < runs.size(); ++r) {
     for (int p : picks) {
       // A compared run: the frame nearest to the first run's time.
@@ -212,25 +261,33 @@ std::vector<std::string> renderSnapshots(const SnapshotOptions& o) {
       for (int k = 0; k < 3; ++k)
         bounds[2 * k] = std::min(bounds[2 * k], b[2 * k]),
                    bounds[2 * k + 1] = std::max(bounds[2 * k + 1], b[2 * k + 1]);
-      double fr[2];
-      fieldArray(g, o.color)->GetFiniteRange(fr, -1);
-      if (std::isfinite(fr[0])) range[0] = std::min(range[0], fr[0]);
-      if (std::isfinite(fr[1])) range[1] = std::max(range[1], fr[1]);
+      if (layers.empty()) layers = colourLayers(o.color, g);
       grids[r].push_back(g);
       times[r].push_back(runs[r].frames[f].t);
     }
   }
-  if (!(range[0] <= range[1])) range = {0.0, 1.0};
-  if (range[1] - range[0] < 1e-300) range[1] = range[0] + 1.0;
+  for (const auto& run : runs)
+    for (size_t f = 0; f < run.frames.size(); ++f)
+      widenRanges(layers, load(run, static_cast<int>(f)));
+  finishRanges(layers);
 
   VirtualDisplay display;  // only now: errors above need no display
   fs::create_directories(o.outDir);
-  vtkNew<vtkLookupTable> lut;
-  lut->SetHueRange(0.667, 0.0);
-  lut->SetVectorModeToMagnitude();
-  lut->SetTableRange(range[0], range[1]);
-  lut->SetNanColor(0.6, 0.6, 0.6, 1.0);
-  lut->Build();
+  std::vector<vtkSmartPointer<vtkLookupTable>> luts;
+  for (const auto& layer : layers) {
+    auto lut = vtkSmartPointer<vtkLookupTable>::New();
+    lut->SetHueRange(0.667, 0.0);
+    if (layer.component < 0)
+      lut->SetVectorModeToMagnitude();
+    else
+      lut->SetVectorModeToComponent(), lut->SetVectorComponent(layer.component);
+    lut->SetTableRange(layer.range[0], layer.range[1]);
+    lut->SetNanColor(0.6, 0.6, 0.6, 1.0);
+    lut->SetUseAboveRangeColor(layer.above);
+    lut->SetAboveRangeColor(0.55, 0.0, 0.55, 1.0);  // beyond the scale's red, and unlike it
+    lut->Build();
+    luts.push_back(lut);
+  }
 
   const double diag = std::sqrt((bounds[1] - bounds[0]) * (bounds[1] - bounds[0]) +
                                 (bounds[3] - bounds[2]) * (bounds[3] - bounds[2]) +
@@ -256,28 +313,10 @@ std::vector<std::string> renderSnapshots(const SnapshotOptions& o) {
           runs[r].name +
               (runs.size() > 1 ? " (" + fs::path(runs[r].dir).filename().string() + ")" : ""),
           times[r][i]);
-      const Scene s = buildScene(grids[r][i], o.color, lut, range, tube, text, fontSize);
-      ren->AddActor(s.surface);
-      ren->AddActor(s.tubes);
+      const Scene s = buildScene(grids[r][i], layers, luts, tube, text, fontSize);
+      for (const auto& actor : s.actors) ren->AddActor(actor);
       ren->AddActor2D(s.label);
-      if (r + 1 == runs.size()) {
-        vtkNew<vtkScalarBarActor> bar;
-        bar->SetLookupTable(lut);
-        const bool vector = fieldArray(grids[r][i], o.color)->GetNumberOfComponents() > 1;
-        bar->SetTitle((vector ? "|" + o.color + "|" : o.color).c_str());
-        bar->SetNumberOfLabels(5);
-        bar->SetWidth(0.08 * runs.size());
-        bar->SetHeight(0.6);
-        // Its title is centred over it and wider than the bar: the bar's centre at 0.86 of the
-        // view leaves the title room to the right edge.
-        bar->SetPosition(0.86 - 0.04 * runs.size(), 0.2);
-        bar->GetTitleTextProperty()->SetColor(0.1, 0.1, 0.1);
-        bar->GetLabelTextProperty()->SetColor(0.1, 0.1, 0.1);
-        bar->UnconstrainedFontSizeOn();
-        bar->GetTitleTextProperty()->SetFontSize(fontSize);
-        bar->GetLabelTextProperty()->SetFontSize(fontSize * 4 / 5);
-        ren->AddActor2D(bar);
-      }
+      if (r + 1 == runs.size()) addColourBars(ren, layers, luts, runs.size(), fontSize);
       ren->ResetCameraClippingRange();
       window->AddRenderer(ren);
     }

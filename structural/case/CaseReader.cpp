@@ -1,4 +1,4 @@
-// Case file -> CaseSpec. The schema is documented in README.md ("Case files").
+// Case file -> CaseSpec. The schema is documented in docs/case-files.md.
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cctype>
@@ -423,7 +423,8 @@ int membraneMaterialRef(const Model& m, TomlTable& t) {
 }
 
 // Why a membrane element is unusable ("" if it is fine): a repeated node, no area, or (quads) a
-// corner that is not convex about the normal the kernel uses (F-membrane reference frame).
+// corner that is not convex about the normal the kernel uses (its reference frame,
+// docs/formulation.md M1).
 std::string degenerateElement(const Model& m, const MembraneElement& e) {
   const int n = e.numNodes;
   for (int i = 0; i < n; ++i)
@@ -784,7 +785,7 @@ CaseSpec readCaseFromString(const std::string& text, const std::string& file,
       t.finish();
       m.drags.push_back(d);
     }
-    // [[loads.face_drag]]: drag on the faces of a membrane set (README "Canopy mechanics").
+    // [[loads.face_drag]]: drag on the faces of a membrane set (docs/formulation.md FD1).
     for (auto& t : l.tables("face_drag")) {
       FaceDragLoadDef d;
       const std::string set = t.string("membranes");

@@ -2,7 +2,7 @@
 // A case's [mesh] table: the nodes of a gmsh mesh (.msh or .geo) and its physical groups mapped
 // to roles: 2-D groups -> membranes, 1-D -> cables, sliding groups, drag edges; 0-D -> point
 // masses, named nodes (a single-node group names its node: sliders, supports, probes). Every
-// group is also a node set of the same name. Keys are documented in README.md ("Meshes").
+// group is also a node set of the same name. Keys are documented in docs/meshing.md.
 #include <array>
 #include <map>
 #include <memory>

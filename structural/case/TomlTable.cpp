@@ -44,8 +44,18 @@ int editDistance(const std::string& a, const std::string& b) {
 }
 
 TomlTable::TomlTable(const toml::value& table, std::string path, std::string file)
-    : table_(&table), path_(std::move(path)), file_(std::move(file)) {
+    : table_(&table), path_(std::move(path)), file_(std::move(file)), schema_(path_) {
   if (!table.is_table()) failAt(table, "", "expected a table, found " + typeName(table));
+}
+
+std::string TomlTable::schemaOf(const std::string& key) const {
+  const std::string k = namedKeys_ ? "<name>" : key;
+  return schema_.empty() ? k : schema_ + "." + k;
+}
+
+void TomlTable::ask(const std::string& key) const {
+  asked_.insert(key);
+  if (recorder_) recorder_->insert(schemaOf(key));
 }
 
 std::string TomlTable::dotted(const std::string& key) const {
@@ -69,12 +79,12 @@ void TomlTable::failAt(const toml::value& v, const std::string& key,
 }
 
 bool TomlTable::has(const std::string& key) const {
-  asked_.insert(key);
+  ask(key);
   return table_->as_table().count(key) > 0;
 }
 
 const toml::value& TomlTable::at(const std::string& key) const {
-  asked_.insert(key);
+  ask(key);
   const auto& t = table_->as_table();
   auto it = t.find(key);
   if (it == t.end()) {
@@ -91,7 +101,8 @@ std::vector<std::string> TomlTable::keys() const {
   std::vector<std::string> k;
   for (const auto& [name, v] : table_->as_table()) k.push_back(name);
   std::sort(k.begin(), k.end());
-  for (const auto& name : k) asked_.insert(name);
+  namedKeys_ = true;
+  for (const auto& name : k) ask(name);
   return k;
 }
 
@@ -221,7 +232,9 @@ std::vector<long> TomlTable::integers(const std::string& key) {
 TomlTable TomlTable::table(const std::string& key) {
   const auto& v = at(key);
   if (!v.is_table()) failAt(v, key, "expected a table, found " + typeName(v));
-  return TomlTable(v, dotted(key), file_);
+  TomlTable child(v, dotted(key), file_);
+  child.schema_ = schemaOf(key);
+  return child;
 }
 
 std::vector<TomlTable> TomlTable::tables(const std::string& key) {
@@ -233,6 +246,7 @@ std::vector<TomlTable> TomlTable::tables(const std::string& key) {
   for (const auto& e : v.as_array()) {
     if (!e.is_table()) failAt(e, key, "expected a table, found " + typeName(e));
     out.emplace_back(e, dotted(key) + "[" + std::to_string(i++) + "]", file_);
+    out.back().schema_ = schemaOf(key) + "[]";
   }
   return out;
 }
@@ -240,13 +254,14 @@ std::vector<TomlTable> TomlTable::tables(const std::string& key) {
 void TomlTable::notUsed(const std::vector<std::string>& keys, const std::string& why) const {
   const auto& t = table_->as_table();
   for (const auto& key : keys) {
+    if (recorder_) recorder_->insert(schemaOf(key));
     auto it = t.find(key);
     if (it != t.end()) failAt(it->second, key, "not used " + why);
   }
 }
 
 void TomlTable::finish(const std::vector<std::string>& known) const {
-  asked_.insert(known.begin(), known.end());
+  for (const auto& k : known) ask(k);
   finish();
 }
 

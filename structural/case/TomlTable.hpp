@@ -51,6 +51,13 @@ class TomlTable {
   // The same, counting `known` as asked (checks a table's keys before reading it).
   void finish(const std::vector<std::string>& known) const;
 
+  // Key recorder, for the test that keeps docs/case-files.md in step with the readers: while a
+  // sink is set, every key any table is asked for (has, a typed read, notUsed, finish(known)) is
+  // added to it by its schema path: array elements as "[]", names as "<name>" (tables read
+  // through keys(), such as [materials] and [nodes]), e.g. "loads.pressure[].set",
+  // "materials.<name>.E". Null (the default) records nothing. Not thread-safe: tests only.
+  static void recordKeysInto(std::set<std::string>* sink) { recorder_ = sink; }
+
   [[noreturn]] void fail(const std::string& key, const std::string& message) const;
   [[noreturn]] void failAt(const toml::value& v, const std::string& key,
                            const std::string& message) const;
@@ -60,9 +67,15 @@ class TomlTable {
  private:
   const toml::value& at(const std::string& key) const;
   std::string dotted(const std::string& key) const;
+  // Marks `key` as asked (and records its schema path when a recorder is set).
+  void ask(const std::string& key) const;
+  std::string schemaOf(const std::string& key) const;
   const toml::value* table_;
   std::string path_, file_;
+  std::string schema_;              // path_ with indices as "[]" and names as "<name>"
+  mutable bool namedKeys_ = false;  // keys() was asked: this table's keys are names
   mutable std::set<std::string> asked_;
+  inline static std::set<std::string>* recorder_ = nullptr;
 };
 
 // Levenshtein distance, for did-you-mean suggestions.

@@ -1,5 +1,5 @@
 #pragma once
-// Aerodynamic drag on a membrane face (face drag, README "Canopy mechanics"): the air resists the
+// Aerodynamic drag on a membrane face (docs/formulation.md FD1): the air resists the
 // fabric's motion normal to itself. With n the current unit normal, a = |a| n the face's area
 // vector (kernels::areaVector), v the face velocity (mean of the nodal velocities) and w the wind,
 // the normal relative velocity u = (v - w) . n gives the drag force on the face

@@ -1,5 +1,5 @@
 #pragma once
-// Two-node cable (formulation.md section 1) and active three-node sliding cable element
+// Two-node cable (docs/formulation.md section 1) and active three-node sliding cable element
 // (sections 2-3): internal force and tangent, mass and gravity. Pure functions of nodal
 // coordinates and parameters; dof order is node by node, (x, y, z) per node.
 #include <Eigen/Core>
@@ -57,7 +57,7 @@ SlidingGravity slidingGravity(const Vec3& x1, const Vec3& x2, const Vec3& x3, do
                               const LineMaterial& mat, const Vec3& g);
 
 // Reference length on the slider's node-1 side: uniform strain means the slider divides L in the
-// ratio l1 : l2 (formulation.md section 4). Used by the material-coordinate tracker.
+// ratio l1 : l2 (docs/formulation.md section 4). Used by the material-coordinate tracker.
 double sliderReferenceOffset(const Vec3& x1, const Vec3& x2, const Vec3& x3, double L);
 
 }  // namespace chute::kernels

@@ -1,5 +1,5 @@
 #pragma once
-// Membrane elements (formulation.md section 5): three-node triangle (CST) and four-node
+// Membrane elements (docs/formulation.md section 5): three-node triangle (CST) and four-node
 // quadrilateral (2x2 Gauss), total Lagrangian, plane-stress St Venant-Kirchhoff in each element's
 // local reference frame, with an optional tension-field (wrinkling) model.
 //
@@ -101,7 +101,7 @@ Vec3 areaVector(const std::array<Vec3, NumNodes>& x);
 template <int NumNodes>
 Eigen::Matrix<double, 3, 3 * NumNodes> areaVectorJacobian(const std::array<Vec3, NumNodes>& x);
 
-// Drag on a line element of diameter d (formulation.md section 6):
+// Drag on a line element of diameter d (docs/formulation.md section 6):
 // f = -(1/2) rho_air Cd d l |v_n| v_n, v_n the air-relative velocity normal to the element, shared
 // equally by the two nodes. Returned as the residual contribution r = -f (per node: half), with
 // its derivatives with respect to the nodal positions and velocities.

@@ -1,7 +1,7 @@
 #pragma once
 // Active sliding element with capstan friction at its slider (docs/friction.md, FR1-FR12).
 //
-// With friction the two straight parts of the active element (formulation.md section 2) carry
+// With friction the two straight parts of the active element (docs/formulation.md section 2) carry
 // different tensions: part 1 (end 1 -> slider) has reference length s, part 2 (slider -> end 2)
 // L - s, each its own Green strain eps_i = (l_i^2 - L_i^2) / (2 L_i^2) and force
 // N_i = E A0 eps_i l_i / L_i (FR1-FR2). The split s is history: a return mapping from the split

@@ -1,7 +1,7 @@
 #pragma once
 // Energy, internal force and tangent of a cable whose strain is uniform along a polyline path.
 //
-// Both line elements of formulation.md are this kernel with a different path:
+// Both line elements of docs/formulation.md are this kernel with a different path:
 //   two-node cable (F1-F3):         path (a, b)
 //   active sliding element (F6-F9): path (1, 3, 2), i.e. end 1 -> slider -> end 2
 // The current length is l = sum_k |x_{k+1} - x_k|, the Green-Lagrange strain
@@ -10,7 +10,7 @@
 // K = (E A0 / L) [ (eps + l^2/L^2) D (x) D + eps l G ] with G = d^2 l / dx^2 (F3, F9).
 //
 // Cables are tension-only: for eps <= 0 the element carries nothing unless a compression
-// stiffness ratio is given (formulation.md section 1).
+// stiffness ratio is given (docs/formulation.md section 1).
 //
 // The slider on an end node (F8-F9 singular as l_i -> 0): a part's length |d| is a cone in the
 // relative position d, with no direction at its apex and lateral stiffness N / l_i -> infinity.

@@ -34,7 +34,8 @@ struct LineSet {
   bool goneAt(double t) const { return t >= cutAt; }  // in the state at t, after its events
 };
 
-// A chain of sliding elements and the slider points allowed to pass along it (formulation.md 4).
+// A chain of sliding elements and the slider points allowed to pass along it
+// (docs/formulation.md section 4).
 struct SlidingGroupDef {
   std::string name;
   int material = -1;
@@ -80,7 +81,7 @@ struct PressureLoadDef {
 };
 
 // Drag on the line elements of a line set, or on the edges joining consecutive nodes of a node
-// set (membrane edges, e.g. a slider's four edges) (formulation.md section 6).
+// set (membrane edges, e.g. a slider's four edges) (docs/formulation.md section 6).
 struct DragLoadDef {
   int lineSet = -1;
   std::vector<std::array<int, 2>> edges;  // used when lineSet < 0
@@ -88,7 +89,7 @@ struct DragLoadDef {
   Vec3 wind = Vec3::Zero();
 };
 
-// Drag on the faces of a membrane set (face drag, README "Canopy mechanics"; kernels/FaceDrag).
+// Drag on the faces of a membrane set (docs/formulation.md FD1; kernels/FaceDrag).
 struct FaceDragLoadDef {
   int set = -1;              // membrane set
   double coefficient = 0.0;  // (1/2) rho_air Cd

@@ -61,4 +61,13 @@ NewtonReport StaticLoadStepper::solve(StructuralState& s, int nSteps, double ini
   return total;
 }
 
+NewtonReport StaticLoadStepper::solveFromStart(StructuralState& s, int nSteps,
+                                               double initialFactor) {
+  sys_->updateState(s.x);
+  sys_->commit(CommitPoint{s.x, s.t, 0.0, s.t});
+  NewtonReport rep = solve(s, nSteps, initialFactor);
+  s.t = 1.0;
+  return rep;
+}
+
 }  // namespace chute

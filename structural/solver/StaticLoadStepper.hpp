@@ -12,6 +12,9 @@ class StaticLoadStepper {
  public:
   StaticLoadStepper(StructuralSystem& sys, Newton& newton) : sys_(&sys), newton_(&newton) {}
   NewtonReport solve(StructuralState& s, int nSteps, double initialFactor = 1.0);
+  // A static run: from the model's positions (s, committed), solved in nSteps increments; the
+  // solution is reported at t = 1, the full load factor.
+  NewtonReport solveFromStart(StructuralState& s, int nSteps, double initialFactor);
 
  private:
   StructuralSystem* sys_;

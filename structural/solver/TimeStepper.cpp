@@ -20,6 +20,22 @@ StructuralState TimeStepper::start() {
   return s;
 }
 
+TimeStepper::Saved TimeStepper::save(const StructuralState& s) const {
+  Saved out;
+  out.snapshot = sys_->saveState(s);
+  out.counters = counters_;
+  out.linearSolverLU =
+      integrator_->linearSolver().kind() == LinearSolver::Kind::Umfpack && sys_->symmetric();
+  return out;
+}
+
+StructuralState TimeStepper::resume(const Saved& saved) {
+  StructuralState s = sys_->loadState(saved.snapshot);
+  counters_ = saved.counters;
+  if (saved.linearSolverLU) integrator_->linearSolver().useLU();
+  return s;
+}
+
 void TimeStepper::accelerationAfterCut(StructuralState& s) {
   if (!sys_->model().hasCutAt(s.t)) return;
   StructuralState after = s;

@@ -30,6 +30,17 @@ class TimeStepper {
   // consistent acceleration (after a cut at the start time, without the cut set), committed.
   StructuralState start();
 
+  // What a checkpoint holds of the stepping, and going on from it bit for bit: the snapshot
+  // (StructuralSystem::saveState), the counters, and whether the linear solver had fallen back
+  // from Cholesky to LU. resume() throws HistoryError (nothing changed) for a bad snapshot.
+  struct Saved {
+    SystemSnapshot snapshot;
+    StepCounters counters;
+    bool linearSolverLU = false;
+  };
+  Saved save(const StructuralState& s) const;
+  StructuralState resume(const Saved& saved);
+
   enum class Outcome {
     Reached,      // s.t is tStop
     Stopped,      // afterStep asked to stop (a signal)

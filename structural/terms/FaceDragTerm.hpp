@@ -1,5 +1,5 @@
 #pragma once
-// Face drag on membrane sets (README "Canopy mechanics", kernels/FaceDrag): the air's resistance
+// Face drag on membrane sets (docs/formulation.md FD1, kernels/FaceDrag): the air's resistance
 // to the fabric moving normal to itself, with position and velocity tangents. Dissipative, so no
 // energy; nothing in statics (it needs motion), like the line drag.
 #include <vector>

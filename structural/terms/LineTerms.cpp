@@ -246,7 +246,7 @@ void SlidingGroupTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
   for (int k = 0; k < g.numElements(); ++k) {
     const int n1 = g.chain[k], n2 = g.chain[k + 1];
     const int s = state_.sliderOfElement(k);
-    if (s < 0) {  // inactive: a plain two-node cable (formulation.md section 3)
+    if (s < 0) {  // inactive: a plain two-node cable (docs/formulation.md section 3)
       assembleCable(*m_, n1, n2, g.refLength[k], g.material, p, out);
       continue;
     }

@@ -1,5 +1,5 @@
 #pragma once
-// Terms of the canopy side (formulation.md sections 5-6):
+// Terms of the canopy side (docs/formulation.md sections 5-6):
 //  - MembraneTerm: internal force, inertia and gravity of every membrane element, with the
 //    tension-field model where its set asks for it; keeps each element's last wrinkling state;
 //  - PressureTerm: follower pressure on membrane sets, with its non-symmetric load stiffness;

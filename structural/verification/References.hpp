@@ -1,5 +1,5 @@
 #pragma once
-// Independent references for the paper's verification problems (formulation.md section 8).
+// Independent references for the paper's verification problems (docs/formulation.md section 8).
 // They share no code with the finite-element solver.
 #include <Eigen/Core>
 #include <vector>

@@ -2,7 +2,7 @@
 // first second of the 5 s run. Grommets pass line nodes inside the Newton solve
 // (slider_events = false), so no step is cut; the slider reefs the canopy, and the canopy keeps
 // opening while the slider comes down the lines. With located crossings it collapsed in bursts
-// from 0.8 s (README "Parachute applications").
+// from 0.8 s (docs/applications/c9.md).
 #include <gtest/gtest.h>
 
 #include <algorithm>

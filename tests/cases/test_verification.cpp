@@ -1,5 +1,5 @@
 // The paper's verification problems with the settings shipped in cases/, against independent
-// references (formulation.md F13; the bead's ellipse ODE). Prints the measured errors.
+// references (docs/formulation.md F13; the bead's ellipse ODE). Prints the measured errors.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// Face-drag kernel (README "Canopy mechanics"): position and velocity tangents against central
+// Face-drag kernel (docs/formulation.md FD1): position and velocity tangents against central
 // differences of the force, the force against an independent evaluation (area vector by 2x2
 // Gauss quadrature of the bilinear map, normal from other edges), and its invariants.
 #include <gtest/gtest.h>
