@@ -1,6 +1,8 @@
 // chute: command-line front end (interfaces.md "Command line"). A thin layer over the libraries;
 // each verb is in app/cli/<Verb>Command.cpp.
 #include <fmt/core.h>
+#include <vtkLogger.h>
+#include <vtkObject.h>
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
@@ -12,6 +14,10 @@
 
 int main(int argc, char** argv) {
   using namespace chute::cli;
+  // VTK's own messages (warnings, its logger) are not chute's one-line errors: verbs check
+  // what VTK produced and report it themselves.
+  vtkObject::GlobalWarningDisplayOff();
+  vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
   CLI::App app{"chute: structural finite elements for parachute systems"};
   app.require_subcommand(1);
   const std::vector<Command> commands = {addRunCommand(app), addRenderCommand(app),

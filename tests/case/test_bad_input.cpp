@@ -132,7 +132,7 @@ const char* kSet = "--set path or value";
 const char* kUnused = "key the chosen variant does not use";
 const char* kMesh = "mesh: physical group missing or of the wrong dimension, mesh file";
 
-// The gmsh example (mesh/examples/flat_canopy.toml, its .geo meshed by gmsh on reading) with one
+// The gmsh example (mesh/examples/flat_canopy.toml over flat_canopy.msh) with one
 // edit: physical-group errors belong to the [mesh] import.
 std::vector<Row> meshRows() {
   const std::string dir = std::string(CHUTE_SOURCE_DIR) + "/mesh/examples/";
@@ -140,8 +140,8 @@ std::vector<Row> meshRows() {
   std::stringstream ss;
   ss << in.rdbuf();
   std::string base = ss.str();
-  const std::string file = "file = \"flat_canopy.geo\"";
-  base.replace(base.find(file), file.size(), "file = \"" + dir + "flat_canopy.geo\"");
+  const std::string file = "file = \"flat_canopy.msh\"";
+  base.replace(base.find(file), file.size(), "file = \"" + dir + "flat_canopy.msh\"");
   auto edit = [&](const std::string& from, const std::string& to) {
     std::string t = base;
     const auto at = t.find(from);
@@ -160,7 +160,7 @@ std::vector<Row> meshRows() {
        {},
        "cables[0].group: physical group 'canopy'",
        "# wrong"},
-      {kMesh, edit(dir + "flat_canopy.geo", dir + "no_such.msh"), {}, "mesh.file:", "file = "},
+      {kMesh, edit(dir + "flat_canopy.msh", dir + "no_such.msh"), {}, "mesh.file:", "file = "},
   };
 }
 
