@@ -17,6 +17,7 @@ void ParachuteSpec::validate() const {
   auto bad = [](const std::string& option, const std::string& why) {
     throw std::invalid_argument(option + ": " + why);
   };
+  checkFinite();
   if (gores < 4) bad("--gores", "give at least 4 gores");
   if (!(diameter > 0.0)) bad("--diameter", "must be positive");
   if (ventDiameter < 0.0 || ventDiameter >= diameter)
@@ -50,9 +51,7 @@ void ParachuteSpec::validate() const {
   checkLimits();
 }
 
-// Sizes a user can ask for, bounded before gmsh starts (docs/limits.md): a typo must give an
-// error, not minutes of meshing or gigabytes of memory.
-void ParachuteSpec::checkLimits() const {
+void ParachuteSpec::checkFinite() const {
   auto bad = [](const std::string& option, const std::string& why) {
     throw std::invalid_argument(option + ": " + why);
   };
@@ -65,10 +64,19 @@ void ParachuteSpec::checkLimits() const {
                                   {"--riser-length", riserLength},
                                   {"--bundle-radius", bundleRadius},
                                   {"--slider-drop", sliderDrop},
+                                  {"--line-slack", lineSlack},
                                   {"--payload-box", payloadBox[0]},
                                   {"--payload-box", payloadBox[1]},
                                   {"--payload-box", payloadBox[2]}})
     if (!std::isfinite(x) || std::abs(x) > 1e6) bad(option, "must be finite and at most 1e6");
+}
+
+// Sizes a user can ask for, bounded before gmsh starts (docs/limits.md): a typo must give an
+// error, not minutes of meshing or gigabytes of memory.
+void ParachuteSpec::checkLimits() const {
+  auto bad = [](const std::string& option, const std::string& why) {
+    throw std::invalid_argument(option + ": " + why);
+  };
   if (gores > 1000) bad("--gores", "at most 1000");
   if (lineElements > 10000) bad("--line-elements", "at most 10000 per line");
   if (riserElements > 10000) bad("--riser-elements", "at most 10000 per riser");

@@ -45,6 +45,7 @@ struct ParachuteSpec {
   bool hasBox() const { return payloadBox[0] > 0.0; }
   // Throws std::invalid_argument naming the offending option (--gores, --diameter, ...).
   void validate() const;
+  void checkFinite() const;  // part of validate(): lengths and masses finite, at most 1e6
   void checkLimits() const;  // part of validate(): sizes within docs/limits.md
 };
 
