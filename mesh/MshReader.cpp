@@ -555,6 +555,7 @@ class Parser {
     for (const auto& [entity, phys] : entityPhysicals_)
       for (int p : phys) groups[{entity.first, p}].push_back(entity.second);
     std::set<std::size_t> used;
+    std::size_t copies = 0;
     for (const auto& [key, entities] : groups) {
       MeshGroup g;
       g.dim = key.first;
@@ -577,6 +578,14 @@ class Parser {
                             "quadrangles are supported");
           const auto nn = static_cast<std::size_t>(nodesPerElement(type));
           const auto& v = it->second;
+          // An element is copied into every group of its entity: a few bytes of physical tags
+          // must not multiply a large block into terabytes.
+          copies += v.size() / nn;
+          if (copies > lim_.maxElements)
+            throw MeshError(c_.name() + ": the physical groups hold more than " +
+                            std::to_string(lim_.maxElements) +
+                            " elements in all (the limit on elements; an element counts once "
+                            "per group)");
           for (std::size_t e = 0; e < v.size(); e += nn) {
             g.elements.emplace_back(v.begin() + e, v.begin() + e + nn);
             used.insert(v.begin() + e, v.begin() + e + nn);

@@ -287,6 +287,26 @@ TEST(MshReader, CountsAreCheckedAgainstTheFileBeforeAnythingIsAllocated) {
     EXPECT_NE(std::string(x.what()).find("bytes are left in the file"), std::string::npos)
         << x.what();
   }
+  // An entity in 50,000 physical groups would copy its elements into each: the copies count
+  // against the element limit (here 100,000; 3 elements x 50,000 groups).
+  std::string many = "1 1 1 0\n1 0 0 0 1 1\n1 0 0 0 1 0 0 1 2 0\n1 0 0 0 2 1 0 50000";
+  for (int p = 1; p <= 50000; ++p) {
+    many += ' ';
+    many += std::to_string(p);
+  }
+  MshLimits small;
+  small.maxElements = 100000;
+  try {
+    parseMsh(
+        replaced(kMesh41, "1 1 1 0\n1 0 0 0 1 1\n1 0 0 0 1 0 0 1 2 0\n1 0 0 0 2 1 0 1 3", many),
+        "groups.msh", small);
+    ADD_FAILURE() << "accepted";
+  } catch (const MeshError& x) {
+    std::printf("  %s\n", x.what());
+    EXPECT_NE(std::string(x.what()).find("the physical groups hold more than 100000 elements"),
+              std::string::npos)
+        << x.what();
+  }
   // $Nodes / $Elements headers one below and one above their data.
   struct Row {
     std::string from, to, expect;
