@@ -17,6 +17,7 @@
 #include "case/TomlDepth.hpp"
 #include "case/TomlTable.hpp"
 #include "io/InputFile.hpp"
+#include "verification/References.hpp"
 
 namespace chute {
 
@@ -981,6 +982,13 @@ CaseSpec readCaseFromString(const std::string& text, const std::string& file,
       if (anchors.size() != 2) r.fail("anchors", "expected the two fixed rope ends");
       ref.anchor1 = nodeRef(m, r, "anchors", anchors[0]);
       ref.anchor2 = nodeRef(m, r, "anchors", anchors[1]);
+      // The reference is built when the run starts; its geometry is checked here, before it.
+      try {
+        verification::BeadEllipseReference(m.X[ref.anchor1], m.X[ref.anchor2],
+                                           m.X[c.output.probes[ref.probe].node], m.gravity);
+      } catch (const std::invalid_argument& e) {
+        r.fail("probe", e.what());
+      }
     }
     r.finish();
     c.reference = ref;

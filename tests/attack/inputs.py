@@ -149,6 +149,10 @@ def corpus(ctx):
               "solver.dt=" + "[" * 6000 + "]" * 6000, "a." * 5000 + "b=1",
               "solver.t_end=1e300"]:
         add(Input(S, s[:40], run_case(ctx, pulley, "--set", s), ERROR, None, 20))
+    # A reference whose geometry fails only when the run starts (found by the long run).
+    add(Input(S, "nodes.bead.2=5e-324 (bead on the rope line)",
+              run_case(ctx, ctx.case("bead_1.toml"), "--set", "nodes.bead.2=5e-324"), ERROR,
+              None, 20))
     add(Input(S, "membranes.0.divisions.0=4", run_case(ctx, ctx.case("airbag.toml"), "--set",
               "membranes.0.divisions.0=4", "--set", "solver.t_end=2.5e-4"), OK, None, 60))
 
@@ -274,6 +278,7 @@ def corpus(ctx):
                  ["plot", run_dir, "--columns", ctx.columns, "--out", "/nonexistent/p.png"],
                  ["plot", run_dir, "--columns", "no_such_column", "--out", ctx.path("q.png")],
                  ["couple", ctx.path("missing.toml")], ["mesh"], ["mesh", "parachute"],
+                 ["couple", ctx.case("canopy_coupled.toml"), "--t-end", "0.002", "--omega", "nan"],
                  ["mesh", "geo"], ["mesh", "geo", syntax, "--out", ctx.path("x.msh"),
                                    "--timeout", "-1"],
                  ["mesh", "geo", geo, "--out", ctx.path("x.txt")]]:
