@@ -1,6 +1,8 @@
 // chute: command-line front end (docs/cli.md). A thin layer over the libraries;
 // each verb is in app/cli/<Verb>Command.cpp.
 #include <fmt/core.h>
+#include <vtkLogger.h>
+#include <vtkObject.h>
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
@@ -17,6 +19,10 @@ int main(int argc, char** argv) {
   // `chute run` handles SIGINT / SIGTERM from its first instruction (checkpoint, valid output);
   // the other verbs keep the default (they end at once).
   if (argc > 1 && std::string_view(argv[1]) == "run") chute::installStopHandlers();
+  // VTK's own messages (warnings, its logger) are not chute's one-line errors: verbs check
+  // what VTK produced and report it themselves.
+  vtkObject::GlobalWarningDisplayOff();
+  vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
   CLI::App app{"chute: structural finite elements for parachute systems"};
   app.require_subcommand(1);
   const std::vector<Command> commands = {addRunCommand(app), addRenderCommand(app),

@@ -1,7 +1,8 @@
 #pragma once
 // A gmsh mesh as plain data: nodes by tag, and the elements of every physical group (first-order
 // points, lines, triangles, quadrangles) as lists of node tags, plus any 3-component NodeData
-// views (e.g. "initial_displacement"). Reading and writing go through the gmsh API (GmshScope).
+// views (e.g. "initial_displacement"). Cases read it with MshReader; writing goes through the
+// gmsh API (GmshScope).
 #include <cstddef>
 #include <map>
 #include <string>
@@ -43,17 +44,16 @@ struct GmshMesh {
 // `first` when given and an end). Throws MeshError if the elements do not form a simple chain.
 std::vector<std::size_t> orderedChain(const MeshGroup& g, std::size_t first = 0);
 
-// Reads a mesh file: .msh (any version gmsh reads), or a .geo script that is meshed in the
-// highest dimension of its entities. Throws MeshError naming the file.
-// gmsh (about 90 shared libraries, ~0.2 s to load and relocate) is loaded only here, on first
-// use: a program that links chute_mesh (gmsh) reads in-process; one that links only the mesh
-// data (the `chute` command, libchute_coupling.so) loads the libchute_gmsh.so plugin.
+// Reads a mesh file for a case: a .msh (2.2 or 4.1) through chute's own reader (MshReader.hpp),
+// never through gmsh. Anything else -- a .geo script (gmsh scripts can run commands), a .unv,
+// ... -- is refused: a .geo is meshed only by `chute mesh geo`. Throws MeshError naming the file.
+struct MshLimits;
 GmshMesh readMesh(const std::string& file);
+GmshMesh readMesh(const std::string& file, const MshLimits& limits);
 
-// The reader of a program that links gmsh in (registered by GmshSession.cpp).
-using MeshReaderFn = GmshMesh (*)(const std::string&);
-void setInProcessMeshReader(MeshReaderFn reader);
-GmshMesh readMeshWithGmsh(const std::string& file);  // chute_mesh (gmsh) only
+// Reads a .msh or meshes a .geo through the gmsh API (chute_mesh only): `chute mesh geo`, and the
+// tests that compare chute's reader with gmsh's.
+GmshMesh readMeshWithGmsh(const std::string& file);
 
 // The mesh of gmsh's current model (inside a GmshScope).
 GmshMesh currentMesh();

@@ -1,20 +1,18 @@
 #pragma once
 // The gmsh plugin (libchute_gmsh.so): everything that calls gmsh, behind a table of functions
-// that the `chute` command and libchute_coupling.so load with dlopen when a case reads a mesh or
-// the user runs `chute mesh`. Loading gmsh costs ~0.2 s (about 90 libraries); a run that reads
-// no mesh never pays it.
+// that the `chute` command loads with dlopen when
+// the user runs `chute mesh` (meshes are read without gmsh: MshReader.hpp). Loading gmsh costs ~0.2
+// s (about 90 libraries); a run that reads no mesh never pays it.
 #include <string>
 
 #include "GmshMesh.hpp"
 
 namespace chute::mesh {
 
-constexpr int kGmshPluginVersion = 1;
+constexpr int kGmshPluginVersion = 2;
 
 struct GmshPluginApi {
   int version = kGmshPluginVersion;
-  // Reads a mesh (readMeshWithGmsh); false with the message in *error on failure.
-  bool (*readMesh)(const char* file, GmshMesh* out, std::string* error) = nullptr;
   // `chute mesh ...` (argv[0] = "chute", argv[1] = "mesh"); returns the exit status.
   int (*meshCommand)(int argc, char** argv) = nullptr;
 };

@@ -1,6 +1,5 @@
-// The gmsh plugin's entry point (libchute_gmsh.so, GmshPlugin.hpp): mesh reading and the
-// `chute mesh` command, with gmsh linked in. Errors cross the boundary as messages and exit
-// codes, not exceptions.
+// The gmsh plugin's entry point (libchute_gmsh.so, GmshPlugin.hpp): the `chute mesh` command, with
+// gmsh linked in. Errors cross the boundary as messages and exit codes, not exceptions.
 #include <exception>
 
 #include "GmshPlugin.hpp"
@@ -8,16 +7,6 @@
 #include "app/cli/Dispatch.hpp"
 
 namespace {
-bool readMeshEntry(const char* file, chute::mesh::GmshMesh* out, std::string* error) {
-  try {
-    *out = chute::mesh::readMeshWithGmsh(file);
-    return true;
-  } catch (const std::exception& e) {
-    *error = e.what();
-    return false;
-  }
-}
-
 int meshCommandEntry(int argc, char** argv) {
   CLI::App app{"chute: structural finite elements for parachute systems"};
   app.require_subcommand(1);
@@ -27,7 +16,6 @@ int meshCommandEntry(int argc, char** argv) {
 
 extern "C" __attribute__((visibility("default"))) const chute::mesh::GmshPluginApi*
 chute_gmsh_plugin() {
-  static const chute::mesh::GmshPluginApi api{chute::mesh::kGmshPluginVersion, &readMeshEntry,
-                                              &meshCommandEntry};
+  static const chute::mesh::GmshPluginApi api{chute::mesh::kGmshPluginVersion, &meshCommandEntry};
   return &api;
 }

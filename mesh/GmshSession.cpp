@@ -7,10 +7,6 @@
 namespace chute::mesh {
 
 namespace {
-// A program with gmsh linked in reads meshes in-process, never through the plugin (two copies
-// of this file would each initialise gmsh's one global state).
-const bool kReaderRegistered = (setInProcessMeshReader(&readMeshWithGmsh), true);
-
 // Initialises gmsh on first use and finalises it when the process exits.
 struct GmshProcess {
   std::mutex mutex;

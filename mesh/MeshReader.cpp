@@ -1,4 +1,5 @@
-// readMesh(): in-process when gmsh is linked in, else through the gmsh plugin (GmshPlugin.hpp).
+// readMesh() for cases: .msh files through chute's own reader, nothing else; and the loader of the
+// gmsh plugin (GmshPlugin.hpp) that `chute mesh` runs in.
 #include <dlfcn.h>
 
 #include <cstdlib>
@@ -8,15 +9,11 @@
 #include "GmshMesh.hpp"
 #include "GmshPlugin.hpp"
 #include "MeshError.hpp"
+#include "MshReader.hpp"
 
 namespace chute::mesh {
 
 namespace {
-MeshReaderFn& inProcessReader() {
-  static MeshReaderFn reader = nullptr;
-  return reader;
-}
-
 std::string pluginPath() {
   if (const char* p = std::getenv("CHUTE_GMSH_PLUGIN"); p && *p) return p;
   std::error_code ec;
@@ -28,10 +25,6 @@ std::string pluginPath() {
   return CHUTE_GMSH_PLUGIN_PATH;  // the build tree's
 }
 }  // namespace
-
-void setInProcessMeshReader(MeshReaderFn reader) {
-  inProcessReader() = reader;
-}
 
 const GmshPluginApi& gmshPlugin() {
   static std::mutex mutex;
@@ -53,12 +46,19 @@ const GmshPluginApi& gmshPlugin() {
 }
 
 GmshMesh readMesh(const std::string& file) {
-  if (const MeshReaderFn reader = inProcessReader()) return reader(file);
-  const GmshPluginApi& plugin = gmshPlugin();
-  GmshMesh mesh;
-  std::string error;
-  if (!plugin.readMesh(file.c_str(), &mesh, &error)) throw MeshError(error);
-  return mesh;
+  return readMesh(file, MshLimits{});
+}
+
+GmshMesh readMesh(const std::string& file, const MshLimits& limits) {
+  const std::string ext = std::filesystem::path(file).extension().string();
+  if (ext == ".geo")
+    throw MeshError(file +
+                    ": a gmsh script is not read by a case (it can run commands): mesh it "
+                    "with `chute mesh geo " +
+                    file + " --out MESH.msh` and name the .msh");
+  if (ext != ".msh")
+    throw MeshError(file + ": not a .msh file: chute reads gmsh .msh meshes (formats 2.2 and 4.1)");
+  return readMsh(file, limits);
 }
 
 }  // namespace chute::mesh

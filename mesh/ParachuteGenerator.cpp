@@ -17,6 +17,7 @@ void ParachuteSpec::validate() const {
   auto bad = [](const std::string& option, const std::string& why) {
     throw std::invalid_argument(option + ": " + why);
   };
+  checkFinite();
   if (gores < 4) bad("--gores", "give at least 4 gores");
   if (!(diameter > 0.0)) bad("--diameter", "must be positive");
   if (ventDiameter < 0.0 || ventDiameter >= diameter)
@@ -47,6 +48,53 @@ void ParachuteSpec::validate() const {
     bad("--bundle-radius", "must be in [0, diameter / 2)");
   if (sliderDrop < 0.0) bad("--slider-drop", "must not be negative");
   if (lineSlack < 0.0 || lineSlack >= 0.5) bad("--line-slack", "must be in [0, 0.5)");
+  checkLimits();
+}
+
+void ParachuteSpec::checkFinite() const {
+  auto bad = [](const std::string& option, const std::string& why) {
+    throw std::invalid_argument(option + ": " + why);
+  };
+  for (const auto& [option, x] : {std::pair<const char*, double>{"--diameter", diameter},
+                                  {"--line-length", lineLength},
+                                  {"--element-size", elementSize},
+                                  {"--vent-diameter", ventDiameter},
+                                  {"--slider", sliderSide},
+                                  {"--payload-mass", payloadMass},
+                                  {"--riser-length", riserLength},
+                                  {"--bundle-radius", bundleRadius},
+                                  {"--slider-drop", sliderDrop},
+                                  {"--line-slack", lineSlack},
+                                  {"--payload-box", payloadBox[0]},
+                                  {"--payload-box", payloadBox[1]},
+                                  {"--payload-box", payloadBox[2]}})
+    if (!std::isfinite(x) || std::abs(x) > 1e6) bad(option, "must be finite and at most 1e6");
+}
+
+// Sizes a user can ask for, bounded before gmsh starts (docs/limits.md): a typo must give an
+// error, not minutes of meshing or gigabytes of memory.
+void ParachuteSpec::checkLimits() const {
+  auto bad = [](const std::string& option, const std::string& why) {
+    throw std::invalid_argument(option + ": " + why);
+  };
+  if (gores > 1000) bad("--gores", "at most 1000");
+  if (lineElements > 10000) bad("--line-elements", "at most 10000 per line");
+  if (riserElements > 10000) bad("--riser-elements", "at most 10000 per riser");
+  if (sliderDivisions > 1000) bad("--slider-divisions", "at most 1000");
+  // gmsh 4.8's algorithm 8 (quads) crashes on these geometries; 2, 3, 7, 9 are untested here.
+  if (meshAlgorithm != 1 && meshAlgorithm != 5 && meshAlgorithm != 6)
+    bad("--mesh-algorithm", "expected 6 (Frontal-Delaunay), 5 (Delaunay) or 1 (MeshAdapt)");
+  if (!(maxElements >= 1.0 && maxElements <= 1e8)) bad("--max-elements", "must be in [1, 1e8]");
+  // An equilateral triangle of side h has area sqrt(3)/4 h^2.
+  const double canopy = std::numbers::pi / 4 * (diameter * diameter - ventDiameter * ventDiameter) /
+                        (std::sqrt(3.0) / 4 * elementSize * elementSize);
+  const double estimate = canopy + double(gores) * lineElements + 4.0 * riserElements +
+                          double(sliderDivisions) * sliderDivisions + 64.0;
+  if (estimate > maxElements)
+    bad("--element-size", "about " + std::to_string(static_cast<long long>(estimate)) +
+                              " elements, more than the limit of " +
+                              std::to_string(static_cast<long long>(maxElements)) +
+                              " (--max-elements)");
 }
 
 namespace {

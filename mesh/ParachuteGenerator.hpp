@@ -27,7 +27,8 @@ struct ParachuteSpec {
   double lineLength = 0.0;    // skirt to confluence, > D / 2
   int lineElements = 8;
   double elementSize = 0.0;  // canopy mesh size
-  int meshAlgorithm = 6;     // gmsh Mesh.Algorithm (6 Frontal-Delaunay, 5 Delaunay, 8 quads)
+  int meshAlgorithm = 6;     // gmsh Mesh.Algorithm (6 Frontal-Delaunay, 5 Delaunay, 1 MeshAdapt)
+  double maxElements = 2e6;  // limit on the estimated element count (docs/limits.md)
   double sliderSide = 0.0;   // 0: no slider; else a square of this side, a grommet at each corner
   int sliderDivisions = 1;   // quads along each slider edge
   double payloadMass = 0.0;  // 0: no payload
@@ -44,6 +45,8 @@ struct ParachuteSpec {
   bool hasBox() const { return payloadBox[0] > 0.0; }
   // Throws std::invalid_argument naming the offending option (--gores, --diameter, ...).
   void validate() const;
+  void checkFinite() const;  // part of validate(): lengths and masses finite, at most 1e6
+  void checkLimits() const;  // part of validate(): sizes within docs/limits.md
 };
 
 struct GeneratedParachute {

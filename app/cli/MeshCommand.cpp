@@ -3,19 +3,27 @@
 //  a,b,c] [--riser-length l] [--start flat|folded|inflated] [--case FILE.toml]
 //  [--config PARAMS.toml]`:
 // a flat circular canopy with lines, slider and payload meshed with gmsh (docs/meshing.md).
+// `chute mesh geo SCRIPT.geo --out FILE.msh [--timeout s] [--max-memory MiB]`: runs a gmsh script
+// (which can run commands) and writes its mesh (GeoScript.hpp); the only way chute runs a .geo.
 #include <fmt/core.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <memory>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <toml.hpp>
 #include <vector>
 
+#include "GeoScript.hpp"
 #include "GmshSession.hpp"
+#include "MeshError.hpp"
 #include "ParachuteCaseWriter.hpp"
 #include "ParachuteGenerator.hpp"
 #include "app/cli/Command.hpp"
+#include "case/TomlDepth.hpp"
+#include "io/InputFile.hpp"
 
 namespace chute::cli {
 
@@ -26,10 +34,20 @@ namespace {
 std::string applyParameterFile(CLI::App& cmd, const std::string& file) {
   toml::value root;
   try {
-    root = toml::parse(file);
+    const std::string text = io::readInputFile(file, 1u << 20);
+    if (const auto deep = tomlNestingProblem(text))
+      return file + ":" + std::to_string(deep->line) + ": nested deeper than " +
+             std::to_string(kMaxTomlDepth) + " levels";
+    std::istringstream in(text);
+    root = toml::parse(in, file);
+  } catch (const toml::exception& e) {
+    const std::string what = e.what();
+    return file + ":" + std::to_string(e.location().line()) +
+           ": malformed TOML: " + what.substr(0, what.find('\n'));
   } catch (const std::exception& e) {
     return e.what();
   }
+  if (!root.is_table()) return file + ": not a TOML table";
   for (const auto& [key, value] : root.as_table()) {
     CLI::Option* opt = nullptr;
     try {
@@ -56,7 +74,52 @@ std::string applyParameterFile(CLI::App& cmd, const std::string& file) {
   return "";
 }
 
+// Two names of one file (the same path, or links to one existing file).
+bool sameFile(const std::string& x, const std::string& y) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::weakly_canonical(x, ec) == fs::weakly_canonical(y, ec) && !ec) return true;
+  return fs::exists(x, ec) && fs::exists(y, ec) && fs::equivalent(x, y, ec);
+}
+
 }  // namespace
+
+std::function<int()> addMeshGeoCommand(CLI::App& mesh) {
+  struct Args {
+    std::string script, out;
+    mesh::GeoScriptLimits limits;
+  };
+  auto a = std::make_shared<Args>();
+  auto* g = mesh.add_subcommand(
+      "geo",
+      "run a gmsh script (.geo) and write its mesh. A gmsh script is a program: it can run "
+      "shell commands (System) -- run only scripts you trust");
+  g->add_option("script", a->script, "gmsh script (.geo)")->required();
+  g->add_option("--out", a->out, "mesh to write (.msh, format 4.1)")->required();
+  g->add_option("--timeout", a->limits.seconds, "seconds the script may run")
+      ->default_val(a->limits.seconds)
+      ->check(CLI::Range(0.1, 86400.0));
+  g->add_option("--max-memory", a->limits.memoryMiB, "MiB of address space for gmsh")
+      ->default_val(a->limits.memoryMiB)
+      ->check(CLI::Range(64.0, 1048576.0));
+  return [a] {
+    if (sameFile(a->script, a->out)) {
+      fmt::print(stderr, "chute: mesh geo: --out: '{}' is the script\n", a->out);
+      return kExitBadInput;
+    }
+    fmt::print("{}: running the gmsh script (gmsh scripts can run commands)\n", a->script);
+    std::fflush(stdout);
+    mesh::GmshMesh m;
+    try {
+      m = mesh::meshGeoScript(a->script, a->out, a->limits);
+    } catch (const mesh::MeshError& e) {
+      fmt::print(stderr, "chute: mesh geo: {}\n", e.what());
+      return kExitBadInput;
+    }
+    fmt::print("{}: {} nodes, {} physical groups\n", a->out, m.nodeTags.size(), m.groups.size());
+    return 0;
+  };
+}
 
 Command addMeshCommand(CLI::App& app) {
   struct Args {
@@ -69,6 +132,7 @@ Command addMeshCommand(CLI::App& app) {
   auto a = std::make_shared<Args>();
   auto* mesh = app.add_subcommand("mesh", "build meshes with gmsh");
   mesh->require_subcommand(1);
+  const auto geoRun = addMeshGeoCommand(*mesh);
   auto* p = mesh->add_subcommand("parachute", "flat circular canopy, lines, slider and payload");
   p->add_option("--config", a->config,
                 "parameter file (TOML): option = value, names without '--'; the command line wins");
@@ -79,8 +143,12 @@ Command addMeshCommand(CLI::App& app) {
   p->add_option("--line-length", s.lineLength, "suspension line length, skirt to confluence");
   p->add_option("--line-elements", s.lineElements, "elements per line")->default_val(8);
   p->add_option("--element-size", s.elementSize, "canopy mesh size");
-  p->add_option("--mesh-algorithm", s.meshAlgorithm, "gmsh Mesh.Algorithm (6, 5, 8 quads)")
+  p->add_option("--mesh-algorithm", s.meshAlgorithm,
+                "gmsh Mesh.Algorithm: 6 Frontal-Delaunay, 5 Delaunay, 1 MeshAdapt")
       ->default_val(6);
+  p->add_option("--max-elements", s.maxElements,
+                "limit on the estimated number of elements (docs/limits.md)")
+      ->default_val(s.maxElements);
   p->add_option("--slider", s.sliderSide, "slider: side of the square (grommets at the corners)");
   p->add_option("--slider-divisions", s.sliderDivisions, "quads along a slider edge")
       ->default_val(1);
@@ -109,45 +177,56 @@ Command addMeshCommand(CLI::App& app) {
   p->add_option("--t-end", a->caseOptions.tEnd, "case: end time")->default_val(0.02);
   p->add_option("--dt", a->caseOptions.dt, "case: time step")->default_val(1e-3);
   p->add_flag("--quiet", a->quiet, "print nothing");
-  return {mesh, [a, p] {
-            if (!*p) return kExitBadInput;
-            if (!a->config.empty()) {
-              if (const std::string e = applyParameterFile(*p, a->config); !e.empty()) {
-                fmt::print(stderr, "chute: mesh parachute: {}\n", e);
-                return kExitBadInput;
-              }
-            }
-            if (a->out.empty()) {
-              fmt::print(stderr, "chute: mesh parachute: --out: give the .msh file to write\n");
-              return kExitBadInput;
-            }
-            if (!a->box.empty()) a->spec.payloadBox = {a->box[0], a->box[1], a->box[2]};
-            mesh::GeneratedParachute g;
-            try {
-              g = mesh::generateParachute(a->spec, a->out);
-              if (!a->caseFile.empty()) {
-                mesh::writeParachuteCase(a->spec, g, a->caseFile, a->out, a->caseOptions);
-              }
-            } catch (const std::invalid_argument& e) {
-              fmt::print(stderr, "chute: mesh parachute: {}\n", e.what());
-              return kExitBadInput;
-            } catch (const std::runtime_error& e) {  // gmsh, folding, unwritable files
-              fmt::print(stderr, "chute: mesh parachute: {}\n", e.what());
-              return kExitRunFailed;
-            }
-            if (!a->quiet) {
-              fmt::print("{}: {} nodes, {} canopy triangles, {} groups, meshed in {:.2f} s\n",
-                         a->out, g.mesh.nodeTags.size(), g.triangles, g.mesh.groups.size(),
-                         g.meshSeconds);
-              fmt::print(
-                  "  canopy area {:.6g} (flat pattern {:.6g}, {:+.3f} %), line length error "
-                  "{:.2e}, start stretch <= {:.6f}\n",
-                  g.canopyArea, g.flatArea, 100 * (g.canopyArea / g.flatArea - 1),
-                  g.maxLineLengthError, g.maxStartStretch);
-              if (!a->caseFile.empty()) fmt::print("  case: {}\n", a->caseFile);
-            }
-            return 0;
-          }};
+  return {
+      mesh, [a, p, geoRun] {
+        if (!*p) return geoRun();
+        if (!a->config.empty()) {
+          if (const std::string e = applyParameterFile(*p, a->config); !e.empty()) {
+            fmt::print(stderr, "chute: mesh parachute: {}\n", e);
+            return kExitBadInput;
+          }
+        }
+        if (a->out.empty()) {
+          fmt::print(stderr, "chute: mesh parachute: --out: give the .msh file to write\n");
+          return kExitBadInput;
+        }
+        if (!a->caseFile.empty() && sameFile(a->caseFile, a->out)) {
+          fmt::print(stderr, "chute: mesh parachute: --case: '{}' is the --out mesh file\n",
+                     a->caseFile);
+          return kExitBadInput;
+        }
+        if (!a->config.empty() && (sameFile(a->config, a->out) ||
+                                   (!a->caseFile.empty() && sameFile(a->config, a->caseFile)))) {
+          fmt::print(stderr, "chute: mesh parachute: --config: '{}' is an output file\n",
+                     a->config);
+          return kExitBadInput;
+        }
+        if (!a->box.empty()) a->spec.payloadBox = {a->box[0], a->box[1], a->box[2]};
+        mesh::GeneratedParachute g;
+        try {
+          g = mesh::generateParachute(a->spec, a->out);
+          if (!a->caseFile.empty()) {
+            mesh::writeParachuteCase(a->spec, g, a->caseFile, a->out, a->caseOptions);
+          }
+        } catch (const std::invalid_argument& e) {
+          fmt::print(stderr, "chute: mesh parachute: {}\n", e.what());
+          return kExitBadInput;
+        } catch (const std::runtime_error& e) {  // gmsh, folding, unwritable files
+          fmt::print(stderr, "chute: mesh parachute: {}\n", e.what());
+          return kExitRunFailed;
+        }
+        if (!a->quiet) {
+          fmt::print("{}: {} nodes, {} canopy triangles, {} groups, meshed in {:.2f} s\n", a->out,
+                     g.mesh.nodeTags.size(), g.triangles, g.mesh.groups.size(), g.meshSeconds);
+          fmt::print(
+              "  canopy area {:.6g} (flat pattern {:.6g}, {:+.3f} %), line length error "
+              "{:.2e}, start stretch <= {:.6f}\n",
+              g.canopyArea, g.flatArea, 100 * (g.canopyArea / g.flatArea - 1), g.maxLineLengthError,
+              g.maxStartStretch);
+          if (!a->caseFile.empty()) fmt::print("  case: {}\n", a->caseFile);
+        }
+        return 0;
+      }};
 }
 
 }  // namespace chute::cli

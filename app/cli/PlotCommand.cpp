@@ -3,13 +3,42 @@
 #include <fmt/core.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <stdexcept>
 
 #include "app/cli/Command.hpp"
+#include "app/cli/ImageSize.hpp"
+#include "io/InputFile.hpp"
 #include "render/ProbePlot.hpp"
 
 namespace chute::cli {
+
+namespace {
+
+// Probes and reference CSVs larger than this are not plotted (docs/limits.md).
+constexpr std::uintmax_t kMaxCsvBytes = 1ull << 30;
+
+// Why the inputs and output of a plot cannot be used, checked before any is read; "" if they can.
+std::string problemOf(const render::PlotOptions& o) {
+  namespace fs = std::filesystem;
+  for (const auto& dir : o.runDirs) {
+    const std::string csv = (fs::path(dir) / "probes.csv").string();
+    if (const auto p = io::inputFileProblem(csv, kMaxCsvBytes)) return csv + ": " + *p;
+  }
+  if (!o.reference.empty())
+    if (const auto p = io::inputFileProblem(o.reference, kMaxCsvBytes))
+      return "--reference: " + o.reference + ": " + *p;
+  std::error_code ec;
+  if (fs::is_directory(o.out, ec)) return "--out: " + o.out + " is a directory; name a .png file";
+  if (fs::path(o.out).extension() != ".png") return "--out: " + o.out + ": name a .png file";
+  const fs::path parent = fs::path(o.out).parent_path();
+  if (!parent.empty() && !fs::is_directory(parent, ec))
+    return "--out: " + o.out + ": no directory " + parent.string();
+  return "";
+}
+
+}  // namespace
 
 Command addPlotCommand(CLI::App& app) {
   struct Args {
@@ -24,12 +53,16 @@ Command addPlotCommand(CLI::App& app) {
       ->required();
   cmd->add_option("--reference", a->o.reference, "CSV with t and reference columns");
   cmd->add_option("--title", a->o.title, "chart title");
-  cmd->add_option("--size", a->size, "image size WxH")->default_val("1200x700");
+  cmd->add_option("--size", a->size, "image size WxH (each side 16 to 8192)")
+      ->default_val("1200x700");
   cmd->add_option("--out", a->o.out, "PNG file")->default_val("plot.png");
   return {cmd, [a] {
-            if (std::sscanf(a->size.c_str(), "%dx%d", &a->o.width, &a->o.height) != 2 ||
-                a->o.width < 16 || a->o.height < 16) {
-              fmt::print(stderr, "chute: --size: expected WxH, got '{}'\n", a->size);
+            if (const auto bad = parseImageSize(a->size, a->o.width, a->o.height)) {
+              fmt::print(stderr, "chute: plot: --size: {}\n", *bad);
+              return kExitBadInput;
+            }
+            if (const std::string bad = problemOf(a->o); !bad.empty()) {
+              fmt::print(stderr, "chute: plot: {}\n", bad);
               return kExitBadInput;
             }
             try {
@@ -37,6 +70,11 @@ Command addPlotCommand(CLI::App& app) {
             } catch (const std::runtime_error& e) {
               fmt::print(stderr, "chute: plot: {}\n", e.what());
               return kExitBadInput;
+            }
+            std::error_code ec;
+            if (std::filesystem::file_size(a->o.out, ec) == 0 || ec) {
+              fmt::print(stderr, "chute: plot: {}: the image could not be written\n", a->o.out);
+              return kExitRunFailed;
             }
             fmt::print("{}\n", a->o.out);
             return 0;

@@ -7,15 +7,10 @@
 #include <stdexcept>
 
 #include "app/cli/Command.hpp"
+#include "app/cli/ImageSize.hpp"
 #include "render/SnapshotRenderer.hpp"
 
 namespace chute::cli {
-
-namespace {
-bool parseSize(const std::string& s, int& w, int& h) {
-  return std::sscanf(s.c_str(), "%dx%d", &w, &h) == 2;
-}
-}  // namespace
 
 Command addRenderCommand(CLI::App& app) {
   struct Args {
@@ -40,8 +35,8 @@ Command addRenderCommand(CLI::App& app) {
   cmd->add_option("--out", a->o.outDir, "directory for the PNG files (default RUN_DIR/snapshots)");
   cmd->add_flag("--quiet", a->quiet, "do not list the files written");
   return {cmd, [a] {
-            if (!parseSize(a->size, a->o.width, a->o.height)) {
-              fmt::print(stderr, "chute: --size: expected WxH, got '{}'\n", a->size);
+            if (const auto bad = parseImageSize(a->size, a->o.width, a->o.height)) {
+              fmt::print(stderr, "chute: render: --size: {}\n", *bad);
               return kExitBadInput;
             }
             if (a->o.outDir.empty()) a->o.outDir = a->o.runDir + "/snapshots";

@@ -18,6 +18,7 @@
 
 #include <array>
 #include <cerrno>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -62,7 +63,8 @@ CsvTable readCsv(const std::string& path) {
       char* end = nullptr;
       errno = 0;
       const double v = std::strtod(cell.c_str(), &end);
-      if (end == cell.c_str() || errno == ERANGE)
+      // ERANGE with a small result is an underflow: chute writes subnormal numbers (%.17g).
+      if (end == cell.c_str() || (errno == ERANGE && std::abs(v) > 1.0))
         throw std::runtime_error(path + ":" + std::to_string(lineNo) + ": '" + cell +
                                  "' is not a number");
       t.columns[k].push_back(v);

@@ -4,6 +4,7 @@
 #include <cctype>
 #include <climits>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
@@ -13,7 +14,10 @@
 #include "StructuredMeshes.hpp"
 #include "case/CaseSpec.hpp"
 #include "case/MeshGroups.hpp"
+#include "case/TomlDepth.hpp"
 #include "case/TomlTable.hpp"
+#include "io/InputFile.hpp"
+#include "verification/References.hpp"
 
 namespace chute {
 
@@ -41,6 +45,16 @@ namespace {
 constexpr long kMaxNodes = 1000000;
 // Largest coordinate or length a case may give: squared distances must not overflow.
 constexpr double kMaxLength = 1e100;
+// Most steps a dynamic run may ask for (t_end / dt), and the least step relative to t_end that
+// still advances time (a few ulps of t_end).
+constexpr double kMaxSteps = 1e9;
+constexpr double kLeastRelativeStep = 1e-15;
+
+std::string shortNumber(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", x);
+  return buf;
+}
 
 // A coordinate triple within +-kMaxLength (required, or `fallback` when absent).
 Vec3 point(TomlTable& t, const std::string& key, const Vec3* fallback = nullptr) {
@@ -80,6 +94,9 @@ std::string oneLine(const std::string& what) {
 }
 
 toml::value parseText(const std::string& text, const std::string& file) {
+  if (const auto deep = tomlNestingProblem(text))
+    throw CaseError(file + ":" + std::to_string(deep->line) + ": arrays or inline tables nested " +
+                    "deeper than " + std::to_string(kMaxTomlDepth) + " levels");
   try {
     std::istringstream in(text);
     return toml::parse(in, file);
@@ -91,16 +108,16 @@ toml::value parseText(const std::string& text, const std::string& file) {
   }
 }
 
+// Case files are read whole, regular files only (a FIFO or /dev/zero never ends), at most
+// kMaxCaseBytes (docs/limits.md).
+constexpr std::uintmax_t kMaxCaseBytes = 64ull << 20;
+
 std::string readText(const std::string& file) {
-  std::error_code ec;
-  if (!std::filesystem::exists(file, ec)) throw CaseError(file + ": cannot open: no such file");
-  if (std::filesystem::is_directory(file, ec))
-    throw CaseError(file + ": cannot open: is a directory");
-  std::ifstream in(file, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  if (!in) throw CaseError(file + ": cannot open: not readable");
-  return ss.str();
+  try {
+    return io::readInputFile(file, kMaxCaseBytes);
+  } catch (const std::runtime_error& e) {
+    throw CaseError(std::string(e.what()));
+  }
 }
 
 // The closest of `known` to `key`, as " (did you mean 'x'?)", or "".
@@ -116,10 +133,13 @@ std::string didYouMean(const std::string& key, const std::vector<std::string>& k
 }
 
 void applyOverride(toml::value& root, const std::string& file, const std::string& assignment) {
-  const std::string where = "--set " + assignment;
+  // Messages quote the assignment, cut short: it may be kilobytes long.
+  const std::string where =
+      "--set " + (assignment.size() > 80 ? assignment.substr(0, 60) + "..." : assignment);
   const auto eq = assignment.find('=');
   if (eq == std::string::npos || eq == 0) throw CaseError(where + ": expected key=value");
   const std::string path = assignment.substr(0, eq), text = assignment.substr(eq + 1);
+  const std::string shown = path.size() > 80 ? path.substr(0, 60) + "..." : path;
   std::vector<std::string> keys;
   std::stringstream ss(path);
   for (std::string k; std::getline(ss, k, '.');) {
@@ -140,6 +160,8 @@ void applyOverride(toml::value& root, const std::string& file, const std::string
         throw CaseError(where + ": " + walked + ": '" + keys[i] + "' is not an index of its " +
                         std::to_string(arr.size()) + " entries");
       node = &arr[idx];
+    } else if (!node->is_table()) {
+      throw CaseError(where + ": " + walked + ": is a value, not a table");
     } else {
       auto& t = node->as_table();
       auto it = t.find(keys[i]);
@@ -157,10 +179,32 @@ void applyOverride(toml::value& root, const std::string& file, const std::string
     }
     walked += (walked.empty() ? "" : ".") + keys[i];
   }
-  if (!node->is_table())
+  // An array of values takes an index as its last key (membranes.0.divisions.0=16); an array of
+  // tables needs one before the key; a value has no keys.
+  const bool valueArray =
+      node->is_array() &&
+      std::none_of(node->as_array().begin(), node->as_array().end(),
+                   [](const toml::value& v) { return v.is_table() || v.is_array(); });
+  toml::value* element = nullptr;
+  if (valueArray) {
+    auto& arr = node->as_array();
+    const std::string& k = keys.back();
+    const bool numeric = k.size() <= 9 && k.find_first_not_of("0123456789") == std::string::npos;
+    const size_t idx = numeric ? std::stoul(k) : arr.size();
+    if (idx >= arr.size())
+      throw CaseError(where + ": " + walked + ": '" + k + "' is not an index of its " +
+                      std::to_string(arr.size()) + " values");
+    element = &arr[idx];
+  } else if (node->is_array()) {
     throw CaseError(where + ": " + walked + ": an array of tables: give an index (" + walked +
                     ".0." + keys.back() + ")");
+  } else if (!node->is_table()) {
+    throw CaseError(where + ": " + walked + ": is a value, not a table");
+  }
   toml::value parsed;
+  if (tomlNestingProblem(text))
+    throw CaseError(where + ": " + shown + ": nested deeper than " + std::to_string(kMaxTomlDepth) +
+                    " levels");
   try {
     std::istringstream in("v = " + text);
     parsed = toml::parse(in, where).as_table().at("v");
@@ -172,16 +216,20 @@ void applyOverride(toml::value& root, const std::string& file, const std::string
             "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-.") ==
             std::string::npos;
     if (!bareWord)
-      throw CaseError(where + ": " + path + ": not a TOML value: " + oneLine(e.what()));
+      throw CaseError(where + ": " + shown + ": not a TOML value: " + oneLine(e.what()));
     std::istringstream quoted("v = \"" + text + "\"");  // keeps the --set as its origin
     parsed = toml::parse(quoted, where).as_table().at("v");
   }
   if (parsed.is_table() || parsed.is_array())
-    throw CaseError(where + ": " + path + ": only scalars can be set");
+    throw CaseError(where + ": " + shown + ": only scalars can be set");
+  if (element) {
+    *element = parsed;
+    return;
+  }
   auto& t = node->as_table();
   auto it = t.find(keys.back());
   if (it != t.end() && (it->second.is_table() || it->second.is_array()))
-    throw CaseError(where + ": " + path + ": is a table in " + file + ", not a scalar");
+    throw CaseError(where + ": " + shown + ": is a table in " + file + ", not a scalar");
   // A key the file does not have is added; the reader rejects it (with a did-you-mean) if the
   // case has no such key.
   t[keys.back()] = parsed;
@@ -827,6 +875,16 @@ CaseSpec readCaseFromString(const std::string& text, const std::string& file,
       if (sv.rhoInf < 0.0 || sv.rhoInf > 1.0) s.fail("rho_inf", "must be in [0, 1]");
       sv.dtMin = s.positive("dt_min", sv.dt * 1e-6);
       if (sv.dtMin > sv.dt) s.fail("dt_min", "must not exceed dt");
+      // Steps a run can take (docs/limits.md): dt within t_end, at most kMaxSteps of it, and a
+      // least step that still moves time near t_end (t + dt_min == t would loop forever).
+      if (sv.dt > sv.tEnd) s.fail("dt", "is larger than t_end: not one step fits");
+      if (sv.tEnd / sv.dt > kMaxSteps)
+        s.fail("dt", "t_end / dt is " + shortNumber(sv.tEnd / sv.dt) + " steps, more than " +
+                         shortNumber(kMaxSteps));
+      if (sv.dtMin < kLeastRelativeStep * sv.tEnd)
+        s.fail(s.has("dt_min") ? "dt_min" : "dt",
+               "the least step (dt_min = " + shortNumber(sv.dtMin) +
+                   ") is lost in rounding near t_end: keep it above t_end * 1e-15");
     } else {
       s.notUsed({"dt", "t_end", "rho_inf", "integrator", "mass_damping", "dt_min"},
                 "by static runs (type = \"static\")");
@@ -925,6 +983,13 @@ CaseSpec readCaseFromString(const std::string& text, const std::string& file,
       if (anchors.size() != 2) r.fail("anchors", "expected the two fixed rope ends");
       ref.anchor1 = nodeRef(m, r, "anchors", anchors[0]);
       ref.anchor2 = nodeRef(m, r, "anchors", anchors[1]);
+      // The reference is built when the run starts; its geometry is checked here, before it.
+      try {
+        verification::BeadEllipseReference(m.X[ref.anchor1], m.X[ref.anchor2],
+                                           m.X[c.output.probes[ref.probe].node], m.gravity);
+      } catch (const std::invalid_argument& e) {
+        r.fail("probe", e.what());
+      }
     }
     r.finish();
     c.reference = ref;

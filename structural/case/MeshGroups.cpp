@@ -6,6 +6,7 @@
 #include <set>
 
 #include "MeshError.hpp"
+#include "MshReader.hpp"
 
 namespace chute {
 
@@ -69,8 +70,14 @@ std::unique_ptr<MeshImport> importMesh(Model& m, TomlTable t, const std::string&
   fs::path p(given);
   if (p.is_relative()) p = fs::path(caseFile).parent_path() / p;
   imp->file = p.lexically_normal().string();
+  // Limits on the mesh read (docs/limits.md), raised with --set mesh.max_nodes=...
+  mesh::MshLimits limits;
+  limits.maxNodes = static_cast<std::size_t>(
+      t.integer("max_nodes", static_cast<long>(limits.maxNodes), 1, 100000000));
+  limits.maxElements = static_cast<std::size_t>(
+      t.integer("max_elements", static_cast<long>(limits.maxElements), 1, 400000000));
   try {
-    imp->mesh = mesh::readMesh(imp->file);
+    imp->mesh = mesh::readMesh(imp->file, limits);
   } catch (const mesh::MeshError& e) {
     t.fail("file", e.what());
   }

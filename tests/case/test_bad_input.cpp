@@ -132,7 +132,7 @@ const char* kSet = "--set path or value";
 const char* kUnused = "key the chosen variant does not use";
 const char* kMesh = "mesh: physical group missing or of the wrong dimension, mesh file";
 
-// The gmsh example (mesh/examples/flat_canopy.toml, its .geo meshed by gmsh on reading) with one
+// The gmsh example (mesh/examples/flat_canopy.toml over flat_canopy.msh) with one
 // edit: physical-group errors belong to the [mesh] import.
 std::vector<Row> meshRows() {
   const std::string dir = std::string(CHUTE_SOURCE_DIR) + "/mesh/examples/";
@@ -140,8 +140,8 @@ std::vector<Row> meshRows() {
   std::stringstream ss;
   ss << in.rdbuf();
   std::string base = ss.str();
-  const std::string file = "file = \"flat_canopy.geo\"";
-  base.replace(base.find(file), file.size(), "file = \"" + dir + "flat_canopy.geo\"");
+  const std::string file = "file = \"flat_canopy.msh\"";
+  base.replace(base.find(file), file.size(), "file = \"" + dir + "flat_canopy.msh\"");
   auto edit = [&](const std::string& from, const std::string& to) {
     std::string t = base;
     const auto at = t.find(from);
@@ -160,7 +160,7 @@ std::vector<Row> meshRows() {
        {},
        "cables[0].group: physical group 'canopy'",
        "# wrong"},
-      {kMesh, edit(dir + "flat_canopy.geo", dir + "no_such.msh"), {}, "mesh.file:", "file = "},
+      {kMesh, edit(dir + "flat_canopy.msh", dir + "no_such.msh"), {}, "mesh.file:", "file = "},
   };
 }
 
@@ -941,6 +941,40 @@ std::vector<Row> rows() {
        "--set cables.name=x: cables: an array of tables: give an index",
        ""},
       {kSet, kBase, {"solver.dt.x=1"}, "--set solver.dt.x=1: solver.dt: is not a table", ""},
+      // Steps that would never end: dt lost against t_end, or a least step lost in rounding.
+      {kSet,
+       kBase,
+       {"solver.dt=5e-324"},
+       "solver.dt: t_end / dt is inf steps, more than 1e+09",
+       ""},
+      {kSet, kBase, {"solver.dt=1e308"}, "solver.dt: is larger than t_end: not one step fits", ""},
+      {kSet,
+       kBase,
+       {"solver.dt_min=1e-300"},
+       "solver.dt_min: the least step (dt_min = 1e-300)",
+       ""},
+      // An array of values takes its index last; nothing more can follow it.
+      {kSet,
+       kBase,
+       {"boundary.fixed.0.0=1"},
+       "--set boundary.fixed.0.0=1: boundary.fixed.0: is a value, not a table",
+       ""},
+      {kSet,
+       kBase,
+       {"boundary.fixed.7=\"a\""},
+       "boundary.fixed: '7' is not an index of its 2 values",
+       ""},
+      {kSet,
+       kBase,
+       {"solver.dt=" + std::string(6000, '[') + std::string(6000, ']')},
+       "solver.dt: nested deeper than 64 levels",
+       ""},
+      {kSyntax,
+       "a = " + std::string(6000, '[') + std::string(6000, ']') + "\n",
+       {},
+       "arrays or inline tables nested deeper than 64 levels",
+       "",
+       1},
       {kSet,
        kBase,
        {"solver.dt=[1, 2]"},

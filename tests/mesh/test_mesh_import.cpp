@@ -1,4 +1,4 @@
-// Case files over gmsh meshes ([mesh] and group = "..."): the shipped .geo example runs, groups
+// Case files over gmsh meshes ([mesh] and group = "..."): the shipped example runs, groups
 // map to the right elements, and a missing or mis-dimensioned group is an error naming the file,
 // line, key and group.
 #include <gtest/gtest.h>
@@ -39,7 +39,7 @@ std::string errorOf(const std::string& file) {
 
 }  // namespace
 
-TEST(MeshImport, GeoExampleMapsItsGroupsAndRunsAFewSteps) {
+TEST(MeshImport, ShippedExampleMapsItsGroupsAndRunsAFewSteps) {
   const CaseSpec c = readCase(kExample, {"solver.t_end=0.003"});
   const Model& m = c.model;
   long lineElements = 0, skirt = 0;
@@ -47,7 +47,7 @@ TEST(MeshImport, GeoExampleMapsItsGroupsAndRunsAFewSteps) {
     lineElements += m.lineSets[e.set].name == "lines";
     skirt += m.lineSets[e.set].name == "skirt";
   }
-  std::printf("flat_canopy.geo: %d nodes, %zu membranes, %ld line elements, %ld skirt elements\n",
+  std::printf("flat_canopy.msh: %d nodes, %zu membranes, %ld line elements, %ld skirt elements\n",
               m.numNodes(), m.membranes.size(), lineElements, skirt);
   EXPECT_EQ(lineElements, 8 * 6);
   EXPECT_GE(skirt, 8 * 4);
@@ -71,14 +71,14 @@ TEST(MeshImport, MissingOrMisdimensionedGroupsAreErrorsNamingThem) {
   };
   const std::vector<Case> cases = {
       {"group = \"canopy\"", "group = \"canopee\"",
-       R"(:\d+: membranes\[0\]\.group: no physical group 'canopee' in .*flat_canopy\.geo)"},
+       R"(:\d+: membranes\[0\]\.group: no physical group 'canopee' in .*flat_canopy\.msh)"},
       {"group = \"canopy\"", "group = \"lines\"",
        R"(:\d+: membranes\[0\]\.group: physical group 'lines' in .* is a curve \(1-D\); this needs a surface \(2-D\))"},
       {"group = \"lines\"                 # a 1-D", "group = \"canopy\" #",
        R"(:\d+: cables\[0\]\.group: physical group 'canopy' .* is a surface \(2-D\); this needs a curve \(1-D\))"},
-      {"file = \"flat_canopy.geo\"", "file = \"nowhere.msh\"",
+      {"file = \"flat_canopy.msh\"", "file = \"nowhere.msh\"",
        R"(:\d+: mesh\.file: .*nowhere\.msh: no such mesh file)"},
-      {"file = \"flat_canopy.geo\"", "file = \"flat_canopy.geo\"\ninitial_displacement = \"u0\"",
+      {"file = \"flat_canopy.msh\"", "file = \"flat_canopy.msh\"\ninitial_displacement = \"u0\"",
        R"(:\d+: mesh\.initial_displacement: no 3-component NodeData view 'u0')"},
       {"fixed = [\"confluence\"]", "fixed = [\"confluense\"]",
        R"(:\d+: boundary\.fixed: unknown node 'confluense')"},
@@ -90,10 +90,10 @@ TEST(MeshImport, MissingOrMisdimensionedGroupsAreErrorsNamingThem) {
     {
       std::ifstream in(file);
       std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-      const std::string rel = "file = \"flat_canopy.geo\"";
+      const std::string rel = "file = \"flat_canopy.msh\"";
       if (auto at = text.find(rel); at != std::string::npos)
         text.replace(at, rel.size(),
-                     "file = \"" CHUTE_SOURCE_DIR "/mesh/examples/flat_canopy.geo\"");
+                     "file = \"" CHUTE_SOURCE_DIR "/mesh/examples/flat_canopy.msh\"");
       std::ofstream(file) << text;
     }
     const std::string e = errorOf(file);

@@ -1,0 +1,287 @@
+"""Hostile inputs for every input surface of `chute`, written into a work directory.
+
+corpus(ctx) is the short, fixed list run by ctest (tests/attack/corpus.py); bench/attack/attack.py
+adds generated and mutated inputs built from the same seeds. Each input is
+Input(cls, name, cmd, expect, marker, timeout): its class (a row of the table), a name, the
+command line, the set of outcome classes it may end in (harness.py), a marker file whose existence
+means a command ran, and a time limit.
+"""
+
+import os
+import shutil
+import struct
+import subprocess
+import sys
+from collections import namedtuple
+
+Input = namedtuple("Input", "cls name cmd expect marker timeout")
+ERROR = {"error"}
+OK = {"success"}
+# A valid but extreme input may run (0), stop early (3) or be refused (2): never crash or hang.
+ANY_CLEAN = {"success", "error", "failed"}
+
+
+class Context:
+    """Paths and seeds shared by the generators."""
+
+    def __init__(self, chute, source, work):
+        self.chute, self.source, self.work = chute, source, work
+        self.marker = os.path.join(work, "MARKER")
+        self.seeds = {}  # .msh seeds by format: "41a", "41b", "22a", "22b"
+        self.lib = os.path.join(os.path.dirname(os.path.dirname(chute)), "structural",
+                                "libchute_coupling.so")
+
+    def path(self, *parts):
+        return os.path.join(self.work, *parts)
+
+    def write(self, name, data):
+        p = self.path(name)
+        os.makedirs(os.path.dirname(p), exist_ok=True)
+        with open(p, "wb") as f:
+            f.write(data if isinstance(data, bytes) else data.encode())
+        return p
+
+    def case(self, name):
+        return os.path.join(self.source, "cases", name)
+
+
+def mesh_case_text(ctx, mesh_file):
+    """The example case over `mesh_file`, two steps long."""
+    with open(os.path.join(ctx.source, "mesh", "examples", "flat_canopy.toml")) as f:
+        text = f.read()
+    text = text.replace('file = "flat_canopy.msh"', 'file = "%s"' % mesh_file)
+    return text.replace("t_end = 0.05", "t_end = 0.002")
+
+
+def setup(ctx):
+    """Seeds: the example mesh in four formats (gmsh converts it), a short run for `plot`, and
+    a geo script that would create the marker file."""
+    os.makedirs(ctx.work, exist_ok=True)
+    example = os.path.join(ctx.source, "mesh", "examples", "flat_canopy.msh")
+    shutil.copy(example, ctx.path("seed_41a.msh"))
+    ctx.seeds["41a"] = ctx.path("seed_41a.msh")
+    if shutil.which("gmsh"):
+        for key, fmt, binary in [("41b", "msh41", True), ("22a", "msh22", False),
+                                 ("22b", "msh22", True)]:
+            out = ctx.path("seed_%s.msh" % key)
+            cmd = ["gmsh", example, "-save", "-format", fmt, "-o", out] + (["-bin"] if binary else [])
+            if subprocess.run(cmd, capture_output=True).returncode == 0 and os.path.exists(out):
+                ctx.seeds[key] = out
+    for key, seed in ctx.seeds.items():
+        ctx.write("case_%s.toml" % key, mesh_case_text(ctx, seed))
+    run_dir = ctx.path("run")
+    subprocess.run([ctx.chute, "run", ctx.case("pulley.toml"), "--out", run_dir, "--quiet",
+                    "--set", "solver.t_end=0.1"], check=True, capture_output=True)
+    with open(os.path.join(run_dir, "probes.csv")) as f:
+        ctx.probes = f.read()
+    ctx.columns = ctx.probes.splitlines()[0].split(",")[1]
+    with open(os.path.join(ctx.source, "mesh", "examples", "flat_canopy.geo")) as f:
+        geo = f.read()
+    ctx.evil_geo = ctx.write("evil.geo", 'System "touch %s";\n%s' % (ctx.marker, geo))
+    ctx.write("case_geo.toml", mesh_case_text(ctx, ctx.evil_geo))
+    os.mkfifo(ctx.path("fifo.msh")) if not os.path.exists(ctx.path("fifo.msh")) else None
+    for name in ["fifo.toml", "fifo.geo", "fifo.csv"]:
+        if not os.path.exists(ctx.path(name)):
+            os.mkfifo(ctx.path(name))
+    for name in ["zero.msh", "zero.toml", "zero.csv"]:
+        if not os.path.lexists(ctx.path(name)):
+            os.symlink("/dev/zero", ctx.path(name))
+    os.makedirs(ctx.path("dir.msh"), exist_ok=True)
+    os.makedirs(ctx.path("dir.toml"), exist_ok=True)
+
+
+def run_case(ctx, case, *extra):
+    """`chute run` into an output directory of its own (inputs may run in parallel)."""
+    ctx.runs = getattr(ctx, "runs", 0) + 1
+    return [ctx.chute, "run", case, "--quiet", "--out", ctx.path("out", str(ctx.runs))] + list(extra)
+
+
+def mesh_run(ctx, name, data, expect=ERROR):
+    """A case over a mesh file with these bytes."""
+    msh = ctx.write("m_" + name + ".msh", data)
+    case = ctx.write("m_" + name + ".toml", mesh_case_text(ctx, msh))
+    return Input("msh 2.2/4.1 ASCII/binary", name, run_case(ctx, case), expect, ctx.marker, 30)
+
+
+def replace_count(text, section, delta=None, value=None, fmt="22a"):
+    """The node or element count of `section` changed (format 2.2: the line after the header;
+    4.1: the second number of the header, a size_t in binary files)."""
+    at = text.find(b"\n" + section + b"\n")
+    if at < 0:
+        return text
+    start = at + len(section) + 2
+    if fmt == "41b":
+        n = struct.unpack_from("<Q", text, start + 8)[0]
+        new = value if value is not None else n + delta
+        return text[:start + 8] + struct.pack("<Q", new) + text[start + 16:]
+    end = text.index(b"\n", start)
+    parts = text[start:end].split(b" ")
+    k = 1 if fmt.startswith("41") else 0
+    n = int(parts[k])
+    parts[k] = str(value if value is not None else n + delta).encode()
+    return text[:start] + b" ".join(parts) + text[end:]
+
+
+def corpus(ctx):
+    c, out = ctx.chute, []
+    add = out.append
+    deep = "a = " + "[" * 6000 + "]" * 6000 + "\n"
+    deep_tables = "a = " + "{b = " * 6000 + "1" + "}" * 6000 + "\n"
+
+    # ---- case TOML
+    T = "case TOML"
+    add(Input(T, "valid pulley", run_case(ctx, ctx.case("pulley.toml"), "--set",
+                                          "solver.t_end=0.05"), OK, None, 60))
+    for name, text in [("6000 nested arrays", deep), ("6000 nested inline tables", deep_tables),
+                       ("empty", ""), ("unterminated string", 'name = "abc\n'),
+                       ("binary junk", bytes(range(256)) * 4), ("dt nan",
+                                                                open(ctx.case("pulley.toml")).read().replace("dt = 1.0e-2", "dt = nan"))]:
+        add(Input(T, name, run_case(ctx, ctx.write("t_%d.toml" % len(out), text)), ERROR, None, 20))
+    for name in ["fifo.toml", "zero.toml", "dir.toml", "missing.toml"]:
+        add(Input(T, name, run_case(ctx, ctx.path(name)), ERROR, None, 10))
+
+    # ---- --set
+    S = "--set"
+    pulley = ctx.case("pulley.toml")
+    for s in ["solver.dt=5e-324", "solver.dt=1e308", "solver.dt_min=1e-300", "solver.dt=nan",
+              "solver.dt=inf", "solver.dt=-1", "membranes.0.divisions.0.0=4", "=", "solver..dt=1",
+              "solver.dt", "solver.dt=", "nodes.99999999999.x=1", "solver.d\u03c4=1",
+              "solver.dt=" + "[" * 6000 + "]" * 6000, "a." * 5000 + "b=1",
+              "solver.t_end=1e300"]:
+        add(Input(S, s[:40], run_case(ctx, pulley, "--set", s), ERROR, None, 20))
+    # A reference whose geometry fails only when the run starts (found by the long run).
+    add(Input(S, "nodes.bead.2=5e-324 (bead on the rope line)",
+              run_case(ctx, ctx.case("bead_1.toml"), "--set", "nodes.bead.2=5e-324"), ERROR,
+              None, 20))
+    add(Input(S, "membranes.0.divisions.0=4", run_case(ctx, ctx.case("airbag.toml"), "--set",
+              "membranes.0.divisions.0=4", "--set", "solver.t_end=2.5e-4"), OK, None, 60))
+
+    # ---- .msh
+    for key, seed in sorted(ctx.seeds.items()):
+        data = open(seed, "rb").read()
+        add(mesh_run(ctx, key + " valid", data, OK))
+        for section in [b"$Nodes", b"$Elements"]:
+            for delta in [-1, 1]:
+                add(mesh_run(ctx, "%s %s %+d" % (key, section.decode(), delta),
+                             replace_count(data, section, delta, fmt=key)))
+        add(mesh_run(ctx, key + " truncated", data[: len(data) // 2]))
+    a = open(ctx.seeds["41a"], "rb").read()
+    view = b"$NodeData\n1\n\"u0\"\n1\n0\n3\n0\n3\n1000000000\n1 0 0 0\n$EndNodeData\n"
+    add(mesh_run(ctx, "41a NodeData count 1e9", a + view))
+    for bad in [b"nan", b"inf", b"1e308"]:
+        lines = a.split(b"\n")
+        i = lines.index(b"$Nodes") + 3  # first block's first coordinate line
+        while len(lines[i].split()) != 3:
+            i += 1
+        lines[i] = bad + b" 0 0"
+        add(mesh_run(ctx, "41a coordinate " + bad.decode(), b"\n".join(lines)))
+    for name in ["fifo.msh", "zero.msh", "dir.msh"]:
+        case = ctx.write("m_%s.toml" % name, mesh_case_text(ctx, ctx.path(name)))
+        add(Input("msh 2.2/4.1 ASCII/binary", name, run_case(ctx, case), ERROR, None, 10))
+    add(mesh_run(ctx, "empty", b""))
+    unv = ctx.write("mesh.unv", "    -1\n  2411\n")
+    case = ctx.write("m_unv.toml", mesh_case_text(ctx, unv))
+    add(Input("msh 2.2/4.1 ASCII/binary", ".unv", run_case(ctx, case), ERROR, None, 10))
+
+    # ---- .geo: never run by a case or the coupling library; bounded through `mesh geo`
+    G = ".geo (case, C API, mesh geo)"
+    add(Input(G, "case names a .geo with System", run_case(ctx, ctx.path("case_geo.toml")),
+              ERROR, ctx.marker, 20))
+    add(Input(G, "--set mesh.file=.geo", run_case(ctx, ctx.path("case_41a.toml"), "--set",
+              'mesh.file="%s"' % ctx.evil_geo), ERROR, ctx.marker, 20))
+    add(Input(G, "couple over a .geo case", [c, "couple", ctx.path("case_geo.toml")], ERROR,
+              ctx.marker, 20))
+    add(Input(G, "C API create over a .geo case", [sys.executable, os.path.join(
+        os.path.dirname(os.path.abspath(__file__)), "capi_create.py"), ctx.lib,
+        ctx.path("case_geo.toml")], ERROR, ctx.marker, 20))
+    geo = os.path.join(ctx.source, "mesh", "examples", "flat_canopy.geo")
+    add(Input(G, "mesh geo valid", [c, "mesh", "geo", geo, "--out", ctx.path("g.msh")], OK,
+              None, 60))
+    loop = ctx.write("loop.geo", "For i In {1:1e15}\n  x = i;\nEndFor\n")
+    add(Input(G, "mesh geo endless loop", [c, "mesh", "geo", loop, "--out", ctx.path("g2.msh"),
+                                           "--timeout", "1"], ERROR, None, 20))
+    bomb = ctx.write("bomb.geo", "Mesh.CharacteristicLengthMax = 1e-5;\nPoint(1)={0,0,0};"
+                     "Point(2)={1,0,0};Point(3)={1,1,0};Point(4)={0,1,0};Line(1)={1,2};"
+                     "Line(2)={2,3};Line(3)={3,4};Line(4)={4,1};Curve Loop(1)={1,2,3,4};"
+                     "Plane Surface(1)={1};Physical Surface(\"s\")={1};\n")
+    add(Input(G, "mesh geo 1e10-element bomb", [c, "mesh", "geo", bomb, "--out",
+              ctx.path("g3.msh"), "--timeout", "2", "--max-memory", "1024"], ERROR, None, 30))
+    syntax = ctx.write("syntax.geo", "Point(1) = {0,0,0;\n")
+    add(Input(G, "mesh geo syntax error", [c, "mesh", "geo", syntax, "--out", ctx.path("g4.msh")],
+              ERROR, None, 20))
+    for name in ["fifo.geo", "missing.geo"]:
+        add(Input(G, "mesh geo " + name, [c, "mesh", "geo", ctx.path(name), "--out",
+                                          ctx.path("g5.msh")], ERROR, None, 10))
+    add(Input(G, "mesh geo --out is the script", [c, "mesh", "geo", syntax, "--out", syntax],
+              ERROR, None, 10))
+
+    # ---- CSV inputs of plot
+    P = "plot CSV"
+    run_dir = ctx.path("run")
+    plot = [c, "plot", "--columns", ctx.columns, "--out", ctx.path("p.png")]
+    add(Input(P, "valid", plot + [run_dir], OK, None, 60))
+    lines = ctx.probes.splitlines()
+    sub = "\n".join([lines[0]] + [",".join(["4.9406564584124654e-324"] + r.split(",")[1:])
+                                  if k == 0 else r for k, r in enumerate(lines[1:])]) + "\n"
+    for name, text, expect in [("subnormal numbers", sub, OK), ("empty", "", ERROR),
+                               ("junk", "t,x\n1,abc\n", ERROR),
+                               ("more values than columns", lines[0] + "\n1,2,3,4,5,6,7,8,9\n",
+                                ERROR),
+                               ("huge number", lines[0] + "\n" + ",".join(["1e999"] * len(lines[0].split(","))) + "\n", ERROR)]:
+        d = ctx.path("plot_" + name.replace(" ", "_"))
+        os.makedirs(d, exist_ok=True)
+        with open(os.path.join(d, "probes.csv"), "w") as f:
+            f.write(text)
+        add(Input(P, name, plot + [d], expect, None, 60))
+    for name, target in [("fifo", ctx.path("fifo.csv")), ("dev zero", "/dev/zero"),
+                         ("directory", ctx.path("dir.toml"))]:
+        d = ctx.path("plot_" + name.replace(" ", "_"))
+        os.makedirs(d, exist_ok=True)
+        link = os.path.join(d, "probes.csv")
+        if not os.path.lexists(link):
+            os.symlink(target, link)
+        add(Input(P, "probes.csv is a " + name, plot + [d], ERROR, None, 10))
+        add(Input(P, "--reference is a " + name, plot + [run_dir, "--reference", target], ERROR,
+                  None, 10))
+
+    # ---- arguments of every verb
+    A = "arguments of every verb"
+    mp = [c, "mesh", "parachute", "--gores", "8", "--diameter", "2", "--line-length", "2",
+          "--element-size", "0.4", "--out", ctx.path("p.msh"), "--quiet"]
+
+    def opt(args, name):
+        """mp with `name` set to args (replacing its value if present)."""
+        cmd = list(mp)
+        if name in cmd:
+            i = cmd.index(name)
+            del cmd[i:i + 2]
+        return cmd + [name] + args
+
+    add(Input(A, "mesh parachute valid", mp, OK, None, 60))
+    for name, args in [("--gores", ["1000000"]), ("--gores", ["abc"]), ("--gores", ["-3"]),
+                       ("--line-elements", ["1000000000"]), ("--element-size", ["1e-9"]),
+                       ("--mesh-algorithm", ["8"]), ("--mesh-algorithm", ["2"]),
+                       ("--diameter", ["nan"]), ("--diameter", ["inf"]), ("--diameter", ["1e308"]),
+                       ("--slider-divisions", ["1000000"]), ("--riser-elements", ["1e9"]),
+                       ("--case", [ctx.path("p.msh")]), ("--config", ["/dev/zero"]),
+                       ("--config", [ctx.write("deep.toml", deep)]),
+                       ("--max-elements", ["1e300"]), ("--payload-box", ["1,2"])]:
+        add(Input(A, "mesh parachute %s %s" % (name, args[0][-20:]), opt(args, name), ERROR,
+                  None, 30))
+    for args in [[], ["nonsense"], ["run"], ["run", pulley, "--checkpoint-every", "-1"],
+                 ["run", pulley, "--checkpoint-every", "1" * 30], ["run", pulley, "--bogus"],
+                 ["render", ctx.path("nowhere")], ["render", run_dir, "--size", "99999x5"],
+                 ["render", run_dir, "--size", "-5x10"], ["plot", run_dir],
+                 ["plot", run_dir, "--columns", ctx.columns, "--size", "20000x20000"],
+                 ["plot", run_dir, "--columns", ctx.columns, "--size", "0x0"],
+                 ["plot", run_dir, "--columns", ctx.columns, "--out", ctx.work],
+                 ["plot", run_dir, "--columns", ctx.columns, "--out", "/nonexistent/p.png"],
+                 ["plot", run_dir, "--columns", "no_such_column", "--out", ctx.path("q.png")],
+                 ["couple", ctx.path("missing.toml")], ["mesh"], ["mesh", "parachute"],
+                 ["couple", ctx.case("canopy_coupled.toml"), "--t-end", "0.002", "--omega", "nan"],
+                 ["mesh", "geo"], ["mesh", "geo", syntax, "--out", ctx.path("x.msh"),
+                                   "--timeout", "-1"],
+                 ["mesh", "geo", geo, "--out", ctx.path("x.txt")]]:
+        add(Input(A, " ".join(["chute"] + [a[-30:] for a in args])[:70], [c] + args, ERROR, None,
+                  30))
+    return out

@@ -1,0 +1,468 @@
+// chute's .msh reader (mesh/MshReader) against gmsh's: every .msh the repository ships and one
+// `chute mesh parachute` writes (slider, payload box, folded start with its NodeData view), each
+// re-saved by gmsh as 2.2 and 4.1, ASCII and binary, reads back identically through both readers
+// (same nodes and coordinates bit for bit, same groups with the same elements in the same order,
+// same views). Malformed and hostile files are one-line MeshErrors naming file and line, refused
+// before anything of their claimed size is allocated.
+#include <gmsh.h>
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <regex>
+#include <sstream>
+
+#include "GmshMesh.hpp"
+#include "GmshSession.hpp"
+#include "MeshError.hpp"
+#include "MshReader.hpp"
+#include "ParachuteGenerator.hpp"
+#include "support/TempDir.hpp"
+
+using namespace chute::mesh;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// Re-saves a .msh with gmsh in another format (its NodeData views appended).
+void resave(const std::string& from, const std::string& to, double version, bool binary) {
+  GmshScope scope;
+  callGmsh("resave " + from, [&] {
+    gmsh::open(from);
+    gmsh::option::setNumber("Mesh.MshFileVersion", version);
+    gmsh::option::setNumber("Mesh.Binary", binary ? 1 : 0);
+    gmsh::write(to);
+    gmsh::option::setNumber("PostProcessing.SaveMesh", 0);
+    std::vector<int> views;
+    gmsh::view::getTags(views);
+    for (int v : views) gmsh::view::write(v, to, true);
+  });
+}
+
+// The two readers' results are the same, element for element; returns a one-line summary.
+std::string expectSame(const GmshMesh& ours, const GmshMesh& gmshs, const std::string& what) {
+  EXPECT_EQ(ours.nodeTags, gmshs.nodeTags) << what;
+  EXPECT_EQ(ours.coords.size(), gmshs.coords.size()) << what;
+  for (size_t i = 0; i < std::min(ours.coords.size(), gmshs.coords.size()); ++i)
+    EXPECT_TRUE(ours.coords[i] == gmshs.coords[i]) << what << " node " << ours.nodeTags[i];
+  EXPECT_EQ(ours.groups.size(), gmshs.groups.size()) << what;
+  size_t elements = 0;
+  for (size_t g = 0; g < std::min(ours.groups.size(), gmshs.groups.size()); ++g) {
+    const auto &a = ours.groups[g], &b = gmshs.groups[g];
+    EXPECT_EQ(a.name, b.name) << what;
+    EXPECT_EQ(a.dim, b.dim) << what << " " << a.name;
+    EXPECT_EQ(a.tag, b.tag) << what << " " << a.name;
+    EXPECT_EQ(a.elements, b.elements) << what << " " << a.name;
+    elements += a.elements.size();
+  }
+  EXPECT_EQ(ours.views.size(), gmshs.views.size()) << what;
+  for (const auto& [name, values] : gmshs.views) {
+    auto it = ours.views.find(name);
+    EXPECT_NE(it, ours.views.end()) << what << " view " << name;
+    if (it == ours.views.end()) continue;
+    EXPECT_EQ(it->second.size(), values.size()) << what << " view " << name;
+    for (const auto& [tag, v] : values) {
+      auto jt = it->second.find(tag);
+      EXPECT_NE(jt, it->second.end()) << what << " view " << name << " node " << tag;
+      if (jt != it->second.end()) {
+        EXPECT_TRUE(jt->second == v) << what << " view " << name << " node " << tag;
+      }
+    }
+  }
+  std::ostringstream s;
+  s << ours.nodeTags.size() << " nodes, " << ours.groups.size() << " groups, " << elements
+    << " elements, " << ours.views.size() << " views";
+  return s.str();
+}
+
+// A small 4.1 mesh: a unit square of two triangles and a quad, a line, a point, one view.
+const char* kMesh41 = R"($MeshFormat
+4.1 0 8
+$EndMeshFormat
+$PhysicalNames
+3
+0 1 "corner"
+1 2 "edge"
+2 3 "sheet"
+$EndPhysicalNames
+$Entities
+1 1 1 0
+1 0 0 0 1 1
+1 0 0 0 1 0 0 1 2 0
+1 0 0 0 2 1 0 1 3 0
+$EndEntities
+$Nodes
+3 6 1 6
+0 1 0 1
+1
+0 0 0
+1 1 0 1
+2
+1 0 0
+2 1 0 4
+3
+4
+5
+6
+1 1 0
+0 1 0
+2 0 0
+2 1 0
+$EndNodes
+$Elements
+4 5 1 5
+0 1 15 1
+1 1
+1 1 1 1
+2 1 2
+2 1 2 2
+3 1 2 3
+4 1 3 4
+2 1 3 1
+5 2 5 6 3
+$EndElements
+$NodeData
+1
+"u0"
+1
+0
+3
+0
+3
+2
+1 0 0 0.5
+3 0 0 0.25
+$EndNodeData
+)";
+
+// The same mesh in format 2.2.
+const char* kMesh22 = R"($MeshFormat
+2.2 0 8
+$EndMeshFormat
+$PhysicalNames
+3
+0 1 "corner"
+1 2 "edge"
+2 3 "sheet"
+$EndPhysicalNames
+$Nodes
+6
+1 0 0 0
+2 1 0 0
+3 1 1 0
+4 0 1 0
+5 2 0 0
+6 2 1 0
+$EndNodes
+$Elements
+5
+1 15 2 1 1 1
+2 1 2 2 1 1 2
+3 2 2 3 1 1 2 3
+4 2 2 3 1 1 3 4
+5 3 2 3 1 2 5 6 3
+$EndElements
+$NodeData
+1
+"u0"
+1
+0
+3
+0
+3
+2
+1 0 0 0.5
+3 0 0 0.25
+$EndNodeData
+)";
+
+std::string errorOf(const std::string& text, const std::string& name = "bad.msh") {
+  try {
+    parseMsh(text, name);
+  } catch (const MeshError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  return text;
+}
+
+int lineOf(const std::string& text, const std::string& what) {
+  const auto at = text.find(what);
+  return at == std::string::npos
+             ? -1
+             : 1 + static_cast<int>(std::count(text.begin(), text.begin() + at, '\n'));
+}
+
+}  // namespace
+
+TEST(MshReader, SmallMeshesInBothVersionsGiveTheGroupsGmshGives) {
+  const std::string dir = chute::testing::freshTempDir("chute_", "msh_reader_small", true).string();
+  for (const auto& [name, text] : {std::pair{"small41.msh", kMesh41}, {"small22.msh", kMesh22}}) {
+    const std::string path = dir + "/" + name;
+    std::ofstream(path) << text;
+    const GmshMesh ours = readMsh(path);
+    const GmshMesh theirs = readMeshWithGmsh(path);
+    std::printf("%s: %s\n", name, expectSame(ours, theirs, name).c_str());
+    ASSERT_EQ(ours.groups.size(), 3u);
+    EXPECT_EQ(ours.groups[2].elements.size(), 3u);  // two triangles, then the quadrangle
+    EXPECT_EQ(ours.groups[2].elements[2].size(), 4u);
+    EXPECT_EQ(ours.views.at("u0").at(3).z(), 0.25);
+  }
+}
+
+TEST(MshReader, EveryShippedAndGeneratedMeshReadsBackAsGmshReadsItInFourFormats) {
+  const std::string dir =
+      chute::testing::freshTempDir("chute_", "msh_reader_formats", true).string();
+  std::vector<std::string> files;
+  for (const auto& e : fs::directory_iterator(CHUTE_SOURCE_DIR "/cases"))
+    if (e.path().extension() == ".msh") files.push_back(e.path().string());
+  for (const auto& e : fs::directory_iterator(CHUTE_SOURCE_DIR "/mesh/examples"))
+    if (e.path().extension() == ".msh") files.push_back(e.path().string());
+  std::sort(files.begin(), files.end());
+  // What `chute mesh parachute` writes: slider, payload box, folded start (a NodeData view).
+  ParachuteSpec spec;
+  spec.gores = 8;
+  spec.diameter = 2.0;
+  spec.lineLength = 2.0;
+  spec.elementSize = 0.25;
+  spec.sliderSide = 0.3;
+  spec.payloadMass = 5.0;
+  spec.payloadBox = {0.3, 0.2, 0.2};
+  spec.riserLength = 0.3;
+  spec.start = "folded";
+  const std::string generated = dir + "/generated.msh";
+  generateParachute(spec, generated);
+  files.push_back(generated);
+  ASSERT_GE(files.size(), 5u);  // 3 in cases/, the example, the generated one
+  int compared = 0;
+  for (const auto& file : files) {
+    expectSame(readMsh(file), readMeshWithGmsh(file), file);
+    ++compared;
+    for (const auto& [version, binary] :
+         {std::pair{4.1, false}, {4.1, true}, {2.2, false}, {2.2, true}}) {
+      const std::string to = dir + "/" + fs::path(file).stem().string() + "_" +
+                             (version > 3 ? "41" : "22") + (binary ? "b" : "a") + ".msh";
+      resave(file, to, version, binary);
+      const std::string summary = expectSame(readMsh(to), readMeshWithGmsh(to), to);
+      ++compared;
+      std::printf("%-28s %s\n", fs::path(to).filename().c_str(), summary.c_str());
+    }
+  }
+  std::printf("%d files compared with gmsh's reader\n", compared);
+}
+
+TEST(MshReader, CountsAreCheckedAgainstTheFileBeforeAnythingIsAllocated) {
+  // A $NodeData count of 1e9 in a small file: refused at once, without a 24 GB allocation.
+  const std::string bomb = replaced(kMesh41, "0\n3\n2\n1 0 0 0.5", "0\n3\n1000000000\n1 0 0 0.5");
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::string e = errorOf(bomb);
+  const double ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  std::printf("$NodeData count 1e9: %.3f ms: %s\n", ms, e.c_str());
+  EXPECT_NE(e.find("$NodeData count: 1000000000 is outside [0, 1000000]"), std::string::npos) << e;
+  EXPECT_LT(ms, 1000.0);
+  // Within the limit but beyond the bytes in the file.
+  MshLimits big;
+  big.maxNodes = 2000000000;
+  try {
+    parseMsh(bomb, "bomb.msh", big);
+    ADD_FAILURE() << "accepted";
+  } catch (const MeshError& x) {
+    EXPECT_NE(std::string(x.what()).find("bytes are left in the file"), std::string::npos)
+        << x.what();
+  }
+  // An entity in 50,000 physical groups would copy its elements into each: the copies count
+  // against the element limit (here 100,000; 3 elements x 50,000 groups).
+  std::string many = "1 1 1 0\n1 0 0 0 1 1\n1 0 0 0 1 0 0 1 2 0\n1 0 0 0 2 1 0 50000";
+  for (int p = 1; p <= 50000; ++p) {
+    many += ' ';
+    many += std::to_string(p);
+  }
+  MshLimits small;
+  small.maxElements = 100000;
+  try {
+    parseMsh(
+        replaced(kMesh41, "1 1 1 0\n1 0 0 0 1 1\n1 0 0 0 1 0 0 1 2 0\n1 0 0 0 2 1 0 1 3", many),
+        "groups.msh", small);
+    ADD_FAILURE() << "accepted";
+  } catch (const MeshError& x) {
+    std::printf("  %s\n", x.what());
+    EXPECT_NE(std::string(x.what()).find("the physical groups hold more than 100000 elements"),
+              std::string::npos)
+        << x.what();
+  }
+  // $Nodes / $Elements headers one below and one above their data.
+  struct Row {
+    std::string from, to, expect;
+  };
+  const std::vector<Row> rows = {
+      {"3 6 1 6\n", "3 5 1 6\n", "$Nodes block size"},
+      {"3 6 1 6\n", "3 7 1 6\n", "the header says 7 nodes, the blocks hold 6"},
+      {"4 5 1 5\n", "4 4 1 5\n", "$Elements block size"},
+      {"4 5 1 5\n", "4 6 1 5\n", "the header says 6 elements, the blocks hold 5"},
+      {"0 1 0 1\n1\n", "0 1 0 2\n1\n", "$Nodes"},
+  };
+  for (const auto& r : rows) {
+    const std::string m = errorOf(replaced(kMesh41, r.from, r.to));
+    std::printf("  %s\n", m.c_str());
+    EXPECT_NE(m.find(r.expect), std::string::npos) << m;
+    EXPECT_EQ(m.rfind("bad.msh:", 0), 0u) << m;
+  }
+  const std::vector<Row> rows22 = {
+      {"$Nodes\n6\n", "$Nodes\n5\n", "expected $EndNodes, found '6'"},
+      {"$Nodes\n6\n", "$Nodes\n7\n", "$Nodes tag: expected an integer, found '$EndNodes'"},
+      {"$Elements\n5\n", "$Elements\n4\n", "expected $EndElements, found '5'"},
+      {"$Elements\n5\n", "$Elements\n6\n", "expected an integer, found '$EndElements'"},
+  };
+  for (const auto& r : rows22) {
+    const std::string m = errorOf(replaced(kMesh22, r.from, r.to));
+    std::printf("  %s\n", m.c_str());
+    EXPECT_NE(m.find(r.expect), std::string::npos) << m;
+  }
+}
+
+TEST(MshReader, NonFiniteOrHugeCoordinatesAreRefusedWithTheirLine) {
+  for (const std::string bad : {"nan", "inf", "-inf", "1e308", "1e101", "1e999"}) {
+    const std::string text = replaced(kMesh22, "5 2 0 0\n", "5 2 " + bad + " 0\n");
+    const std::string m = errorOf(text);
+    const int line = lineOf(text, "5 2 " + bad);
+    EXPECT_EQ(m.rfind("bad.msh:" + std::to_string(line) + ": $Nodes coordinate: ", 0), 0u) << m;
+    std::printf("  %s\n", m.c_str());
+  }
+  // A subnormal coordinate is a number (chute writes them).
+  EXPECT_EQ(errorOf(replaced(kMesh22, "5 2 0 0\n", "5 2 4.9406564584124654e-324 0\n")), "");
+  const std::string v = replaced(kMesh41, "3 0 0 0.25", "3 0 nan 0.25");
+  EXPECT_NE(errorOf(v).find(":" + std::to_string(lineOf(v, "3 0 nan")) + ": $NodeData value"),
+            std::string::npos)
+      << errorOf(v);
+}
+
+TEST(MshReader, MalformedFilesAreOneLineErrors) {
+  struct Row {
+    std::string text, expect;
+  };
+  const std::vector<Row> rows = {
+      {"", "empty file"},
+      {"hello\n", "expected a section"},
+      {"$Nodes\n1\n1 0 0 0\n$EndNodes\n", "does not start with $MeshFormat"},
+      {replaced(kMesh41, "4.1 0 8", "4 0 8"), "version 4.0 is not read"},
+      {replaced(kMesh41, "4.1 0 8", "3.0 0 8"), "chute reads versions 2.2 and 4.1"},
+      {replaced(kMesh41, "4.1 0 8", "4.1 0 4"), "data size 4"},
+      {replaced(kMesh22, "5 3 2 3 1 2 5 6 3", "5 99 2 3 1 2 5 6 3"), "99 is not a gmsh element"},
+      {replaced(kMesh22, "5 3 2 3 1 2 5 6 3", "5 3 2 3 1 2 5 7 3"), "node 7 is not in $Nodes"},
+      {replaced(kMesh22, "6 2 1 0\n", "5 2 1 0\n"), "node tag 5 appears twice"},
+      {replaced(kMesh22, "5 3 2 3 1 2 5 6 3", "5 9 2 3 1 2 5 6 3 1 2"),
+       "physical group 'sheet' has elements of gmsh type 9"},
+      {replaced(kMesh41, "$EndNodeData", ""), "unexpected end of file"},
+      {replaced(kMesh41, "1 0 0 0.5", "9 0 0 0.5"), "node 9 is not in $Nodes"},
+      {replaced(kMesh41, "\"corner\"", "\"corner"), "unterminated string"},
+      {replaced(kMesh41, "$Elements\n",
+                "$PartitionedEntities\n1\n$EndPartitionedEntities\n$Elements\n"),
+       "partitioned meshes are not supported"},
+      {std::string(kMesh41).substr(0, std::string(kMesh41).find("$EndNodes")),
+       "$EndNodes: unexpected end of file"},
+  };
+  for (const auto& r : rows) {
+    const std::string m = errorOf(r.text);
+    std::printf("  %s\n", m.c_str());
+    EXPECT_NE(m.find(r.expect), std::string::npos) << m;
+    EXPECT_EQ(m.find('\n'), std::string::npos) << m;
+  }
+  // A second-order triangle outside every physical group is not read (as through gmsh).
+  const std::string outside =
+      replaced(kMesh22, "$Elements\n5\n", "$Elements\n6\n7 9 2 0 7 1 2 3 1 2 4\n");
+  EXPECT_EQ(errorOf(outside), "");
+}
+
+TEST(MshReader, TruncatedAndMutatedFilesAreMeshesOrMeshErrors) {
+  // Every cut of a binary and an ASCII mesh, and random byte changes: each is read or refused
+  // with a MeshError; nothing else may escape (crashes and sanitizer reports fail the test).
+  const std::string dir =
+      chute::testing::freshTempDir("chute_", "msh_reader_mutated", true).string();
+  const std::string base = dir + "/c9.msh";
+  resave(CHUTE_SOURCE_DIR "/cases/c9_payload.msh", base, 4.1, true);
+  resave(CHUTE_SOURCE_DIR "/cases/c9_payload.msh", dir + "/c9_22.msh", 2.2, true);
+  std::mt19937 rng(20);
+  int read = 0, refused = 0;
+  for (const std::string& text :
+       {slurp(base), slurp(dir + "/c9_22.msh"), std::string(kMesh41), std::string(kMesh22)}) {
+    const size_t stride = std::max<size_t>(1, text.size() / 300);
+    for (size_t cut = 0; cut < text.size(); cut += stride) {
+      try {
+        parseMsh(text.substr(0, cut), "cut.msh");
+        ++read;
+      } catch (const MeshError&) {
+        ++refused;
+      }
+    }
+    for (int k = 0; k < 300; ++k) {
+      std::string t = text;
+      for (int j = 0; j < 4; ++j) {
+        const size_t at = rng() % t.size();
+        const char choices[] = {'\0', '\xff', '9', '-', ' ', '\n', '$', static_cast<char>(rng())};
+        t[at] = choices[rng() % sizeof choices];
+      }
+      try {
+        parseMsh(t, "mutated.msh");
+        ++read;
+      } catch (const MeshError&) {
+        ++refused;
+      }
+    }
+  }
+  std::printf("cut or mutated: %d read, %d refused with a MeshError, 0 other outcomes\n", read,
+              refused);
+  EXPECT_GT(refused, 1000);
+}
+
+TEST(MshReader, FilesThatAreNotRegularOrNotMshAreRefusedAtOnce) {
+  const std::string dir =
+      chute::testing::freshTempDir("chute_", "msh_reader_special", true).string();
+  const std::string fifo = dir + "/fifo.msh";
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  for (const std::string& path : {fifo, std::string("/dev/zero"), dir}) {
+    const auto t0 = std::chrono::steady_clock::now();
+    std::string m;
+    try {
+      readMsh(path);
+    } catch (const MeshError& e) {
+      m = e.what();
+    }
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::printf("  %.4f s: %s\n", s, m.c_str());
+    EXPECT_NE(m.find(path + ": cannot open: "), std::string::npos) << m;
+    EXPECT_LT(s, 5.0);
+  }
+  std::ofstream(dir + "/script.geo")
+      << "System \"touch " << dir << "/MARKER\";\nPoint(1) = {0,0,0};\n";
+  std::ofstream(dir + "/mesh.unv") << "    -1\n  2411\n";
+  const std::vector<std::pair<std::string, std::string>> refused = {
+      {dir + "/script.geo", "chute mesh geo"}, {dir + "/mesh.unv", "not a .msh file"}};
+  for (const auto& [path, expect] : refused) {
+    std::string m;
+    try {
+      readMesh(path);
+    } catch (const MeshError& e) {
+      m = e.what();
+    }
+    std::printf("  %s\n", m.c_str());
+    EXPECT_NE(m.find(expect), std::string::npos) << m;
+  }
+  EXPECT_FALSE(fs::exists(dir + "/MARKER"));
+}
