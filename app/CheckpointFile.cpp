@@ -45,6 +45,7 @@ nlohmann::json payloadOf(const Checkpoint& c) {
   nlohmann::json j;
   j["case"] = c.caseName;
   j["model_hash"] = c.modelHash;
+  j["solver"] = c.solverSettings;
   j["t"] = s.t;
   j["x"] = toVector(s.x);
   j["v"] = toVector(s.v);
@@ -90,6 +91,7 @@ Checkpoint checkpointOf(const nlohmann::json& j) {
   constexpr long kMax = std::numeric_limits<long>::max();
   c.caseName = j.at("case").get<std::string>();
   c.modelHash = j.at("model_hash").get<std::uint64_t>();
+  c.solverSettings = j.at("solver").get<std::map<std::string, std::string>>();
   auto& s = c.stepping.snapshot.state;
   s.t = finite(j, "t");
   s.x = fromVector(j.at("x").get<std::vector<double>>());

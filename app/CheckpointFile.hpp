@@ -6,6 +6,7 @@
 // the snapshot again by StructuralSystem::loadState, before anything of a run is touched.
 // Written atomically (a temporary file renamed over the old one).
 #include <cstdint>
+#include <map>
 #include <string>
 
 #include "model/Model.hpp"
@@ -25,6 +26,9 @@ struct OutputMark {
 struct Checkpoint {
   std::string caseName;
   std::uint64_t modelHash = 0;  // of the model's nodes, elements and constraints
+  // The settings a restart must share with the run (dt, dt_min, rho_inf, integrator, ...):
+  // another dt would not continue the run bit for bit, so it is refused, not ignored.
+  std::map<std::string, std::string> solverSettings;
   TimeStepper::Saved stepping;  // the system snapshot, the counters, the linear solver's kind
   OutputMark output;
 };

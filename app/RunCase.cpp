@@ -12,9 +12,11 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "OutputError.hpp"
 #include "app/CheckpointFile.hpp"
 #include "app/RunOutput.hpp"
 #include "app/StopSignals.hpp"
@@ -29,6 +31,21 @@
 namespace chute {
 
 namespace {
+
+// What a restart must share with the run it continues (CheckpointFile.hpp); t_end may change.
+std::map<std::string, std::string> solverSettings(const SolverSpec& sv, const Model& m) {
+  return {{"solver.dt", fmt::format("{}", sv.dt)},
+          {"solver.dt_min", fmt::format("{}", sv.dtMin)},
+          {"solver.rho_inf", fmt::format("{}", sv.rhoInf)},
+          {"solver.integrator", sv.integrator},
+          {"solver.max_newton", fmt::format("{}", sv.maxNewton)},
+          {"solver.tolerance", fmt::format("{}", sv.tolDisplacement)},
+          {"solver.slack_events", sv.slackTautEvents ? "true" : "false"},
+          {"solver.slider_events", sv.sliderEvents ? "true" : "false"},
+          {"solver.search",
+           sv.search == SliderSearch::NearestLength ? "nearest_length" : "material_coordinate"},
+          {"solver.mass", m.massKind == kernels::MassKind::Lumped ? "lumped" : "consistent"}};
+}
 
 std::optional<ReferenceError> compareWithReference(const CaseSpec& spec, const RunResult& r,
                                                    const ProbeSet& probes) {
@@ -120,6 +137,14 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
     restart = readCheckpoint(options.restartFile);
     if (restart->caseName != spec.name || restart->modelHash != hash)
       throw std::runtime_error(options.restartFile + ": a checkpoint of another case or model");
+    for (const auto& [key, value] : solverSettings(sv, m)) {
+      const auto it = restart->solverSettings.find(key);
+      if (it == restart->solverSettings.end() || it->second != value)
+        throw std::runtime_error(
+            options.restartFile + ": " + key + " is " + value + " here but " +
+            (it == restart->solverSettings.end() ? std::string("absent") : it->second) +
+            " in the checkpoint: a restart continues the run with its own settings");
+    }
     try {
       state = stepper.resume(restart->stepping);
     } catch (const HistoryError& e) {
@@ -131,66 +156,77 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
   RunOutput out(spec, sys, options.outDir, restart ? &restart->output : nullptr, r);
 
   Progress progress(options.progress);
-  if (!dynamic) {
-    state = integrator.initialState();
-    StaticLoadStepper statics(sys, integrator.newton());
-    const auto rep = statics.solveFromStart(state, sv.loadSteps, sv.initialLoadFactor);
-    r.newtonIterations = rep.iterations;
-    r.steps = sv.loadSteps;
-    if (!rep.converged) r.status = "diverged", r.reason = rep.failure;
-    out.record(state);
-    out.frame(state);
-  } else {
-    if (!restart) {
-      state = stepper.start();
+  try {
+    if (!dynamic) {
+      if (options.handleSignals) endAtOnceOnStop();
+      state = integrator.initialState();
+      StaticLoadStepper statics(sys, integrator.newton());
+      const auto rep = statics.solveFromStart(state, sv.loadSteps, sv.initialLoadFactor);
+      r.newtonIterations = rep.iterations;
+      r.steps = sv.loadSteps;
+      if (!rep.converged) r.status = "diverged", r.reason = rep.failure;
       out.record(state);
       out.frame(state);
+    } else {
+      if (!restart) {
+        state = stepper.start();
+        out.record(state);
+        out.frame(state);
+      }
+      auto checkpoint = [&] {
+        if (!write) return;
+        ScopedTimer timer(sys.timings().output);
+        out.flush();  // the frames up to the checkpoint are on disk before it is
+        Checkpoint c;
+        c.caseName = spec.name;
+        c.modelHash = hash;
+        c.solverSettings = solverSettings(sv, m);
+        c.stepping = stepper.save(state);
+        c.output = out.mark();
+        writeCheckpoint(options.outDir + "/checkpoint.cbor", c);
+        ++r.checkpoints;
+      };
+      const double tEnd = sv.tEnd;
+      const auto result = stepper.advanceTo(
+          state, tEnd, [&](double) { return out.nextStop(); },
+          [&](const StructuralState& s, int newton) {
+            const auto& n = stepper.counters();
+            const bool last = stepper.reached(s.t, tEnd);
+            out.afterStep(s, n.steps, last);
+            if (options.checkpointEvery > 0 && n.steps % options.checkpointEvery == 0 && !last)
+              checkpoint();
+            progress.update(n.steps, s.t, tEnd, s.control.dt, newton, n.newtonPerStep(),
+                            n.rejectedSteps);
+            if (options.handleSignals && stopRequested() && !last) {
+              r.status = "interrupted";
+              r.reason = fmt::format("stopped by a signal at t = {:.9g}; restart with --restart {}",
+                                     s.t, write ? options.outDir + "/checkpoint.cbor" : "(none)");
+              // The checkpoint is the state the output ends with: a restart cuts the output back
+              // to it (RunOutput), so rows written after it never reach the restarted run.
+              return false;
+            }
+            return true;
+          });
+      if (result.outcome == TimeStepper::Outcome::BelowMinimum) {
+        r.status = "diverged";
+        r.reason = result.reason;
+      }
+      if (r.status == "interrupted") checkpoint();
+      const auto& n = stepper.counters();
+      progress.update(n.steps, state.t, tEnd, state.control.dt, 0, n.newtonPerStep(),
+                      n.rejectedSteps, true);
+      progress.finish();
+      if (r.status != "completed") out.lastGoodState(state);
+      r.steps = n.steps, r.rejectedSteps = n.rejectedSteps, r.eventRetries = n.eventRetries;
+      r.newtonIterations = n.newtonIterations, r.maxNewtonInStep = n.maxNewtonInStep;
     }
-    auto checkpoint = [&] {
-      if (!write) return;
-      ScopedTimer timer(sys.timings().output);
-      out.flush();  // the frames up to the checkpoint are on disk before it is
-      Checkpoint c;
-      c.caseName = spec.name;
-      c.modelHash = hash;
-      c.stepping = stepper.save(state);
-      c.output = out.mark();
-      writeCheckpoint(options.outDir + "/checkpoint.cbor", c);
-      ++r.checkpoints;
-    };
-    const double tEnd = sv.tEnd;
-    const auto result = stepper.advanceTo(
-        state, tEnd, [&](double) { return out.nextStop(); },
-        [&](const StructuralState& s, int newton) {
-          const auto& n = stepper.counters();
-          const bool last = stepper.reached(s.t, tEnd);
-          out.afterStep(s, n.steps, last);
-          if (options.checkpointEvery > 0 && n.steps % options.checkpointEvery == 0 && !last)
-            checkpoint();
-          progress.update(n.steps, s.t, tEnd, s.control.dt, newton, n.newtonPerStep(),
-                          n.rejectedSteps);
-          if (options.handleSignals && stopRequested() && !last) {
-            r.status = "interrupted";
-            r.reason = fmt::format("stopped by a signal at t = {:.9g}; restart with --restart {}",
-                                   s.t, write ? options.outDir + "/checkpoint.cbor" : "(none)");
-            // The checkpoint is the state the output ends with: a restart cuts the output back
-            // to it (RunOutput), so rows written after it never reach the restarted run.
-            return false;
-          }
-          return true;
-        });
-    if (result.outcome == TimeStepper::Outcome::BelowMinimum) {
-      r.status = "diverged";
-      r.reason = result.reason;
-    }
-    if (r.status == "interrupted") checkpoint();
-    const auto& n = stepper.counters();
-    progress.update(n.steps, state.t, tEnd, state.control.dt, 0, n.newtonPerStep(), n.rejectedSteps,
-                    true);
-    progress.finish();
-    if (r.status != "completed") out.lastGoodState(state);
-    r.steps = n.steps, r.rejectedSteps = n.rejectedSteps, r.eventRetries = n.eventRetries;
-    r.newtonIterations = n.newtonIterations, r.maxNewtonInStep = n.maxNewtonInStep;
+  } catch (const OutputError& e) {
+    // A full disk or a removed directory: the rows and frames before the failed write are whole.
+    throw OutputError(fmt::format(
+        "{}; stopped at t = {:.9g}; probes.csv is whole up to t = {:.9g}{}", e.what(), state.t,
+        r.times.empty() ? 0.0 : r.times.back(),
+        r.checkpoints > 0 ? "; the last checkpoint is in " + options.outDir + "/checkpoint.cbor"
+                          : ""));
   }
   r.finalTime = state.t;
   out.flush();
@@ -290,6 +326,12 @@ void writeSummary(const std::string& path, const CaseSpec& spec, const RunResult
   {
     std::ofstream f(tmp);
     f << j.dump(2) << "\n";
+    f.flush();
+    if (!f) {
+      f.close();
+      std::filesystem::remove(tmp);
+      throw OutputError(tmp + ": cannot write the summary (disk full?)");
+    }
   }
   std::filesystem::rename(tmp, path);
 }

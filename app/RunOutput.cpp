@@ -1,5 +1,9 @@
 #include "app/RunOutput.hpp"
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
 #include <filesystem>
 #include <fstream>
 
@@ -19,6 +23,19 @@ long csvRows(const std::string& path) {
   long n = -1;  // the header is not a row
   for (std::string line; std::getline(in, line);) ++n;
   return std::max(n, 0L);
+}
+
+// An advisory lock on dir/.chute-run.lock, held while the run writes: two runs into one
+// directory would interleave their rows. Released by the kernel however the process ends.
+int lockDirectory(const std::string& dir) {
+  const std::string path = dir + "/.chute-run.lock";
+  const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (fd < 0) throw std::runtime_error(path + ": cannot create the output lock");
+  if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+    ::close(fd);
+    throw std::runtime_error(dir + ": another chute run is writing into this directory");
+  }
+  return fd;
 }
 
 // The output in dir must hold at least what the checkpoint says it had: checked before
@@ -55,6 +72,7 @@ RunOutput::RunOutput(const CaseSpec& spec, StructuralSystem& sys, const std::str
   ScopedTimer timer(sys.timings().output);
   if (write) {
     std::filesystem::create_directories(outDir);
+    lockFd_ = lockDirectory(outDir);
     if (resume) checkResumable(outDir, spec.name, *resume, wantVtu);
   }
   if (resume) {
@@ -85,7 +103,10 @@ RunOutput::RunOutput(const CaseSpec& spec, StructuralSystem& sys, const std::str
   }
 }
 
-RunOutput::~RunOutput() = default;
+RunOutput::~RunOutput() {
+  vtu_.reset();  // its last frames are written while the directory is still ours
+  if (lockFd_ >= 0) ::close(lockFd_);
+}
 
 void RunOutput::record(const StructuralState& s) {
   ScopedTimer timer(sys_->timings().output);

@@ -32,7 +32,7 @@ class RunOutput {
  public:
   // outDir empty: rows are kept in r only, nothing is written. resume: cut the output in outDir
   // back to this mark and go on from it (throws, before changing anything, if the output there
-  // is not the checkpointed run's).
+  // is not the checkpointed run's). Throws if another run is writing into outDir.
   RunOutput(const CaseSpec& spec, StructuralSystem& sys, const std::string& outDir,
             const OutputMark* resume, RunResult& r);
   ~RunOutput();
@@ -56,6 +56,7 @@ class RunOutput {
   const CaseSpec* spec_;
   StructuralSystem* sys_;
   RunResult* r_;
+  int lockFd_ = -1;  // held while the run writes outDir: a second run there is refused
   ProbeSet probes_;
   std::unique_ptr<CsvWriter> csv_;
   std::unique_ptr<VtuSeries> vtu_;

@@ -29,4 +29,13 @@ void clearStopRequest() {
   gStopRequested = 0;
 }
 
+void endAtOnceOnStop() {
+  struct sigaction sa {};
+  sa.sa_handler = SIG_DFL;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+  if (gStopRequested) ::raise(SIGTERM);
+}
+
 }  // namespace chute

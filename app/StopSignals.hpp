@@ -7,5 +7,8 @@ namespace chute {
 void installStopHandlers();  // async-signal-safe handlers that only set a flag
 bool stopRequested();
 void clearStopRequest();  // a run that does not handle signals (tests) clears a stale one
+// A static solve has no step to stop after: SIGINT / SIGTERM end it at once, as they end any
+// program (a stop requested before this call ends it too).
+void endAtOnceOnStop();
 
 }  // namespace chute

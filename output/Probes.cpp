@@ -5,8 +5,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -149,18 +151,21 @@ std::vector<double> ProbeSet::evaluate(const StructuralSystem& sys, const Struct
   return out;
 }
 
-CsvWriter::CsvWriter(const std::string& path, const std::vector<std::string>& columns) {
+CsvWriter::CsvWriter(const std::string& path, const std::vector<std::string>& columns)
+    : path_(path) {
   f_ = std::fopen(path.c_str(), "w");
   if (!f_) throw std::runtime_error("cannot write " + path);
   std::fputs("t", f_);
   for (const auto& c : columns) std::fprintf(f_, ",%s", c.c_str());
   std::fputc('\n', f_);
-  std::fflush(f_);
+  if (std::fflush(f_) != 0 || std::ferror(f_))
+    throw OutputError(path_ + ": cannot write the header (disk full?)");
 }
 
 CsvWriter::CsvWriter(const std::string& path, const std::vector<std::string>& columns,
                      size_t keepRows, std::vector<double>& times,
-                     std::vector<std::vector<double>>& rows) {
+                     std::vector<std::vector<double>>& rows)
+    : path_(path) {
   std::string header = "t";
   for (const auto& c : columns) header += "," + c;
   std::vector<std::string> kept;
@@ -195,7 +200,12 @@ CsvWriter::CsvWriter(const std::string& path, const std::vector<std::string>& co
   if (!f_) throw std::runtime_error("cannot write " + tmp);
   std::fprintf(f_, "%s\n", header.c_str());
   for (const auto& l : kept) std::fprintf(f_, "%s\n", l.c_str());
-  std::fflush(f_);
+  if (std::fflush(f_) != 0 || std::ferror(f_)) {
+    std::fclose(f_);
+    f_ = nullptr;
+    std::remove(tmp.c_str());
+    throw OutputError(tmp + ": cannot write (disk full?); " + path + " left as it was");
+  }
   std::filesystem::rename(tmp, path);
 }
 
@@ -207,10 +217,16 @@ void CsvWriter::row(double t, const std::vector<double>& values) {
   // Shortest text that reads back to the same double: the last row's time is the run's
   // final_time exactly (an event step ends at an arbitrary instant), and a restart cuts the
   // file at the checkpoint's time without ambiguity.
-  fmt::print(f_, "{}", t);
-  for (double v : values) fmt::print(f_, ",{}", v);
-  std::fputc('\n', f_);
-  std::fflush(f_);
+  // One row is formatted whole and written at once, then flushed: a failed write (a full disk)
+  // is reported, and the rows before it are whole.
+  std::string line = fmt::format("{}", t);
+  for (double v : values) fmt::format_to(std::back_inserter(line), ",{}", v);
+  line += '\n';
+  const bool ok = std::fwrite(line.data(), 1, line.size(), f_) == line.size() &&
+                  std::fflush(f_) == 0 && !std::ferror(f_);
+  if (!ok)
+    throw OutputError(path_ + ": cannot write a row at t = " + fmt::format("{}", t) +
+                      " (disk full?)");
 }
 
 }  // namespace chute

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "OutputError.hpp"
 #include "case/CaseSpec.hpp"
 #include "solver/GeneralizedAlpha.hpp"
 
@@ -41,6 +42,7 @@ class CsvWriter {
   void row(double t, const std::vector<double>& values);
 
  private:
+  std::string path_;
   std::FILE* f_ = nullptr;
 };
 

@@ -8,10 +8,11 @@
 namespace chute::cli {
 
 // Exit statuses, documented in docs/exit-codes.md.
-constexpr int kExitInternal = 1;     // an unexpected error or out of memory: a one-line message
-constexpr int kExitBadInput = 2;     // case file, mesh or command line wrong: nothing written
-constexpr int kExitRunFailed = 3;    // the run stopped early: last good state written
-constexpr int kExitInterrupted = 4;  // SIGINT/SIGTERM: checkpoint and valid output written
+constexpr int kExitInternal = 1;      // an unexpected error or out of memory: a one-line message
+constexpr int kExitBadInput = 2;      // case file, mesh or command line wrong: nothing written
+constexpr int kExitRunFailed = 3;     // the run stopped early: last good state written
+constexpr int kExitInterrupted = 4;   // SIGINT/SIGTERM: checkpoint and valid output written
+constexpr int kExitOutputFailed = 5;  // a write failed (disk full): output whole up to a time
 
 struct Command {
   CLI::App* sub = nullptr;   // the CLI11 subcommand (owned by the application)

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "OutputError.hpp"
 #include "app/RunCase.hpp"
 #include "app/cli/Command.hpp"
 #include "case/CaseError.hpp"
@@ -40,6 +41,9 @@ int runCase(const RunArgs& a) {
   RunResult r;
   try {
     r = chute::runCase(spec, opt);
+  } catch (const OutputError& e) {  // a full disk: what was written before is whole
+    fmt::print(stderr, "chute: run: {}\n", e.what());
+    return kExitOutputFailed;
   } catch (const std::runtime_error& e) {  // a checkpoint that does not fit, an unwritable dir
     fmt::print(stderr, "chute: {}\n", e.what());
     return kExitBadInput;

@@ -98,8 +98,14 @@ def signal_trials(chute, case, work, n, rng):
         cmd = [chute, "run", os.path.join(ROOT, "cases", case + ".toml"), "--quiet", "--out", out]
         for s in sets:
             cmd += ["--set", s]
+        start = time.time()
         p = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
-        time.sleep(rng.uniform(0.02, 0.95) * wall)
+        # A moment of the run itself: once it has begun writing (before that the process is still
+        # being loaded by the system, where no program can catch a signal).
+        while not os.path.exists(os.path.join(out, "probes.csv")) and p.poll() is None:
+            time.sleep(0.002)
+        begun = time.time() - start
+        time.sleep(rng.uniform(0.0, 0.95) * max(wall - begun, 0.01))
         p.send_signal(sig)
         _, err = p.communicate()
         if p.returncode == 0:
