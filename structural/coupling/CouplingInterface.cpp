@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <string>
 
@@ -14,6 +15,13 @@ namespace {
 // advance() refuses windows longer than this many steps of dt_min (a window of 1e300 would
 // never return).
 constexpr double kMaxStepsPerWindow = 1e9;
+
+// A number with its significant digits (std::to_string prints 1e-20 as 0.000000).
+std::string num(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", x);
+  return buf;
+}
 
 // The flow solver owns the pressure on the wet surface: drop the case's pressure on wet sets.
 CaseSpec withoutWetPressure(CaseSpec spec, const WetSurface& w) {
@@ -92,15 +100,15 @@ Eigen::VectorXd CouplingInterface::faceCentres() const {
 
 double CouplingInterface::advance(double dt) {
   if (!(dt > 0.0) || !std::isfinite(dt))
-    throw CouplingError("advance: the time step must be positive, got " + std::to_string(dt));
+    throw CouplingError("advance: the time step must be positive, got " + num(dt));
   const double target = state_.t + dt;
   // A window too short to move time, or one that would take more steps than any run can.
   if (target == state_.t)
-    throw CouplingError("advance: the time step " + std::to_string(dt) +
-                        " is below the resolution of the time " + std::to_string(state_.t));
+    throw CouplingError("advance: the time step " + num(dt) +
+                        " is below the resolution of the time " + num(state_.t));
   if (dt / spec_.solver.dtMin > kMaxStepsPerWindow)
-    throw CouplingError("advance: a window of " + std::to_string(dt) + " would take more than " +
-                        std::to_string(kMaxStepsPerWindow) + " steps of dt_min");
+    throw CouplingError("advance: a window of " + num(dt) + " would take more than " +
+                        num(kMaxStepsPerWindow) + " steps of dt_min");
   // As `chute run` (TimeStepper): the window's end is a stop, and so are the case's cut events.
   const auto before = stepper_->counters();
   const auto result = stepper_->advanceTo(

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 namespace chute {
@@ -45,7 +46,9 @@ NewtonReport StaticLoadStepper::solve(StructuralState& s, int nSteps, double ini
       sys_->revert();
       increment *= 0.5;
       if (increment < 1e-9) {
-        total.failure = rep.failure + " at load factor " + std::to_string(target);
+        char factor[32];  // significant digits: the factor may be 1e-9
+        std::snprintf(factor, sizeof factor, "%.6g", target);
+        total.failure = rep.failure + " at load factor " + factor;
         return total;
       }
       continue;

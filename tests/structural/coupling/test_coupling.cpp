@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 
 #include "case/CaseSpec.hpp"
 #include "coupling/CouplingDriver.hpp"
@@ -462,4 +463,30 @@ path = ["hook", "bead"]
   EXPECT_TRUE(equal);
   EXPECT_GE(stepsInWindow, 11);  // a step ends on the cut
   EXPECT_GT(moved, 1e-6);        // and the cut changed the motion
+}
+
+TEST(CouplingInterfaceApi, WindowsThatCannotMoveTimeOrWouldNeverEndAreRefusedAndChangeNothing) {
+  // advance(5e-324) used to leave the handle failing until a restore, advance(1e300) never
+  // returned, advance(1e-20) returned without moving time: each is refused at once now, the
+  // state is untouched and the next ordinary window goes on.
+  CouplingInterface s(smallCanopy());
+  s.advance(s.preferredTimeStep());
+  const auto before = s.snapshot();
+  int refused = 0;
+  for (const double dt : {5e-324, 1e-20, 1e300, -1.0, std::numeric_limits<double>::quiet_NaN()}) {
+    try {
+      s.advance(dt);
+      ADD_FAILURE() << "advance(" << dt << ") accepted";
+    } catch (const CouplingError& e) {
+      ++refused;
+      std::printf("advance(%g): %s\n", dt, e.what());
+    }
+    const auto after = s.snapshot();
+    EXPECT_TRUE(after.state.x == before.state.x && after.state.t == before.state.t &&
+                after.histories == before.histories);
+  }
+  EXPECT_EQ(refused, 5);
+  const double t = s.time();
+  s.advance(s.preferredTimeStep());
+  EXPECT_GT(s.time(), t);
 }
