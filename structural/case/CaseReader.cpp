@@ -13,10 +13,10 @@
 
 #include "StructuredMeshes.hpp"
 #include "case/CaseSpec.hpp"
+#include "case/CaseText.hpp"
 #include "case/MeshGroups.hpp"
-#include "case/TomlDepth.hpp"
 #include "case/TomlTable.hpp"
-#include "io/InputFile.hpp"
+#include "case/sections/SectionLookup.hpp"
 #include "verification/References.hpp"
 
 namespace chute {
@@ -40,200 +40,12 @@ std::vector<std::string> ProbeSpec::columns() const {
 
 namespace {
 
-// Largest model a case may generate (nodes): a typo in a count must give an error, not exhaust
-// memory. About 0.3 GB of model data; meshes this size come from a mesh file, not a count.
-constexpr long kMaxNodes = 1000000;
-// Largest coordinate or length a case may give: squared distances must not overflow.
-constexpr double kMaxLength = 1e100;
+using namespace caseio;
+
 // Most steps a dynamic run may ask for (t_end / dt), and the least step relative to t_end that
 // still advances time (a few ulps of t_end).
 constexpr double kMaxSteps = 1e9;
 constexpr double kLeastRelativeStep = 1e-15;
-
-std::string shortNumber(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", x);
-  return buf;
-}
-
-// A coordinate triple within +-kMaxLength (required, or `fallback` when absent).
-Vec3 point(TomlTable& t, const std::string& key, const Vec3* fallback = nullptr) {
-  const Vec3 x = fallback ? t.vec3(key, *fallback) : t.vec3(key);
-  if (x.cwiseAbs().maxCoeff() > kMaxLength) t.fail(key, "coordinates beyond +-1e100");
-  return x;
-}
-// A positive length up to kMaxLength.
-double length(TomlTable& t, const std::string& key) {
-  const double x = t.positive(key);
-  if (x > kMaxLength) t.fail(key, "lengths beyond 1e100");
-  return x;
-}
-
-// toml11 reports a syntax error over several lines (message, source line, caret); chute reports
-// bad input in one: "file:line: malformed TOML: message (annotation)".
-std::string oneLine(const std::string& what) {
-  std::string first = what.substr(0, what.find('\n'));
-  for (const std::string prefix : {"[error] "})
-    if (first.rfind(prefix, 0) == 0) first = first.substr(prefix.size());
-  if (first.rfind("toml::", 0) == 0 || first.rfind("parse_", 0) == 0) {
-    const auto colon = first.find(": ");
-    if (colon != std::string::npos) first = first.substr(colon + 2);
-  }
-  // The last caret annotation ("^--- expected value, but got nothing") says what was wrong.
-  std::string note;
-  for (const std::string mark : {"^--- ", "~~~ "}) {
-    const auto at = what.rfind(mark);
-    if (at != std::string::npos) {
-      note = what.substr(at + mark.size());
-      note = note.substr(0, note.find('\n'));
-      break;
-    }
-  }
-  if (!note.empty() && note != "here") first += " (" + note + ")";
-  return first;
-}
-
-toml::value parseText(const std::string& text, const std::string& file) {
-  if (const auto deep = tomlNestingProblem(text))
-    throw CaseError(file + ":" + std::to_string(deep->line) + ": arrays or inline tables nested " +
-                    "deeper than " + std::to_string(kMaxTomlDepth) + " levels");
-  try {
-    std::istringstream in(text);
-    return toml::parse(in, file);
-  } catch (const toml::exception& e) {
-    throw CaseError(file + ":" + std::to_string(e.location().line()) +
-                    ": malformed TOML: " + oneLine(e.what()));
-  } catch (const std::exception& e) {
-    throw CaseError(file + ": malformed TOML: " + oneLine(e.what()));
-  }
-}
-
-// Case files are read whole, regular files only (a FIFO or /dev/zero never ends), at most
-// kMaxCaseBytes (docs/limits.md).
-constexpr std::uintmax_t kMaxCaseBytes = 64ull << 20;
-
-std::string readText(const std::string& file) {
-  try {
-    return io::readInputFile(file, kMaxCaseBytes);
-  } catch (const std::runtime_error& e) {
-    throw CaseError(std::string(e.what()));
-  }
-}
-
-// The closest of `known` to `key`, as " (did you mean 'x'?)", or "".
-std::string didYouMean(const std::string& key, const std::vector<std::string>& known) {
-  std::string best;
-  int bestD = 1 << 30;
-  for (const auto& k : known) {
-    const int d = editDistance(key, k);
-    if (d < bestD) bestD = d, best = k;
-  }
-  if (best.empty() || bestD > std::max<int>(2, static_cast<int>(key.size()) / 3)) return "";
-  return " (did you mean '" + best + "'?)";
-}
-
-void applyOverride(toml::value& root, const std::string& file, const std::string& assignment) {
-  // Messages quote the assignment, cut short: it may be kilobytes long.
-  const std::string where =
-      "--set " + (assignment.size() > 80 ? assignment.substr(0, 60) + "..." : assignment);
-  const auto eq = assignment.find('=');
-  if (eq == std::string::npos || eq == 0) throw CaseError(where + ": expected key=value");
-  const std::string path = assignment.substr(0, eq), text = assignment.substr(eq + 1);
-  const std::string shown = path.size() > 80 ? path.substr(0, 60) + "..." : path;
-  std::vector<std::string> keys;
-  std::stringstream ss(path);
-  for (std::string k; std::getline(ss, k, '.');) {
-    if (k.empty()) throw CaseError(where + ": empty key in '" + path + "'");
-    keys.push_back(k);
-  }
-  if (path.back() == '.') throw CaseError(where + ": empty key in '" + path + "'");
-  // Each step is a table key, or an index into an array of tables ("membranes.0.rings").
-  toml::value* node = &root;
-  std::string walked;
-  for (size_t i = 0; i + 1 < keys.size(); ++i) {
-    if (node->is_array()) {
-      auto& arr = node->as_array();
-      const bool numeric =
-          keys[i].size() <= 9 && keys[i].find_first_not_of("0123456789") == std::string::npos;
-      const size_t idx = numeric ? std::stoul(keys[i]) : arr.size();
-      if (idx >= arr.size())
-        throw CaseError(where + ": " + walked + ": '" + keys[i] + "' is not an index of its " +
-                        std::to_string(arr.size()) + " entries");
-      node = &arr[idx];
-    } else if (!node->is_table()) {
-      throw CaseError(where + ": " + walked + ": is a value, not a table");
-    } else {
-      auto& t = node->as_table();
-      auto it = t.find(keys[i]);
-      if (it == t.end()) {
-        std::vector<std::string> known;
-        for (const auto& [k, v] : t)
-          if (v.is_table() || v.is_array()) known.push_back(k);
-        throw CaseError(where + ": " + (walked.empty() ? "" : walked + ".") + keys[i] + ": " +
-                        file + " has no such table" + didYouMean(keys[i], known));
-      }
-      if (!it->second.is_table() && !it->second.is_array())
-        throw CaseError(where + ": " + (walked.empty() ? "" : walked + ".") + keys[i] +
-                        ": is not a table");
-      node = &it->second;
-    }
-    walked += (walked.empty() ? "" : ".") + keys[i];
-  }
-  // An array of values takes an index as its last key (membranes.0.divisions.0=16); an array of
-  // tables needs one before the key; a value has no keys.
-  const bool valueArray =
-      node->is_array() &&
-      std::none_of(node->as_array().begin(), node->as_array().end(),
-                   [](const toml::value& v) { return v.is_table() || v.is_array(); });
-  toml::value* element = nullptr;
-  if (valueArray) {
-    auto& arr = node->as_array();
-    const std::string& k = keys.back();
-    const bool numeric = k.size() <= 9 && k.find_first_not_of("0123456789") == std::string::npos;
-    const size_t idx = numeric ? std::stoul(k) : arr.size();
-    if (idx >= arr.size())
-      throw CaseError(where + ": " + walked + ": '" + k + "' is not an index of its " +
-                      std::to_string(arr.size()) + " values");
-    element = &arr[idx];
-  } else if (node->is_array()) {
-    throw CaseError(where + ": " + walked + ": an array of tables: give an index (" + walked +
-                    ".0." + keys.back() + ")");
-  } else if (!node->is_table()) {
-    throw CaseError(where + ": " + walked + ": is a value, not a table");
-  }
-  toml::value parsed;
-  if (tomlNestingProblem(text))
-    throw CaseError(where + ": " + shown + ": nested deeper than " + std::to_string(kMaxTomlDepth) +
-                    " levels");
-  try {
-    std::istringstream in("v = " + text);
-    parsed = toml::parse(in, where).as_table().at("v");
-  } catch (const std::exception& e) {
-    // A bare word is a string (--set solver.mass=consistent), as a user types it in a shell.
-    const bool bareWord =
-        !text.empty() && std::isalpha(static_cast<unsigned char>(text[0])) &&
-        text.find_first_not_of(
-            "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-.") ==
-            std::string::npos;
-    if (!bareWord)
-      throw CaseError(where + ": " + shown + ": not a TOML value: " + oneLine(e.what()));
-    std::istringstream quoted("v = \"" + text + "\"");  // keeps the --set as its origin
-    parsed = toml::parse(quoted, where).as_table().at("v");
-  }
-  if (parsed.is_table() || parsed.is_array())
-    throw CaseError(where + ": " + shown + ": only scalars can be set");
-  if (element) {
-    *element = parsed;
-    return;
-  }
-  auto& t = node->as_table();
-  auto it = t.find(keys.back());
-  if (it != t.end() && (it->second.is_table() || it->second.is_array()))
-    throw CaseError(where + ": " + shown + ": is a table in " + file + ", not a scalar");
-  // A key the file does not have is added; the reader rejects it (with a did-you-mean) if the
-  // case has no such key.
-  t[keys.back()] = parsed;
-}
 
 kernels::MembraneMaterial readMembraneMaterial(TomlTable t) {
   kernels::MembraneMaterial m;
@@ -257,46 +69,6 @@ kernels::LineMaterial readMaterial(TomlTable t) {
   m.compressionStiffnessRatio = t.nonNegative("compression_stiffness_ratio", 0.0);
   t.finish();
   return m;
-}
-
-int nodeRef(const Model& m, TomlTable& t, const std::string& key, const std::string& name) {
-  auto it = m.nodeByName.find(name);
-  if (it == m.nodeByName.end()) t.fail(key, "unknown node '" + name + "'");
-  return it->second;
-}
-
-int materialRef(const Model& m, TomlTable& t) {
-  const std::string name = t.string("material");
-  for (size_t i = 0; i < m.materialName.size(); ++i)
-    if (m.materialName[i] == name) return static_cast<int>(i);
-  for (const auto& membrane : m.membraneMaterialName)
-    if (membrane == name)
-      t.fail("material", "'" + name + "' is a membrane material, not a line one");
-  t.fail("material", "unknown material '" + name + "'" + didYouMean(name, m.materialName));
-}
-
-// Cables, sliding groups and membranes name the nodes they generate after themselves, and probes
-// and loads refer to them by name: one name, one entry.
-std::string setName(const Model& m, TomlTable& t, const std::string& fallback) {
-  const std::string name = fallback.empty() ? t.string("name") : t.string("name", fallback);
-  if (name.empty()) t.fail("name", "cannot be empty");
-  // Generated nodes and node sets are named "<name>.<...>": a dot would make names ambiguous.
-  if (name.find('.') != std::string::npos) t.fail("name", "cannot contain '.'");
-  for (const auto& s : m.lineSets)
-    if (s.name == name)
-      t.fail("name", "duplicate name: '" + name + "' is already a " +
-                         (s.sliding ? "sliding group" : "cable set"));
-  for (const auto& s : m.membraneSets)
-    if (s.name == name) t.fail("name", "duplicate name: '" + name + "' is already a membrane set");
-  if (m.nodeSets.count(name)) t.fail("name", "duplicate name: '" + name + "' is a node set");
-  return name;
-}
-
-// Fails when adding `extra` nodes would take the model past kMaxNodes.
-void checkNodeBudget(const Model& m, TomlTable& t, const std::string& key, long extra) {
-  if (extra > kMaxNodes || m.numNodes() + extra > kMaxNodes)
-    t.fail(key, "would make a model of more than " + std::to_string(kMaxNodes) +
-                    " nodes (at least " + std::to_string(m.numNodes() + extra) + ")");
 }
 
 // Points at equal arc length along a polyline, n intervals; returns n + 1 points.
@@ -462,14 +234,6 @@ void readSlidingGroup(Model& m, TomlTable t, int index) {
   m.groups.push_back(std::move(g));
 }
 
-int membraneMaterialRef(const Model& m, TomlTable& t) {
-  const std::string name = t.string("material");
-  for (size_t i = 0; i < m.membraneMaterialName.size(); ++i)
-    if (m.membraneMaterialName[i] == name) return static_cast<int>(i);
-  t.fail("material", "no membrane material '" + name + "' (kind = \"membrane\")" +
-                         didYouMean(name, m.membraneMaterialName));
-}
-
 // Why a membrane element is unusable ("" if it is fine): a repeated node, no area, or (quads) a
 // corner that is not convex about the normal the kernel uses (its reference frame,
 // docs/formulation.md M1).
@@ -596,20 +360,6 @@ void readMembranes(Model& m, TomlTable t) {
   m.membraneSets.push_back(set);
 }
 
-std::vector<int> nodesOf(const Model& m, TomlTable& t) {
-  std::vector<int> out;
-  if (t.has("nodes"))
-    for (const auto& name : t.strings("nodes")) out.push_back(nodeRef(m, t, "nodes", name));
-  if (t.has("set")) {
-    const std::string set = t.string("set");
-    auto it = m.nodeSets.find(set);
-    if (it == m.nodeSets.end()) t.fail("set", "unknown node set '" + set + "'");
-    out.insert(out.end(), it->second.begin(), it->second.end());
-  }
-  if (out.empty()) t.fail("nodes", "give nodes = [...] or set = \"...\"");
-  return out;
-}
-
 ProbeSpec readProbe(const Model& m, TomlTable t) {
   ProbeSpec p;
   p.name = t.string("name");
@@ -676,6 +426,8 @@ ProbeSpec readProbe(const Model& m, TomlTable t) {
 }
 
 }  // namespace
+
+using namespace caseio;
 
 CaseSpec readCase(const std::string& file, const std::vector<std::string>& overrides) {
   return readCaseFromString(readText(file), file, overrides);
