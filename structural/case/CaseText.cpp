@@ -1,0 +1,187 @@
+// Case text: reading, parsing and --set overrides (see CaseText.hpp).
+#include "case/CaseText.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdint>
+#include <sstream>
+#include <stdexcept>
+
+#include "case/CaseError.hpp"
+#include "case/TomlDepth.hpp"
+#include "case/TomlTable.hpp"
+#include "io/InputFile.hpp"
+
+namespace chute::caseio {
+
+namespace {
+
+// Case files are read whole, regular files only (a FIFO or /dev/zero never ends), at most
+// kMaxCaseBytes (docs/limits.md).
+constexpr std::uintmax_t kMaxCaseBytes = 64ull << 20;
+
+}  // namespace
+
+// toml11 reports a syntax error over several lines (message, source line, caret); chute reports
+// bad input in one: "file:line: malformed TOML: message (annotation)".
+std::string oneLine(const std::string& what) {
+  std::string first = what.substr(0, what.find('\n'));
+  for (const std::string prefix : {"[error] "})
+    if (first.rfind(prefix, 0) == 0) first = first.substr(prefix.size());
+  if (first.rfind("toml::", 0) == 0 || first.rfind("parse_", 0) == 0) {
+    const auto colon = first.find(": ");
+    if (colon != std::string::npos) first = first.substr(colon + 2);
+  }
+  // The last caret annotation ("^--- expected value, but got nothing") says what was wrong.
+  std::string note;
+  for (const std::string mark : {"^--- ", "~~~ "}) {
+    const auto at = what.rfind(mark);
+    if (at != std::string::npos) {
+      note = what.substr(at + mark.size());
+      note = note.substr(0, note.find('\n'));
+      break;
+    }
+  }
+  if (!note.empty() && note != "here") first += " (" + note + ")";
+  return first;
+}
+
+toml::value parseText(const std::string& text, const std::string& file) {
+  if (const auto deep = tomlNestingProblem(text))
+    throw CaseError(file + ":" + std::to_string(deep->line) + ": arrays or inline tables nested " +
+                    "deeper than " + std::to_string(kMaxTomlDepth) + " levels");
+  try {
+    std::istringstream in(text);
+    return toml::parse(in, file);
+  } catch (const toml::exception& e) {
+    throw CaseError(file + ":" + std::to_string(e.location().line()) +
+                    ": malformed TOML: " + oneLine(e.what()));
+  } catch (const std::exception& e) {
+    throw CaseError(file + ": malformed TOML: " + oneLine(e.what()));
+  }
+}
+
+std::string readText(const std::string& file) {
+  try {
+    return io::readInputFile(file, kMaxCaseBytes);
+  } catch (const std::runtime_error& e) {
+    throw CaseError(std::string(e.what()));
+  }
+}
+
+// The closest of `known` to `key`, as " (did you mean 'x'?)", or "".
+std::string didYouMean(const std::string& key, const std::vector<std::string>& known) {
+  std::string best;
+  int bestD = 1 << 30;
+  for (const auto& k : known) {
+    const int d = editDistance(key, k);
+    if (d < bestD) bestD = d, best = k;
+  }
+  if (best.empty() || bestD > std::max<int>(2, static_cast<int>(key.size()) / 3)) return "";
+  return " (did you mean '" + best + "'?)";
+}
+
+void applyOverride(toml::value& root, const std::string& file, const std::string& assignment) {
+  // Messages quote the assignment, cut short: it may be kilobytes long.
+  const std::string where =
+      "--set " + (assignment.size() > 80 ? assignment.substr(0, 60) + "..." : assignment);
+  const auto eq = assignment.find('=');
+  if (eq == std::string::npos || eq == 0) throw CaseError(where + ": expected key=value");
+  const std::string path = assignment.substr(0, eq), text = assignment.substr(eq + 1);
+  const std::string shown = path.size() > 80 ? path.substr(0, 60) + "..." : path;
+  std::vector<std::string> keys;
+  std::stringstream ss(path);
+  for (std::string k; std::getline(ss, k, '.');) {
+    if (k.empty()) throw CaseError(where + ": empty key in '" + path + "'");
+    keys.push_back(k);
+  }
+  if (path.back() == '.') throw CaseError(where + ": empty key in '" + path + "'");
+  // Each step is a table key, or an index into an array of tables ("membranes.0.rings").
+  toml::value* node = &root;
+  std::string walked;
+  for (size_t i = 0; i + 1 < keys.size(); ++i) {
+    if (node->is_array()) {
+      auto& arr = node->as_array();
+      const bool numeric =
+          keys[i].size() <= 9 && keys[i].find_first_not_of("0123456789") == std::string::npos;
+      const size_t idx = numeric ? std::stoul(keys[i]) : arr.size();
+      if (idx >= arr.size())
+        throw CaseError(where + ": " + walked + ": '" + keys[i] + "' is not an index of its " +
+                        std::to_string(arr.size()) + " entries");
+      node = &arr[idx];
+    } else if (!node->is_table()) {
+      throw CaseError(where + ": " + walked + ": is a value, not a table");
+    } else {
+      auto& t = node->as_table();
+      auto it = t.find(keys[i]);
+      if (it == t.end()) {
+        std::vector<std::string> known;
+        for (const auto& [k, v] : t)
+          if (v.is_table() || v.is_array()) known.push_back(k);
+        throw CaseError(where + ": " + (walked.empty() ? "" : walked + ".") + keys[i] + ": " +
+                        file + " has no such table" + didYouMean(keys[i], known));
+      }
+      if (!it->second.is_table() && !it->second.is_array())
+        throw CaseError(where + ": " + (walked.empty() ? "" : walked + ".") + keys[i] +
+                        ": is not a table");
+      node = &it->second;
+    }
+    walked += (walked.empty() ? "" : ".") + keys[i];
+  }
+  // An array of values takes an index as its last key (membranes.0.divisions.0=16); an array of
+  // tables needs one before the key; a value has no keys.
+  const bool valueArray =
+      node->is_array() &&
+      std::none_of(node->as_array().begin(), node->as_array().end(),
+                   [](const toml::value& v) { return v.is_table() || v.is_array(); });
+  toml::value* element = nullptr;
+  if (valueArray) {
+    auto& arr = node->as_array();
+    const std::string& k = keys.back();
+    const bool numeric = k.size() <= 9 && k.find_first_not_of("0123456789") == std::string::npos;
+    const size_t idx = numeric ? std::stoul(k) : arr.size();
+    if (idx >= arr.size())
+      throw CaseError(where + ": " + walked + ": '" + k + "' is not an index of its " +
+                      std::to_string(arr.size()) + " values");
+    element = &arr[idx];
+  } else if (node->is_array()) {
+    throw CaseError(where + ": " + walked + ": an array of tables: give an index (" + walked +
+                    ".0." + keys.back() + ")");
+  } else if (!node->is_table()) {
+    throw CaseError(where + ": " + walked + ": is a value, not a table");
+  }
+  toml::value parsed;
+  if (tomlNestingProblem(text))
+    throw CaseError(where + ": " + shown + ": nested deeper than " + std::to_string(kMaxTomlDepth) +
+                    " levels");
+  try {
+    std::istringstream in("v = " + text);
+    parsed = toml::parse(in, where).as_table().at("v");
+  } catch (const std::exception& e) {
+    // A bare word is a string (--set solver.mass=consistent), as a user types it in a shell.
+    const bool bareWord =
+        !text.empty() && std::isalpha(static_cast<unsigned char>(text[0])) &&
+        text.find_first_not_of(
+            "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-.") ==
+            std::string::npos;
+    if (!bareWord)
+      throw CaseError(where + ": " + shown + ": not a TOML value: " + oneLine(e.what()));
+    std::istringstream quoted("v = \"" + text + "\"");  // keeps the --set as its origin
+    parsed = toml::parse(quoted, where).as_table().at("v");
+  }
+  if (parsed.is_table() || parsed.is_array())
+    throw CaseError(where + ": " + shown + ": only scalars can be set");
+  if (element) {
+    *element = parsed;
+    return;
+  }
+  auto& t = node->as_table();
+  auto it = t.find(keys.back());
+  if (it != t.end() && (it->second.is_table() || it->second.is_array()))
+    throw CaseError(where + ": " + shown + ": is a table in " + file + ", not a scalar");
+  // A key the file does not have is added; the reader rejects it (with a did-you-mean) if the
+  // case has no such key.
+  t[keys.back()] = parsed;
+}
+
+}  // namespace chute::caseio

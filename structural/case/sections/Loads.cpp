@@ -1,0 +1,84 @@
+// [loads]: gravity, pressure, line drag and face drag.
+#include <cmath>
+#include <string>
+
+#include "case/MeshGroups.hpp"
+#include "case/sections/Sections.hpp"
+
+namespace chute::caseio {
+
+void readLoads(Model& m, const MeshImport* mesh, TomlTable l) {
+  m.gravity = l.vec3("gravity", Vec3::Zero());
+  for (auto& t : l.tables("pressure")) {
+    PressureLoadDef p;
+    const std::string set = t.string("membranes");
+    for (size_t k = 0; k < m.membraneSets.size(); ++k)
+      if (m.membraneSets[k].name == set) p.set = static_cast<int>(k);
+    if (p.set < 0) t.fail("membranes", "unknown membrane set '" + set + "'");
+    p.pressure = t.number("pressure");
+    p.rampTime = t.nonNegative("ramp_time", 0.0);
+    if (t.has("element_factors")) {
+      const auto& arr = toml::find(t.raw(), "element_factors");
+      if (!arr.is_array()) t.fail("element_factors", "expected an array of numbers");
+      for (const auto& v : arr.as_array()) {
+        if (!v.is_floating() && !v.is_integer())
+          t.failAt(v, "element_factors", "expected a number");
+        const double f = v.is_floating() ? v.as_floating() : static_cast<double>(v.as_integer());
+        if (!std::isfinite(f)) t.failAt(v, "element_factors", "must be finite");
+        p.elementFactor.push_back(f);
+      }
+      long count = 0;
+      for (const auto& e : m.membranes) count += e.set == p.set;
+      if (static_cast<long>(p.elementFactor.size()) != count)
+        t.fail("element_factors",
+               "needs one factor per element of '" + set + "' (" + std::to_string(count) + ")");
+    }
+    t.finish();
+    m.pressures.push_back(p);
+  }
+  for (auto& t : l.tables("drag")) {
+    DragLoadDef d;
+    if (t.has("group")) {
+      d.edges = meshEdges(mesh, t);  // the 2-node elements of a 1-D physical group
+    } else if (t.has("edge")) {
+      // Edges between consecutive nodes of a node set (e.g. "bag.xmax", a disk's "rim").
+      const std::string edge = t.string("edge");
+      auto it = m.nodeSets.find(edge);
+      if (it == m.nodeSets.end() || it->second.size() < 2)
+        t.fail("edge", "no node set '" + edge + "' of two or more nodes");
+      const auto& ns = it->second;
+      for (size_t k = 0; k + 1 < ns.size(); ++k) d.edges.push_back({ns[k], ns[k + 1]});
+      if (t.boolean("closed", false)) d.edges.push_back({ns.back(), ns.front()});
+    } else {
+      const std::string set = t.string("set");
+      for (size_t k = 0; k < m.lineSets.size(); ++k)
+        if (m.lineSets[k].name == set) d.lineSet = static_cast<int>(k);
+      if (d.lineSet < 0) t.fail("set", "unknown cable set or sliding group '" + set + "'");
+    }
+    const double diameter = t.positive("diameter");
+    const double cd = t.positive("cd");
+    const double rho = t.positive("air_density");
+    d.coefficient = 0.5 * rho * cd * diameter;
+    d.wind = t.vec3("wind", Vec3::Zero());
+    t.finish();
+    m.drags.push_back(d);
+  }
+  // [[loads.face_drag]]: drag on the faces of a membrane set (docs/formulation.md FD1).
+  for (auto& t : l.tables("face_drag")) {
+    FaceDragLoadDef d;
+    const std::string set = t.string("membranes");
+    for (size_t k = 0; k < m.membraneSets.size(); ++k)
+      if (m.membraneSets[k].name == set) d.set = static_cast<int>(k);
+    if (d.set < 0) t.fail("membranes", "unknown membrane set '" + set + "'");
+    const double cd = t.positive("cd");
+    const double rho = t.positive("air_density");
+    d.coefficient = 0.5 * rho * cd;
+    d.wind = t.vec3("wind", Vec3::Zero());
+    d.steadySubtracted = t.boolean("subtract_steady", false);
+    t.finish();
+    m.faceDrags.push_back(d);
+  }
+  l.finish();
+}
+
+}  // namespace chute::caseio

@@ -1,0 +1,134 @@
+// [output]: output intervals, [[output.probes]] and [output.vtu].
+#include <algorithm>
+#include <climits>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "case/sections/SectionLookup.hpp"
+#include "case/sections/Sections.hpp"
+
+namespace chute {
+
+std::vector<std::string> ProbeSpec::columns() const {
+  std::vector<std::string> q;
+  if (kind == "node_position") q = {"x", "y", "z"};
+  if (kind == "node_velocity") q = {"vx", "vy", "vz"};
+  if (kind == "slider") q = {"s", "element"};
+  if (kind == "slider_friction")
+    q = {"state", "slip_rate", "tension_ratio", "wrap_angle", "N1", "N2"};
+  if (kind == "energy") q = {"kinetic", "strain", "gravity", "total"};
+  if (kind == "line_force") q = {"N", "strain"};
+  if (kind == "membrane_stress") q = {"S1", "S2"};
+  if (kind == "edge_angle") q = {"angle"};
+  if (kind == "wrinkling") q = {"taut", "wrinkled", "slack"};
+  if (kind == "skirt_radius") q = {"mean", "min", "max"};
+  for (auto& s : q) s = name + "." + s;
+  return q;
+}
+
+namespace caseio {
+
+namespace {
+
+ProbeSpec readProbe(const Model& m, TomlTable t) {
+  ProbeSpec p;
+  p.name = t.string("name");
+  // Probe names head the columns of probes.csv.
+  if (p.name.empty() || std::any_of(p.name.begin(), p.name.end(), [](char ch) {
+        return (ch >= 0 && ch < 32) || ch == ',' || ch == '"';
+      }))
+    t.fail("name", "must be non-empty, without commas, quotes or control characters");
+  p.kind =
+      t.choice("kind", "node_position",
+               {"node_position", "node_velocity", "slider", "energy", "line_force",
+                "membrane_stress", "wrinkling", "slider_friction", "skirt_radius", "edge_angle"});
+  const std::string why = "by a probe of kind \"" + p.kind + "\"";
+  const bool atNode =
+      p.kind == "node_position" || p.kind == "node_velocity" || p.kind == "membrane_stress";
+  const bool atSlider = p.kind == "slider" || p.kind == "slider_friction";
+  if (!atNode) t.notUsed({"node"}, why);
+  if (!atSlider) t.notUsed({"group", "slider"}, why);
+  if (p.kind != "line_force") t.notUsed({"element"}, why);
+  if (p.kind != "line_force" && p.kind != "skirt_radius") t.notUsed({"set"}, why);
+  if (p.kind != "skirt_radius") t.notUsed({"axis"}, why);
+  if (p.kind != "edge_angle") t.notUsed({"from", "to"}, why);
+  if (atNode) {
+    p.node = nodeRef(m, t, "node", t.string("node", p.name));
+  } else if (p.kind == "edge_angle") {
+    p.node = nodeRef(m, t, "from", t.string("from"));
+    p.node2 = nodeRef(m, t, "to", t.string("to"));
+    if (p.node == p.node2) t.fail("to", "the edge needs two different nodes");
+  } else if (p.kind == "slider" || p.kind == "slider_friction") {
+    const std::string g = t.string("group");
+    for (size_t i = 0; i < m.groups.size(); ++i)
+      if (m.groups[i].name == g) p.group = static_cast<int>(i);
+    if (p.group < 0) t.fail("group", "unknown sliding group '" + g + "'");
+    const auto& sl = m.groups[p.group].sliders;
+    const int node = nodeRef(m, t, "slider", t.string("slider", m.nodeName[sl.front()]));
+    auto it = std::find(sl.begin(), sl.end(), node);
+    if (it == sl.end()) t.fail("slider", "node is not a slider of group '" + g + "'");
+    p.slider = static_cast<int>(it - sl.begin());
+  } else if (p.kind == "line_force") {
+    const std::string set = t.string("set");
+    for (size_t i = 0; i < m.lineSets.size(); ++i)
+      if (m.lineSets[i].name == set) p.lineSet = static_cast<int>(i);
+    if (p.lineSet < 0) t.fail("set", "unknown cable set or sliding group '" + set + "'");
+    long count = 0;
+    for (const auto& c : m.cables) count += c.set == p.lineSet;
+    for (const auto& g : m.groups) count += g.set == p.lineSet ? g.numElements() : 0;
+    p.element = static_cast<int>(t.integer("element", 0, 0, count - 1));
+  } else if (p.kind == "skirt_radius") {
+    // A node set (or one node) by name: its node ids.
+    auto nodesOf = [&](const std::string& key, const std::string& name) -> std::vector<int> {
+      if (auto it = m.nodeSets.find(name); it != m.nodeSets.end() && !it->second.empty())
+        return it->second;
+      if (auto it = m.nodeByName.find(name); it != m.nodeByName.end()) return {it->second};
+      t.fail(key, "no node or node set '" + name + "'");
+    };
+    p.nodes = nodesOf("set", t.string("set"));
+    const auto axis = t.strings("axis");
+    if (axis.size() != 2) t.fail("axis", "give two nodes or node sets: [from, to]");
+    p.axisFrom = nodesOf("axis", axis[0]);
+    p.axisTo = nodesOf("axis", axis[1]);
+  }
+  t.finish();
+  return p;
+}
+
+}  // namespace
+
+void readOutput(CaseSpec& c, TomlTable o) {
+  const Model& m = c.model;
+  c.output.everySteps = static_cast<int>(o.integer("every", 1, 1, INT_MAX));
+  if (o.has("interval")) c.output.interval = o.positive("interval");
+  if (o.has("interval") && o.has("every")) o.fail("every", "give either every or interval");
+  std::set<std::string> names;
+  for (auto& p : o.tables("probes")) {
+    c.output.probes.push_back(readProbe(m, p));
+    if (!names.insert(c.output.probes.back().name).second)
+      p.fail("name", "duplicate probe name '" + c.output.probes.back().name + "'");
+  }
+  if (o.has("vtu")) {
+    TomlTable v = o.table("vtu");
+    auto& vtu = c.output.vtu;
+    vtu.write = v.boolean("write", true);
+    vtu.everySteps = static_cast<int>(v.integer("every", 1, 1, INT_MAX));
+    if (v.has("interval")) vtu.interval = v.positive("interval");
+    if (v.has("interval") && v.has("every")) v.fail("every", "give either every or interval");
+    vtu.fields = v.strings("fields", {});
+    for (const auto& f : vtu.fields) {
+      const auto& known = vtuPointFieldNames();
+      if (std::find(known.begin(), known.end(), f) == known.end()) {
+        std::string list;
+        for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
+        v.fail("fields", "unknown field '" + f + "' (known: " + list + ")");
+      }
+    }
+    v.finish();
+  }
+  o.finish();
+}
+
+}  // namespace caseio
+}  // namespace chute

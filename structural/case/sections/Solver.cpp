@@ -1,0 +1,66 @@
+// [solver]: static or dynamic, integrator, steps and Newton settings.
+#include <string>
+
+#include "case/sections/SectionLookup.hpp"
+#include "case/sections/Sections.hpp"
+
+namespace chute::caseio {
+
+namespace {
+
+// Most steps a dynamic run may ask for (t_end / dt), and the least step relative to t_end that
+// still advances time (a few ulps of t_end).
+constexpr double kMaxSteps = 1e9;
+constexpr double kLeastRelativeStep = 1e-15;
+
+}  // namespace
+
+void readSolver(CaseSpec& c, TomlTable s) {
+  Model& m = c.model;
+  auto& sv = c.solver;
+  sv.type = s.choice("type", "dynamic", {"dynamic", "static"});
+  if (sv.type == "dynamic") {
+    sv.dt = s.positive("dt");
+    sv.tEnd = s.positive("t_end");
+    sv.rhoInf = s.number("rho_inf", 0.9);
+    sv.integrator = s.choice("integrator", "bossak", {"bossak", "generalized_alpha"});
+    m.massDamping = s.nonNegative("mass_damping", 0.0);
+    if (sv.rhoInf < 0.0 || sv.rhoInf > 1.0) s.fail("rho_inf", "must be in [0, 1]");
+    sv.dtMin = s.positive("dt_min", sv.dt * 1e-6);
+    if (sv.dtMin > sv.dt) s.fail("dt_min", "must not exceed dt");
+    // Steps a run can take (docs/limits.md): dt within t_end, at most kMaxSteps of it, and a
+    // least step that still moves time near t_end (t + dt_min == t would loop forever).
+    if (sv.dt > sv.tEnd) s.fail("dt", "is larger than t_end: not one step fits");
+    if (sv.tEnd / sv.dt > kMaxSteps)
+      s.fail("dt", "t_end / dt is " + shortNumber(sv.tEnd / sv.dt) + " steps, more than " +
+                       shortNumber(kMaxSteps));
+    if (sv.dtMin < kLeastRelativeStep * sv.tEnd)
+      s.fail(s.has("dt_min") ? "dt_min" : "dt",
+             "the least step (dt_min = " + shortNumber(sv.dtMin) +
+                 ") is lost in rounding near t_end: keep it above t_end * 1e-15");
+  } else {
+    s.notUsed({"dt", "t_end", "rho_inf", "integrator", "mass_damping", "dt_min"},
+              "by static runs (type = \"static\")");
+  }
+  sv.loadSteps = static_cast<int>(s.integer("load_steps", 1, 1, 1000000));
+  sv.initialLoadFactor = s.positive("initial_load_factor", 0.0 + 1.0);
+  if (sv.initialLoadFactor > 1.0) s.fail("initial_load_factor", "must be in (0, 1]");
+  m.massKind = s.choice("mass", "lumped", {"lumped", "consistent"}) == "lumped"
+                   ? kernels::MassKind::Lumped
+                   : kernels::MassKind::Consistent;
+  sv.search = s.choice("search", "material_coordinate",
+                       {"nearest_length", "material_coordinate"}) == "nearest_length"
+                  ? SliderSearch::NearestLength
+                  : SliderSearch::MaterialCoordinate;
+  sv.maxNewton = static_cast<int>(s.integer("newton_max_iterations", 25, 1, 1000));
+  if (s.has("newton_tolerance")) sv.tolDisplacement = s.positive("newton_tolerance");
+  sv.slackTautEvents = s.boolean("slack_events", true);
+  sv.sliderEvents = s.boolean("slider_events", true);
+  if (!sv.sliderEvents && sv.integrator != "bossak")
+    s.fail("slider_events",
+           "false needs integrator = \"bossak\" (forces at the step's end, where a slider "
+           "crossed inside the step is in its new element)");
+  s.finish();
+}
+
+}  // namespace chute::caseio
