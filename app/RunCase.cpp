@@ -22,7 +22,7 @@
 #include "solver/GeneralizedAlpha.hpp"
 #include "solver/StaticLoadStepper.hpp"
 #include "solver/TimeStepper.hpp"
-#include "terms/LineTerms.hpp"
+#include "terms/SlidingGroupTerm.hpp"
 #include "verification/HenckyReference.hpp"
 #include "verification/References.hpp"
 

@@ -12,8 +12,8 @@
 #include <stdexcept>
 
 #include "kernels/LineKernels.hpp"
-#include "terms/LineTerms.hpp"
-#include "terms/SurfaceTerms.hpp"
+#include "terms/MembraneTerm.hpp"
+#include "terms/SlidingGroupTerm.hpp"
 
 namespace chute {
 

@@ -6,8 +6,8 @@
 
 #include "case/CaseSpec.hpp"
 #include "kernels/LineKernels.hpp"
-#include "terms/LineTerms.hpp"
-#include "terms/SurfaceTerms.hpp"
+#include "terms/MembraneTerm.hpp"
+#include "terms/SlidingGroupTerm.hpp"
 
 namespace chute {
 

@@ -15,7 +15,7 @@
 #include "solver/GeneralizedAlpha.hpp"
 #include "support/AssembledJacobian.hpp"
 #include "support/FiniteDifference.hpp"
-#include "terms/LineTerms.hpp"
+#include "terms/SlidingGroupTerm.hpp"
 
 using namespace chute;
 using namespace chute::coupling;
