@@ -28,9 +28,7 @@ Vec6 cableGravity(double L, const LineMaterial& mat, const Vec3& g);
 // stiffness jumps from E A / L to nothing). Given the relative position d = x_b - x_a at the
 // step's start and its change delta over the step, returns the fraction of delta at which
 // |d + f delta| = L, or 1 if the motion does not cross it. A start or an end within
-// kSlackTautBand L of the switch is on it, not across it (the step that brought the cable there
-// was cut to end on it).
-inline constexpr double kSlackTautBand = 1e-6;
+// kSlackTautBand L of the switch is on it, not across it (RG4, kernels/Regularisations.hpp).
 double slackTautCrossing(const Vec3& d, const Vec3& delta, double L);
 
 // ---- active sliding element -------------------------------------------------------------------
