@@ -11,7 +11,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "kernels/LineKernels.hpp"
+#include "kernels/CableKernel.hpp"
 #include "terms/MembraneTerm.hpp"
 #include "terms/SlidingGroupTerm.hpp"
 

@@ -5,7 +5,7 @@
 #include <stdexcept>
 
 #include "case/CaseSpec.hpp"
-#include "kernels/LineKernels.hpp"
+#include "kernels/CableKernel.hpp"
 #include "terms/MembraneTerm.hpp"
 #include "terms/SlidingGroupTerm.hpp"
 

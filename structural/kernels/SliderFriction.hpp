@@ -14,8 +14,9 @@
 #include <Eigen/Core>
 #include <limits>
 
-#include "kernels/LineKernels.hpp"
+#include "kernels/LineElementTypes.hpp"
 #include "kernels/Regularisations.hpp"
+#include "kernels/UniformStrainPolyline.hpp"
 
 namespace chute::kernels {
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "kernels/CableKernel.hpp"
 #include "terms/LineElementAssembly.hpp"
 
 namespace chute {

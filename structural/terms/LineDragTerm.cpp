@@ -1,5 +1,7 @@
 #include "terms/LineDragTerm.hpp"
 
+#include "kernels/LineDragKernel.hpp"
+
 namespace chute {
 
 using kernels::Vec3;

@@ -7,6 +7,7 @@
 
 #include "assembly/SystemAssembler.hpp"
 #include "assembly/Term.hpp"
+#include "kernels/CableKernel.hpp"
 #include "kernels/Regularisations.hpp"
 #include "model/Model.hpp"
 

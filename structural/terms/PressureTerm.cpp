@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <type_traits>
 
+#include "kernels/PressureKernel.hpp"
 #include "terms/MembraneElementAssembly.hpp"
 
 namespace chute {

@@ -5,6 +5,8 @@
 #include <initializer_list>
 #include <limits>
 
+#include "kernels/SliderFriction.hpp"
+#include "kernels/SlidingCableKernel.hpp"
 #include "terms/LineElementAssembly.hpp"
 
 namespace chute {

@@ -12,6 +12,7 @@
 #include "coupling/CouplingDriver.hpp"
 #include "coupling/CouplingInterface.hpp"
 #include "coupling/QuasiSteadyFlow.hpp"
+#include "kernels/PressureKernel.hpp"
 #include "solver/GeneralizedAlpha.hpp"
 #include "support/AssembledJacobian.hpp"
 #include "support/FiniteDifference.hpp"
