@@ -24,7 +24,7 @@
 #include "solver/GeneralizedAlpha.hpp"
 #include "solver/StaticLoadStepper.hpp"
 #include "solver/TimeStepper.hpp"
-#include "terms/LineTerms.hpp"
+#include "terms/SlidingGroupTerm.hpp"
 #include "verification/HenckyReference.hpp"
 #include "verification/References.hpp"
 

@@ -13,9 +13,9 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "kernels/LineKernels.hpp"
-#include "terms/LineTerms.hpp"
-#include "terms/SurfaceTerms.hpp"
+#include "kernels/CableKernel.hpp"
+#include "terms/MembraneTerm.hpp"
+#include "terms/SlidingGroupTerm.hpp"
 
 namespace chute {
 

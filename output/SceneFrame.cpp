@@ -5,9 +5,9 @@
 #include <stdexcept>
 
 #include "case/CaseSpec.hpp"
-#include "kernels/LineKernels.hpp"
-#include "terms/LineTerms.hpp"
-#include "terms/SurfaceTerms.hpp"
+#include "kernels/CableKernel.hpp"
+#include "terms/MembraneTerm.hpp"
+#include "terms/SlidingGroupTerm.hpp"
 
 namespace chute {
 

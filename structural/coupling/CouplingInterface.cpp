@@ -7,7 +7,7 @@
 #include <string>
 
 #include "case/SolverSetup.hpp"
-#include "terms/LineTerms.hpp"
+#include "terms/SlidingGroupTerm.hpp"
 
 namespace chute::coupling {
 

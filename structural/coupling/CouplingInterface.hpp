@@ -32,7 +32,7 @@
 #include "coupling/WetSurface.hpp"
 #include "solver/GeneralizedAlpha.hpp"
 #include "solver/TimeStepper.hpp"
-#include "terms/SurfaceTerms.hpp"
+#include "terms/MembraneTerm.hpp"
 
 namespace chute::coupling {
 

@@ -3,6 +3,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "kernels/PressureKernel.hpp"
+
 namespace chute::coupling {
 
 namespace {

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "kernels/PressureKernel.hpp"
+
 namespace chute::coupling {
 
 double QuasiSteadyFlowLaw::pressure(const Vec3& A, const Vec3& vf, const Vec3& af, double t) const {

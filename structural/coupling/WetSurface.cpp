@@ -4,6 +4,8 @@
 #include <map>
 #include <stdexcept>
 
+#include "kernels/PressureKernel.hpp"
+
 namespace chute::coupling {
 
 WetSurface WetSurface::fromModel(const Model& m, const std::vector<std::string>& setNames) {

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "kernels/MembraneKernels.hpp"
+#include "kernels/PressureKernel.hpp"
 
 namespace chute::kernels {
 

@@ -14,7 +14,9 @@
 #include <Eigen/Core>
 #include <limits>
 
-#include "kernels/LineKernels.hpp"
+#include "kernels/LineElementTypes.hpp"
+#include "kernels/Regularisations.hpp"
+#include "kernels/UniformStrainPolyline.hpp"
 
 namespace chute::kernels {
 
@@ -36,10 +38,8 @@ struct SliderFrictionLaw {
   double dMuDRate(double slipRate) const;  // d mu / d|v|
 };
 
-// Angle regularisation of the wrap angle where the two parts are parallel (beta = pi) or
-// aligned (beta = 0): beta is a cone in the slider's position there; within this angle it is
-// replaced by the C1 quadratic (FR4). Error in exp(mu beta): at most mu * kWrapApexAngle / 2.
-inline constexpr double kWrapApexAngle = 1e-6;
+// The wrap angle is regularised within kWrapApexAngle of parallel or aligned parts (FR4, RG7,
+// kernels/Regularisations.hpp).
 
 enum class SliderStick : int { Stick = 0, SlipPlus = 1, SlipMinus = -1 };
 
@@ -68,12 +68,8 @@ FrictionSlidingResult frictionSlidingForce(const Vec3& x1, const Vec3& x2, const
                                            bool withTangent,
                                            SliderStick startSlip = SliderStick::Stick);
 
-// Arrival zone of a slider with friction at a node of its element, as a fraction of the element's
-// reference length (FR16). The short part next to the node is a spring E A / L_i, and Newton
-// iterates that aim at the node itself (L_i -> 0) pass it; the step is cut to end where the
-// slider enters the zone (aimed at half its radius) and the slider is handed over from there.
-// Far below a step's slip (v dt), which absorbs the hand-over's shift of the material coordinate.
-inline constexpr double kFrictionArrivalFraction = 1e-6;
+// A slider with friction arrives at a node of its element within kFrictionArrivalFraction L of it
+// (FR16, RG7, kernels/Regularisations.hpp).
 
 // Round-off floor of positions resolved through the friction element (FR16): a part of reference
 // length L_i computes its strain from positions that carry round-off eps |x|, so its force is

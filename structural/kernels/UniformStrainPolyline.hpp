@@ -14,12 +14,15 @@
 //
 // The slider on an end node (F8-F9 singular as l_i -> 0): a part's length |d| is a cone in the
 // relative position d, with no direction at its apex and lateral stiffness N / l_i -> infinity.
-// Within a radius r = kApexFraction L of the apex the part length is taken as the C1 quadratic
+// Within a radius r = kApexFraction L of the apex (RG1, kernels/Regularisations.hpp) the part
+// length is taken as the C1 quadratic
 // (|d|^2 + r^2) / (2 r): exact for |d| >= r, at most r/2 too long inside, with a bounded,
 // isotropic stiffness N / r at the apex. Force and tangent remain the exact derivatives of the
 // element's energy everywhere, so Newton keeps a consistent tangent through node crossings.
 #include <Eigen/Core>
 #include <array>
+
+#include "kernels/Regularisations.hpp"
 
 namespace chute::kernels {
 
@@ -33,21 +36,6 @@ struct LineMaterial {
   bool tensionOnly = true;                 // cable (true) or truss (false)
   double compressionStiffnessRatio = 0.0;  // E_c / E used when eps < 0 for a cable
 };
-
-// Apex radius of a part as a fraction of the element's reference length (see above). It must be
-// far below the strain times L of the stiffest cable (1e-6 for the paper's "very stiff" ropes):
-// inside r a length is off by up to r/2, i.e. a strain error of 5e-10. The apex stiffness N / r is
-// then eps 1e9 E A / L: 1e3 E A / L for eps = 1e-6, well within a direct solver's reach.
-inline constexpr double kApexFraction = 1e-9;
-
-// A slider closer than this fraction of its element's reference length to an end node it is
-// approaching has arrived there: the step that brought it is accepted, the two are placed on the
-// same point (a massless node moves for free, a massive one by at most this much) and the slider
-// is handed over. Event location lands within it in one or two retries.
-inline constexpr double kArrivalFraction = 1e-6;
-// Node and slider are left this far apart after a hand-over (10 apex radii): the strains of the
-// two elements change by 1e-8, and the new short part has its direction along the cable.
-inline constexpr double kSeparationFraction = 10 * kApexFraction;
 
 // Length of a part with relative position d, its gradient and Hessian, regularised at the apex.
 struct PartLength {

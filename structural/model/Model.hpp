@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "kernels/LineKernels.hpp"
-#include "kernels/MembraneKernels.hpp"
+#include "kernels/LineElementTypes.hpp"
+#include "kernels/MembraneKernel.hpp"
 #include "kernels/SliderFriction.hpp"
 
 namespace chute {

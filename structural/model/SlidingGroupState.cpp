@@ -5,6 +5,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "kernels/SlidingCableKernel.hpp"
+
 namespace chute {
 
 namespace {

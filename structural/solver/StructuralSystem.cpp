@@ -4,9 +4,13 @@
 #include <cmath>
 #include <string>
 
+#include "terms/CableTerm.hpp"
 #include "terms/FaceDragTerm.hpp"
-#include "terms/LineTerms.hpp"
-#include "terms/SurfaceTerms.hpp"
+#include "terms/LineDragTerm.hpp"
+#include "terms/MembraneTerm.hpp"
+#include "terms/PointMassTerm.hpp"
+#include "terms/PressureTerm.hpp"
+#include "terms/SlidingGroupTerm.hpp"
 
 namespace chute {
 
@@ -31,7 +35,7 @@ StructuralSystem::StructuralSystem(const Model& model, SliderSearch search,
   if (!model.drags.empty()) {
     std::vector<const SlidingGroupState*> states;
     for (auto* g : groups_) states.push_back(&g->state());
-    terms_.push_back(std::make_unique<DragTerm>(model, states));
+    terms_.push_back(std::make_unique<LineDragTerm>(model, states));
   }
   if (!model.faceDrags.empty()) terms_.push_back(std::make_unique<FaceDragTerm>(model));
   for (auto& t : extraTerms) terms_.push_back(std::move(t));

@@ -5,7 +5,8 @@
 #include <Eigen/Geometry>
 #include <random>
 
-#include "kernels/LineKernels.hpp"
+#include "kernels/CableKernel.hpp"
+#include "kernels/SlidingCableKernel.hpp"
 #include "support/FiniteDifference.hpp"
 
 using namespace chute;

@@ -5,7 +5,9 @@
 #include <Eigen/Geometry>
 #include <random>
 
-#include "kernels/MembraneKernels.hpp"
+#include "kernels/LineDragKernel.hpp"
+#include "kernels/MembraneKernel.hpp"
+#include "kernels/PressureKernel.hpp"
 #include "support/FiniteDifference.hpp"
 
 using namespace chute::kernels;

@@ -8,8 +8,8 @@
 #include <cstdio>
 #include <numbers>
 
-#include "kernels/LineKernels.hpp"
 #include "kernels/SliderFriction.hpp"
+#include "kernels/SlidingCableKernel.hpp"
 #include "support/FiniteDifference.hpp"
 
 using namespace chute;

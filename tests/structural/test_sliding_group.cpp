@@ -7,7 +7,7 @@
 #include "model/SlidingGroupState.hpp"
 #include "solver/StructuralSystem.hpp"
 #include "support/FiniteDifference.hpp"
-#include "terms/LineTerms.hpp"
+#include "terms/SlidingGroupTerm.hpp"
 
 using namespace chute;
 

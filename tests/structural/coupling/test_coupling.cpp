@@ -13,10 +13,11 @@
 #include "coupling/CouplingDriver.hpp"
 #include "coupling/CouplingInterface.hpp"
 #include "coupling/QuasiSteadyFlow.hpp"
+#include "kernels/PressureKernel.hpp"
 #include "solver/GeneralizedAlpha.hpp"
 #include "support/AssembledJacobian.hpp"
 #include "support/FiniteDifference.hpp"
-#include "terms/LineTerms.hpp"
+#include "terms/SlidingGroupTerm.hpp"
 
 using namespace chute;
 using namespace chute::coupling;

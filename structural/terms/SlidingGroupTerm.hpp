@@ -1,36 +1,13 @@
 #pragma once
-// Terms for line elements and point masses: internal force, inertia and gravity of
-//  - CableTerm: every two-node cable / truss element (F1-F5),
-//  - SlidingGroupTerm: one sliding group, active three-node elements (F6-F11) and its inactive
-//    elements as cables; runs the active-element search (F12) in updateState(),
-//  - PointMassTerm: lumped point masses and their weight.
-#include <memory>
-
+// One sliding group: its active three-node elements (docs/formulation.md F6-F11, with friction
+// docs/friction.md) and its inactive elements as cables; runs the active-element search (F12) in
+// updateState() and the node hand-overs (RG2-RG3) at converged steps.
 #include "assembly/Term.hpp"
+#include "kernels/Regularisations.hpp"
 #include "model/Model.hpp"
 #include "model/SlidingGroupState.hpp"
 
 namespace chute {
-
-class CableTerm final : public Term, public EventSource {
- public:
-  explicit CableTerm(const Model& m) : m_(&m) {}
-  const char* name() const override { return "cables"; }
-  bool loadDependent() const override { return m_->hasGravity(); }  // gravity only
-  void addCouplings(std::vector<std::vector<int>>& cliques) const override;
-  void assemble(const EvalPoint& p, SystemAssembler& out) override;
-  void addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v, double t,
-                 EnergyBreakdown& e) const override;
-  // Slack / taut switches are located in time like a slider at a node: a step whose motion
-  // takes a tension-only cable across zero strain is cut to end there, so no step straddles
-  // the kink of its energy (the trapezoidal rule conserves the energy of each smooth piece).
-  // Measured along the step's whole motion: Newton's later updates may take a cable across.
-  double stepEventFraction(const Eigen::VectorXd& start, const Eigen::VectorXd& motion) override;
-  EventSource* events() override { return this; }
-
- private:
-  const Model* m_;
-};
 
 class SlidingGroupTerm final : public Term, public EventSource {
  public:
@@ -88,21 +65,6 @@ class SlidingGroupTerm final : public Term, public EventSource {
   double committedT_ = 0.0;
   Eigen::VectorXd committedX_;
   double floor_ = 0.0;  // round-off floor of the last assembly (FR16)
-};
-
-class PointMassTerm final : public Term {
- public:
-  explicit PointMassTerm(const Model& m);
-  const char* name() const override { return "point_masses"; }
-  bool loadDependent() const override { return m_->hasGravity(); }  // gravity only
-  void addCouplings(std::vector<std::vector<int>>&) const override {}
-  void assemble(const EvalPoint& p, SystemAssembler& out) override;
-  void addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v, double t,
-                 EnergyBreakdown& e) const override;
-
- private:
-  const Model* m_;
-  std::vector<int> nodes_;  // the nodes with a point mass (not every node of a canopy mesh)
 };
 
 }  // namespace chute

@@ -1,113 +1,23 @@
-#include "terms/LineTerms.hpp"
+#include "terms/SlidingGroupTerm.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <initializer_list>
 #include <limits>
 
+#include "kernels/SliderFriction.hpp"
+#include "kernels/SlidingCableKernel.hpp"
+#include "terms/LineElementAssembly.hpp"
+
 namespace chute {
 
-using kernels::Mat6;
 using kernels::Mat9;
-using kernels::Vec6;
 using kernels::Vec9;
-
-namespace {
-Vec3 pos(const Eigen::VectorXd& x, int n) {
-  return x.segment<3>(3 * n);
-}
-
-// A slack tension-only part has no stiffness at all, so a massless node between slack parts
-// would make the Newton matrix singular. The Jacobian (never the residual) gets a spring of
-// kSlackTangent E A / L between the part's ends: converged states are untouched.
-constexpr double kSlackTangent = 1e-8;
-
-template <int N>
-void addSlackTangent(const kernels::PolylineResult<N>& res, const kernels::LineMaterial& mat,
-                     double L, const std::array<int, N>& pathToLocal, double cx,
-                     Eigen::Matrix<double, 3 * N, 3 * N>& J) {
-  if (!mat.tensionOnly || mat.compressionStiffnessRatio > 0.0 || res.strain > 0.0) return;
-  const Eigen::Matrix3d k = cx * kSlackTangent * mat.E * mat.area / L * Eigen::Matrix3d::Identity();
-  for (int seg = 0; seg + 1 < N; ++seg) {
-    const int a = pathToLocal[seg], b = pathToLocal[seg + 1];
-    J.template block<3, 3>(3 * a, 3 * a) += k;
-    J.template block<3, 3>(3 * b, 3 * b) += k;
-    J.template block<3, 3>(3 * a, 3 * b) -= k;
-    J.template block<3, 3>(3 * b, 3 * a) -= k;
-  }
-}
-
-Vec6 gather2(const Eigen::VectorXd& v, int a, int b) {
-  Vec6 r;
-  r << v.segment<3>(3 * a), v.segment<3>(3 * b);
-  return r;
-}
-Vec9 gather3(const Eigen::VectorXd& v, int a, int b, int c) {
-  Vec9 r;
-  r << v.segment<3>(3 * a), v.segment<3>(3 * b), v.segment<3>(3 * c);
-  return r;
-}
-
-// Internal force, inertia and gravity of one two-node cable, scattered through the assembler.
-void assembleCable(const Model& m, int a, int b, double L, int material, const EvalPoint& p,
-                   SystemAssembler& out) {
-  const auto& mat = m.materials[material];
-  const bool wantJ = out.wantMatrix();
-  const auto res = kernels::cableForce(pos(p.x, a), pos(p.x, b), L, mat, wantJ);
-  ++out.work().lineElastic;
-  Vec6 r = res.force;
-  Mat6 J = p.cx * res.stiffness;
-  if (wantJ) addSlackTangent<2>(res, mat, L, {0, 1}, p.cx, J);
-  if (mat.density > 0.0) {
-    ++out.work().lineMass;
-    if (p.inertia) {
-      const Mat6 M = kernels::cableMass(L, mat, m.massKind);
-      r += M * gather2(p.a, a, b);
-      J += p.ca * M;
-    }
-    if (m.hasGravity()) r -= p.loadFactor * kernels::cableGravity(L, mat, m.gravity);
-  }
-  out.add<2>({a, b}, r, wantJ ? &J : nullptr);
-}
-
-void cableEnergy(const Model& m, int a, int b, double L, int material, const Eigen::VectorXd& x,
-                 const Eigen::VectorXd& v, EnergyBreakdown& e) {
-  const auto& mat = m.materials[material];
-  e.strain += kernels::cableForce(pos(x, a), pos(x, b), L, mat, false).energy;
-  if (mat.density > 0.0) {
-    const Vec6 vv = gather2(v, a, b);
-    e.kinetic += 0.5 * vv.dot(kernels::cableMass(L, mat, m.massKind) * vv);
-    e.gravity -= kernels::cableGravity(L, mat, m.gravity).dot(gather2(x, a, b));
-  }
-}
-}  // namespace
-
-// ---- CableTerm -------------------------------------------------------------------------------
-void CableTerm::addCouplings(std::vector<std::vector<int>>& cliques) const {
-  for (const auto& c : m_->cables) cliques.push_back({c.a, c.b});
-}
-
-void CableTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
-  for (const auto& c : m_->cables)
-    if (!m_->lineSets[c.set].cutBy(p.t)) assembleCable(*m_, c.a, c.b, c.L, c.material, p, out);
-}
-
-void CableTerm::addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v, double t,
-                          EnergyBreakdown& e) const {
-  for (const auto& c : m_->cables)
-    if (!m_->lineSets[c.set].goneAt(t)) cableEnergy(*m_, c.a, c.b, c.L, c.material, x, v, e);
-}
-
-double CableTerm::stepEventFraction(const Eigen::VectorXd& x, const Eigen::VectorXd& dx) {
-  double fraction = 1.0;
-  for (const auto& c : m_->cables) {
-    const auto& mat = m_->materials[c.material];
-    if (!mat.tensionOnly || mat.compressionStiffnessRatio == 1.0) continue;  // no kink
-    fraction = std::min(fraction, kernels::slackTautCrossing(pos(x, c.b) - pos(x, c.a),
-                                                             pos(dx, c.b) - pos(dx, c.a), c.L));
-  }
-  return fraction;
-}
+using line_assembly::addSlackTangent;
+using line_assembly::assembleCable;
+using line_assembly::cableEnergy;
+using line_assembly::gather3;
+using line_assembly::pos;
 
 // ---- SlidingGroupTerm ------------------------------------------------------------------------
 SlidingGroupTerm::SlidingGroupTerm(const Model& m, int group, SliderSearch search)
@@ -167,11 +77,13 @@ bool atCommitted(const Eigen::VectorXd& x, const Eigen::VectorXd& committed,
   return true;
 }
 
-// Slack parts of the friction element: the Jacobian-only spring of addSlackTangent, per part.
+// Slack parts of the friction element: the Jacobian-only spring of addSlackTangent (RG5), per
+// part.
 void addSlackPartTangents(const kernels::FrictionSlidingResult& res,
                           const kernels::LineMaterial& mat, double L, double cx, Mat9& J) {
   if (!mat.tensionOnly || mat.compressionStiffnessRatio > 0.0) return;
-  const Eigen::Matrix3d k = cx * kSlackTangent * mat.E * mat.area / L * Eigen::Matrix3d::Identity();
+  const Eigen::Matrix3d k =
+      cx * kernels::kCableSlackTangent * mat.E * mat.area / L * Eigen::Matrix3d::Identity();
   const double strain[2] = {res.strain1, res.strain2};
   for (int part = 0; part < 2; ++part) {
     if (strain[part] > 0.0) continue;
@@ -318,37 +230,6 @@ void SlidingGroupTerm::addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd
       e.gravity -= kernels::slidingGravity(x1, x2, x3, L, mat, m_->gravity)
                        .force.dot(gather3(x, n1, n2, n3));
     }
-  }
-}
-
-// ---- PointMassTerm ---------------------------------------------------------------------------
-PointMassTerm::PointMassTerm(const Model& m) : m_(&m) {
-  for (int n = 0; n < m.numNodes(); ++n)
-    if (m.pointMass[n] != 0.0) nodes_.push_back(n);
-}
-
-void PointMassTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
-  const bool wantJ = out.wantMatrix();
-  for (int n : nodes_) {
-    const double mass = m_->pointMass[n];
-    Eigen::Matrix<double, 3, 1> r = Eigen::Matrix<double, 3, 1>::Zero();
-    Eigen::Matrix3d J = Eigen::Matrix3d::Zero();
-    if (p.inertia) {
-      r += mass * p.a.segment<3>(3 * n);
-      J += p.ca * mass * Eigen::Matrix3d::Identity();
-    }
-    r -= p.loadFactor * mass * m_->gravity;
-    ++out.work().pointMass;
-    out.add<1>({n}, r, wantJ ? &J : nullptr);
-  }
-}
-
-void PointMassTerm::addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v, double,
-                              EnergyBreakdown& e) const {
-  for (int n : nodes_) {
-    const double mass = m_->pointMass[n];
-    e.kinetic += 0.5 * mass * v.segment<3>(3 * n).squaredNorm();
-    e.gravity -= mass * m_->gravity.dot(x.segment<3>(3 * n));
   }
 }
 

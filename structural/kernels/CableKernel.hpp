@@ -1,0 +1,26 @@
+#pragma once
+// Two-node cable / truss element (docs/formulation.md section 1): internal force and tangent, mass
+// and gravity, and the location of a tension-only cable's slack / taut switch (RG4). Pure
+// functions of nodal coordinates and parameters; dof order is node by node, (x, y, z) per node.
+#include "kernels/LineElementTypes.hpp"
+#include "kernels/Regularisations.hpp"
+#include "kernels/UniformStrainPolyline.hpp"
+
+namespace chute::kernels {
+
+// F1-F3: nodes (a, b).
+PolylineResult<2> cableForce(const Vec3& xa, const Vec3& xb, double L, const LineMaterial& mat,
+                             bool withTangent);
+// F4: constant mass matrix.
+Mat6 cableMass(double L, const LineMaterial& mat, MassKind kind);
+// F5: constant gravity load (rho A0 L / 2) g on each node.
+Vec6 cableGravity(double L, const LineMaterial& mat, const Vec3& g);
+
+// Slack / taut switch of a tension-only cable (the kink of its energy at zero strain, where the
+// stiffness jumps from E A / L to nothing). Given the relative position d = x_b - x_a at the
+// step's start and its change delta over the step, returns the fraction of delta at which
+// |d + f delta| = L, or 1 if the motion does not cross it. A start or an end within
+// kSlackTautBand L of the switch is on it, not across it (RG4, kernels/Regularisations.hpp).
+double slackTautCrossing(const Vec3& d, const Vec3& delta, double L);
+
+}  // namespace chute::kernels

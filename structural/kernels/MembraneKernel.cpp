@@ -1,0 +1,141 @@
+#include "kernels/MembraneKernel.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+
+#include "kernels/MembraneShapeRules.hpp"
+
+namespace chute::kernels {
+
+using shape_rules::Rule3;
+using shape_rules::Rule4;
+
+// ---- reference geometry ------------------------------------------------------------------------
+namespace {
+template <int NumNodes, class Rule>
+MembraneReference<NumNodes> buildReference(const std::array<Eigen::Vector2d, NumNodes>& X2,
+                                           double thickness) {
+  MembraneReference<NumNodes> ref;
+  for (int k = 0; k < Rule::n; ++k) {
+    const auto dNdXi = Rule::dNdXi(k);
+    Eigen::Matrix2d J = Eigen::Matrix2d::Zero();  // J(alpha, beta) = dX_alpha / dxi_beta
+    for (int i = 0; i < NumNodes; ++i) J += X2[i] * dNdXi.row(i);
+    const double det = J.determinant();
+    ref.dN[k] = dNdXi * J.inverse();
+    ref.N[k] = Rule::N(k);
+    ref.weight[k] = Rule::weight(k) * det * thickness;
+    ref.area += Rule::weight(k) * det;
+  }
+  return ref;
+}
+
+// In-plane coordinates of the reference nodes in a frame with normal n.
+template <int NumNodes>
+std::array<Eigen::Vector2d, NumNodes> localCoordinates(const std::array<Vec3, NumNodes>& X,
+                                                       const Vec3& n, double prestrain) {
+  Vec3 e1 = X[1] - X[0];
+  e1 -= e1.dot(n) * n;
+  e1.normalize();
+  const Vec3 e2 = n.cross(e1);
+  std::array<Eigen::Vector2d, NumNodes> out;
+  for (int i = 0; i < NumNodes; ++i) {
+    const Vec3 r = X[i] - X[0];
+    out[i] = Eigen::Vector2d(r.dot(e1), r.dot(e2)) / (1.0 + prestrain);
+  }
+  return out;
+}
+}  // namespace
+
+MembraneReference<3> triangleReference(const std::array<Vec3, 3>& X, double thickness,
+                                       double prestrain) {
+  const Vec3 n = (X[1] - X[0]).cross(X[2] - X[0]).normalized();
+  return buildReference<3, Rule3>(localCoordinates<3>(X, n, prestrain), thickness);
+}
+
+MembraneReference<4> quadReference(const std::array<Vec3, 4>& X, double thickness,
+                                   double prestrain) {
+  const Vec3 n = (X[2] - X[0]).cross(X[3] - X[1]).normalized();
+  return buildReference<4, Rule4>(localCoordinates<4>(X, n, prestrain), thickness);
+}
+
+// ---- internal force and tangent (total Lagrangian) -----------------------------------------
+template <int NumNodes>
+MembraneResult<NumNodes> membraneForce(const std::array<Vec3, NumNodes>& x,
+                                       const MembraneReference<NumNodes>& ref,
+                                       const MembraneMaterial& mat, bool wrinkling,
+                                       bool withTangent) {
+  constexpr int kDofs = 3 * NumNodes;
+  MembraneResult<NumNodes> r;
+  r.force.setZero();
+  r.stiffness.setZero();
+  int worst = 0;
+  for (int k = 0; k < MembraneReference<NumNodes>::kGauss; ++k) {
+    const auto& dN = ref.dN[k];
+    Eigen::Matrix<double, 3, 2> F = Eigen::Matrix<double, 3, 2>::Zero();  // dx / dX
+    for (int i = 0; i < NumNodes; ++i) F += x[i] * dN.row(i);
+    const Eigen::Matrix2d C = F.transpose() * F;
+    const Vec3 e(0.5 * (C(0, 0) - 1.0), 0.5 * (C(1, 1) - 1.0), C(0, 1));  // (E11, E22, 2E12)
+    const PlaneStress ps = planeStressSVK(e, mat.E, mat.nu, wrinkling);
+    worst = std::max(worst, static_cast<int>(ps.state));
+    // B: de = B dx; node i: (dN_i1 F1, dN_i2 F2, dN_i2 F1 + dN_i1 F2).
+    Eigen::Matrix<double, 3, kDofs> B;
+    for (int i = 0; i < NumNodes; ++i) {
+      B.template block<1, 3>(0, 3 * i) = dN(i, 0) * F.col(0).transpose();
+      B.template block<1, 3>(1, 3 * i) = dN(i, 1) * F.col(1).transpose();
+      B.template block<1, 3>(2, 3 * i) =
+          dN(i, 1) * F.col(0).transpose() + dN(i, 0) * F.col(1).transpose();
+    }
+    const double w = ref.weight[k];
+    r.energy += w * ps.energy;
+    r.force.noalias() += w * B.transpose() * ps.stress;
+    if (withTangent) {
+      r.stiffness.noalias() += w * B.transpose() * ps.tangent * B;
+      Eigen::Matrix2d S;
+      S << ps.stress[0], ps.stress[2], ps.stress[2], ps.stress[1];
+      const Eigen::Matrix<double, NumNodes, NumNodes> G = dN * S * dN.transpose();
+      for (int i = 0; i < NumNodes; ++i)
+        for (int j = 0; j < NumNodes; ++j)
+          r.stiffness.template block<3, 3>(3 * i, 3 * j).diagonal().array() += w * G(i, j);
+    }
+    Eigen::Matrix2d S;
+    S << ps.stress[0], ps.stress[2], ps.stress[2], ps.stress[1];
+    Eigen::Matrix2d Et;
+    Et << e[0], 0.5 * e[2], 0.5 * e[2], e[1];
+    const Eigen::Vector2d sv = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(S).eigenvalues();
+    const Eigen::Vector2d ev = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(Et).eigenvalues();
+    r.principalStress += Eigen::Vector2d(sv[1], sv[0]) / MembraneReference<NumNodes>::kGauss;
+    r.principalStrain += Eigen::Vector2d(ev[1], ev[0]) / MembraneReference<NumNodes>::kGauss;
+  }
+  r.state = static_cast<WrinkleState>(worst);
+  return r;
+}
+
+template <int NumNodes>
+Eigen::Matrix<double, NumNodes, NumNodes> membraneMass(const MembraneReference<NumNodes>& ref,
+                                                       double density, bool lumped) {
+  Eigen::Matrix<double, NumNodes, NumNodes> M = Eigen::Matrix<double, NumNodes, NumNodes>::Zero();
+  if constexpr (NumNodes == 3) {
+    // Exact for linear shape functions: rho t A / 12 (1 + delta_ij).
+    const double m = density * ref.weight[0];
+    M.setConstant(m / 12.0);
+    M.diagonal().array() = m / 6.0;
+  } else {
+    for (int k = 0; k < MembraneReference<NumNodes>::kGauss; ++k)
+      M += density * ref.weight[k] * ref.N[k] * ref.N[k].transpose();
+  }
+  if (lumped) {
+    const Eigen::Matrix<double, NumNodes, 1> rows = M.rowwise().sum();
+    M.setZero();
+    M.diagonal() = rows;
+  }
+  return M;
+}
+
+template MembraneResult<3> membraneForce<3>(const std::array<Vec3, 3>&, const MembraneReference<3>&,
+                                            const MembraneMaterial&, bool, bool);
+template MembraneResult<4> membraneForce<4>(const std::array<Vec3, 4>&, const MembraneReference<4>&,
+                                            const MembraneMaterial&, bool, bool);
+template Eigen::Matrix<double, 3, 3> membraneMass<3>(const MembraneReference<3>&, double, bool);
+template Eigen::Matrix<double, 4, 4> membraneMass<4>(const MembraneReference<4>&, double, bool);
+
+}  // namespace chute::kernels

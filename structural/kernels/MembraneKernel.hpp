@@ -1,0 +1,58 @@
+#pragma once
+// Membrane elements (docs/formulation.md section 5): three-node triangle (CST) and four-node
+// quadrilateral (2x2 Gauss), total Lagrangian, plane-stress St Venant-Kirchhoff in each element's
+// local reference frame, with an optional tension-field (wrinkling) model
+// (kernels/PlaneStressWrinkling.hpp).
+#include <Eigen/Core>
+#include <array>
+
+#include "kernels/PlaneStressWrinkling.hpp"
+
+namespace chute::kernels {
+
+struct MembraneMaterial {
+  double E = 0.0;
+  double nu = 0.0;
+  double thickness = 0.0;
+  double density = 0.0;  // mass per reference volume
+};
+
+// Reference data of an element: shape-function gradients in the element's local reference
+// frame and integration weights (reference area times thickness) at each integration point.
+template <int NumNodes>
+struct MembraneReference {
+  static constexpr int kGauss = NumNodes == 3 ? 1 : 4;
+  std::array<Eigen::Matrix<double, NumNodes, 2>, kGauss> dN;  // dN_i / dX_alpha
+  std::array<Eigen::Matrix<double, NumNodes, 1>, kGauss> N;   // N_i
+  std::array<double, kGauss> weight;                          // dA0 t0
+  double area = 0.0;                                          // reference area
+};
+// prestrain: the reference is the given geometry shrunk by 1 / (1 + prestrain) in its plane.
+MembraneReference<3> triangleReference(const std::array<Vec3, 3>& X, double thickness,
+                                       double prestrain = 0.0);
+MembraneReference<4> quadReference(const std::array<Vec3, 4>& X, double thickness,
+                                   double prestrain = 0.0);
+
+template <int NumNodes>
+struct MembraneResult {
+  static constexpr int kDofs = 3 * NumNodes;
+  double energy = 0.0;
+  Eigen::Matrix<double, kDofs, 1> force;
+  Eigen::Matrix<double, kDofs, kDofs> stiffness;
+  WrinkleState state = WrinkleState::Taut;  // the most relaxed state of its integration points
+  Eigen::Vector2d principalStress = Eigen::Vector2d::Zero();  // of S, averaged over the points
+  Eigen::Vector2d principalStrain = Eigen::Vector2d::Zero();  // of E, averaged
+};
+
+template <int NumNodes>
+MembraneResult<NumNodes> membraneForce(const std::array<Vec3, NumNodes>& x,
+                                       const MembraneReference<NumNodes>& ref,
+                                       const MembraneMaterial& mat, bool wrinkling,
+                                       bool withTangent);
+
+// Consistent mass rho t0 int N_i N_j dA (scalar per node pair; times I3) and its row sums.
+template <int NumNodes>
+Eigen::Matrix<double, NumNodes, NumNodes> membraneMass(const MembraneReference<NumNodes>& ref,
+                                                       double density, bool lumped);
+
+}  // namespace chute::kernels

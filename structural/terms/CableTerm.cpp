@@ -1,0 +1,41 @@
+#include "terms/CableTerm.hpp"
+
+#include <algorithm>
+
+#include "kernels/CableKernel.hpp"
+#include "terms/LineElementAssembly.hpp"
+
+namespace chute {
+
+using line_assembly::assembleCable;
+using line_assembly::cableEnergy;
+using line_assembly::pos;
+
+// ---- CableTerm -------------------------------------------------------------------------------
+void CableTerm::addCouplings(std::vector<std::vector<int>>& cliques) const {
+  for (const auto& c : m_->cables) cliques.push_back({c.a, c.b});
+}
+
+void CableTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
+  for (const auto& c : m_->cables)
+    if (!m_->lineSets[c.set].cutBy(p.t)) assembleCable(*m_, c.a, c.b, c.L, c.material, p, out);
+}
+
+void CableTerm::addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v, double t,
+                          EnergyBreakdown& e) const {
+  for (const auto& c : m_->cables)
+    if (!m_->lineSets[c.set].goneAt(t)) cableEnergy(*m_, c.a, c.b, c.L, c.material, x, v, e);
+}
+
+double CableTerm::stepEventFraction(const Eigen::VectorXd& x, const Eigen::VectorXd& dx) {
+  double fraction = 1.0;
+  for (const auto& c : m_->cables) {
+    const auto& mat = m_->materials[c.material];
+    if (!mat.tensionOnly || mat.compressionStiffnessRatio == 1.0) continue;  // no kink
+    fraction = std::min(fraction, kernels::slackTautCrossing(pos(x, c.b) - pos(x, c.a),
+                                                             pos(dx, c.b) - pos(dx, c.a), c.L));
+  }
+  return fraction;
+}
+
+}  // namespace chute

@@ -1,0 +1,57 @@
+#include "terms/LineDragTerm.hpp"
+
+#include "kernels/LineDragKernel.hpp"
+
+namespace chute {
+
+using kernels::Vec3;
+
+// ---- LineDragTerm --------------------------------------------------------------------------
+void LineDragTerm::addCouplings(std::vector<std::vector<int>>& cliques) const {
+  for (const auto& d : m_->drags) {
+    for (const auto& e : d.edges) cliques.push_back({e[0], e[1]});
+    for (const auto& c : m_->cables)
+      if (c.set == d.lineSet) cliques.push_back({c.a, c.b});
+    for (const auto& g : m_->groups) {
+      if (g.set != d.lineSet) continue;
+      for (int k = 0; k < g.numElements(); ++k)
+        for (int s : g.sliders) cliques.push_back({g.chain[k], g.chain[k + 1], s});
+    }
+  }
+}
+
+void LineDragTerm::addSegment(int a, int b, const Vec3& wind, double c, const EvalPoint& p,
+                              SystemAssembler& out) const {
+  const bool wantJ = out.wantMatrix();
+  const auto d = kernels::lineDrag(p.x.segment<3>(3 * a), p.x.segment<3>(3 * b),
+                                   p.v.segment<3>(3 * a), p.v.segment<3>(3 * b), wind, c, wantJ);
+  ++out.work().drag;
+  const Eigen::Matrix<double, 6, 6> J = p.cx * d.dPosition + p.cv * d.dVelocity;
+  out.add<2>({a, b}, d.residual, wantJ ? &J : nullptr);
+}
+
+void LineDragTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
+  if (!p.inertia) return;  // drag needs motion: nothing in statics
+  for (const auto& d : m_->drags) {
+    // Drag is an applied load: scaled by the load factor like the others (1 in dynamics).
+    const double coef = d.coefficient * p.loadFactor;
+    for (const auto& e : d.edges) addSegment(e[0], e[1], d.wind, coef, p, out);
+    for (const auto& c : m_->cables)
+      if (c.set == d.lineSet) addSegment(c.a, c.b, d.wind, coef, p, out);
+    for (size_t gi = 0; gi < m_->groups.size(); ++gi) {
+      const auto& g = m_->groups[gi];
+      if (g.set != d.lineSet) continue;
+      for (int k = 0; k < g.numElements(); ++k) {
+        const int s = groups_[gi]->sliderOfElement(k);
+        if (s < 0) {
+          addSegment(g.chain[k], g.chain[k + 1], d.wind, coef, p, out);
+        } else {  // the two straight parts through the slider
+          addSegment(g.chain[k], g.sliders[s], d.wind, coef, p, out);
+          addSegment(g.sliders[s], g.chain[k + 1], d.wind, coef, p, out);
+        }
+      }
+    }
+  }
+}
+
+}  // namespace chute

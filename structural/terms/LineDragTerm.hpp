@@ -1,0 +1,31 @@
+#pragma once
+// Drag on line sets (cables, sliding groups) relative to a wind (docs/formulation.md section 6),
+// with position and velocity tangents.
+#include <vector>
+
+#include "assembly/Term.hpp"
+#include "model/Model.hpp"
+#include "model/SlidingGroupState.hpp"
+
+namespace chute {
+
+class LineDragTerm final : public Term {
+ public:
+  // groups: the sliding-group states in model order (drag on active elements acts on both parts).
+  LineDragTerm(const Model& m, std::vector<const SlidingGroupState*> groups)
+      : m_(&m), groups_(std::move(groups)) {}
+  const char* name() const override { return "drag"; }
+  void addCouplings(std::vector<std::vector<int>>& cliques) const override;
+  void assemble(const EvalPoint& p, SystemAssembler& out) override;
+  void addEnergy(const Eigen::VectorXd&, const Eigen::VectorXd&, double,
+                 EnergyBreakdown&) const override {}
+  bool symmetricJacobian() const override { return false; }
+
+ private:
+  void addSegment(int a, int b, const kernels::Vec3& wind, double c, const EvalPoint& p,
+                  SystemAssembler& out) const;
+  const Model* m_;
+  std::vector<const SlidingGroupState*> groups_;
+};
+
+}  // namespace chute

@@ -1,0 +1,58 @@
+#pragma once
+// Shared by the line-element terms (CableTerm, SlidingGroupTerm): nodal gathers, the Jacobian-only
+// slack spring (docs/formulation.md RG5) and one two-node cable's assembly and energy (an
+// inactive element of a sliding group is a plain cable, docs/formulation.md section 3).
+// Internal to terms/.
+#include <array>
+
+#include "assembly/SystemAssembler.hpp"
+#include "assembly/Term.hpp"
+#include "kernels/CableKernel.hpp"
+#include "kernels/Regularisations.hpp"
+#include "model/Model.hpp"
+
+namespace chute::line_assembly {
+
+inline Vec3 pos(const Eigen::VectorXd& x, int n) {
+  return x.segment<3>(3 * n);
+}
+
+inline kernels::Vec6 gather2(const Eigen::VectorXd& v, int a, int b) {
+  kernels::Vec6 r;
+  r << v.segment<3>(3 * a), v.segment<3>(3 * b);
+  return r;
+}
+inline kernels::Vec9 gather3(const Eigen::VectorXd& v, int a, int b, int c) {
+  kernels::Vec9 r;
+  r << v.segment<3>(3 * a), v.segment<3>(3 * b), v.segment<3>(3 * c);
+  return r;
+}
+
+// A slack tension-only part has no stiffness at all, so a massless node between slack parts
+// would make the Newton matrix singular. The Jacobian (never the residual) gets a spring of
+// kCableSlackTangent E A / L between the part's ends (RG5): converged states are untouched.
+template <int N>
+void addSlackTangent(const kernels::PolylineResult<N>& res, const kernels::LineMaterial& mat,
+                     double L, const std::array<int, N>& pathToLocal, double cx,
+                     Eigen::Matrix<double, 3 * N, 3 * N>& J) {
+  if (!mat.tensionOnly || mat.compressionStiffnessRatio > 0.0 || res.strain > 0.0) return;
+  const Eigen::Matrix3d k =
+      cx * kernels::kCableSlackTangent * mat.E * mat.area / L * Eigen::Matrix3d::Identity();
+  for (int seg = 0; seg + 1 < N; ++seg) {
+    const int a = pathToLocal[seg], b = pathToLocal[seg + 1];
+    J.template block<3, 3>(3 * a, 3 * a) += k;
+    J.template block<3, 3>(3 * b, 3 * b) += k;
+    J.template block<3, 3>(3 * a, 3 * b) -= k;
+    J.template block<3, 3>(3 * b, 3 * a) -= k;
+  }
+}
+
+// Internal force, inertia and gravity of one two-node cable, scattered through the assembler.
+void assembleCable(const Model& m, int a, int b, double L, int material, const EvalPoint& p,
+                   SystemAssembler& out);
+
+// Strain, kinetic and gravity energy of one two-node cable.
+void cableEnergy(const Model& m, int a, int b, double L, int material, const Eigen::VectorXd& x,
+                 const Eigen::VectorXd& v, EnergyBreakdown& e);
+
+}  // namespace chute::line_assembly

@@ -1,0 +1,47 @@
+#pragma once
+// Internal force, inertia and gravity of every membrane element (docs/formulation.md section 5),
+// with the tension-field model where its set asks for it; keeps each element's last wrinkling
+// state.
+#include <vector>
+
+#include "assembly/Term.hpp"
+#include "model/Model.hpp"
+
+namespace chute {
+
+class MembraneTerm final : public Term {
+ public:
+  explicit MembraneTerm(const Model& m);
+  const char* name() const override { return "membranes"; }
+  bool loadDependent() const override { return m_->hasGravity(); }  // gravity only
+  void addCouplings(std::vector<std::vector<int>>& cliques) const override;
+  void assemble(const EvalPoint& p, SystemAssembler& out) override;
+  void addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v, double t,
+                 EnergyBreakdown& e) const override;
+  // Wrinkling state and principal stresses / strains of each element at the last assembly.
+  struct ElementState {
+    kernels::WrinkleState state = kernels::WrinkleState::Taut;
+    Eigen::Vector2d principalStress = Eigen::Vector2d::Zero();
+    Eigen::Vector2d principalStrain = Eigen::Vector2d::Zero();
+  };
+  // A function of the current strain, recomputed at every assembly (not history); kept so that
+  // output after a coupling checkpoint is restored shows the restored state.
+  const std::vector<ElementState>& elementStates() const { return states_; }
+  bool hasHistory() const override { return true; }
+  void save(History& h) const override;
+  void load(HistoryReader& h) override;
+  // Elements around a node, for stress probes.
+  std::vector<int> elementsAt(int node) const;
+
+ private:
+  template <int N>
+  void assembleElement(int e, const kernels::MembraneReference<N>& ref, const EvalPoint& p,
+                       SystemAssembler& out);
+  const Model* m_;
+  std::vector<int> slot_;  // per element: index into refs3_ or refs4_
+  std::vector<kernels::MembraneReference<3>> refs3_;
+  std::vector<kernels::MembraneReference<4>> refs4_;
+  std::vector<ElementState> states_;
+};
+
+}  // namespace chute

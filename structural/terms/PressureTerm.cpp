@@ -1,0 +1,49 @@
+#include "terms/PressureTerm.hpp"
+
+#include <algorithm>
+#include <type_traits>
+
+#include "kernels/PressureKernel.hpp"
+#include "terms/MembraneElementAssembly.hpp"
+
+namespace chute {
+
+using membrane_assembly::gatherNodes;
+using membrane_assembly::nodeIds;
+
+// ---- PressureTerm --------------------------------------------------------------------------
+void PressureTerm::addCouplings(std::vector<std::vector<int>>& cliques) const {
+  // Only the loaded sets' elements (the membrane term already couples all of them).
+  for (const auto& e : m_->membranes)
+    if (std::any_of(m_->pressures.begin(), m_->pressures.end(),
+                    [&](const PressureLoadDef& l) { return l.set == e.set; }))
+      cliques.emplace_back(e.nodes.begin(), e.nodes.begin() + e.numNodes);
+}
+
+void PressureTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
+  const bool wantJ = out.wantMatrix();
+  for (const auto& load : m_->pressures) {
+    const double p0 = p.loadFactor * load.at(p.t);
+    if (p0 == 0.0) continue;
+    int inSet = 0;
+    for (const auto& e : m_->membranes) {
+      if (e.set != load.set) continue;
+      const double pr = load.elementFactor.empty() ? p0 : p0 * load.elementFactor[inSet];
+      ++inSet;
+      auto one = [&](auto nodesTag) {
+        constexpr int N = decltype(nodesTag)::value;
+        const auto pl = kernels::pressureLoad<N>(gatherNodes<N>(p.x, e), pr, wantJ);
+        ++out.work().pressure;
+        const Eigen::Matrix<double, 3 * N, 1> r = -pl.force;
+        const Eigen::Matrix<double, 3 * N, 3 * N> J = -p.cx * pl.dForce;
+        out.add<N>(nodeIds<N>(e), r, wantJ ? &J : nullptr);
+      };
+      if (e.numNodes == 3)
+        one(std::integral_constant<int, 3>{});
+      else
+        one(std::integral_constant<int, 4>{});
+    }
+  }
+}
+
+}  // namespace chute

@@ -1,0 +1,23 @@
+#pragma once
+// Follower pressure on membrane sets (docs/formulation.md section 6), with its non-symmetric load
+// stiffness.
+#include "assembly/Term.hpp"
+#include "model/Model.hpp"
+
+namespace chute {
+
+class PressureTerm final : public Term {
+ public:
+  explicit PressureTerm(const Model& m) : m_(&m) {}
+  const char* name() const override { return "pressure"; }
+  void addCouplings(std::vector<std::vector<int>>& cliques) const override;
+  void assemble(const EvalPoint& p, SystemAssembler& out) override;
+  void addEnergy(const Eigen::VectorXd&, const Eigen::VectorXd&, double,
+                 EnergyBreakdown&) const override {}
+  bool symmetricJacobian() const override { return false; }
+
+ private:
+  const Model* m_;
+};
+
+}  // namespace chute
