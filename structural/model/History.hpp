@@ -4,7 +4,7 @@
 // load() reads it back and checks every value it reads (a checkpoint file may be forged).
 // Checkpoints, coupling windows and step rejection all go through this one record
 // (StructuralSystem::saveState), so a term with history that save/load misses cannot pass
-// tests/structural/test_history.cpp.
+// tests/structural/solver/test_history.cpp.
 #include <Eigen/Core>
 #include <cstdint>
 #include <stdexcept>

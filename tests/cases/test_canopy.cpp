@@ -14,16 +14,10 @@
 #include "solver/StructuralSystem.hpp"
 #include "support/AssembledJacobian.hpp"
 #include "support/FiniteDifference.hpp"
+#include "support/Scenes.hpp"
 
 using namespace chute;
-
-namespace {
-std::string writeCase(const std::string& name, const std::string& text) {
-  const std::string path = ::testing::TempDir() + name + ".toml";
-  std::ofstream(path) << text;
-  return path;
-}
-}  // namespace
+using chute::testing::writeCase;
 
 TEST(Hencky, CentreDeflectionConvergesUnderRefinement) {
   std::vector<int> rings = {4, 8, 16};

@@ -11,15 +11,12 @@
 #include "solver/StructuralSystem.hpp"
 #include "support/AssembledJacobian.hpp"
 #include "support/FiniteDifference.hpp"
+#include "support/Scenes.hpp"
 
 using namespace chute;
+using chute::testing::writeCase;
 
 namespace {
-std::string writeCase(const std::string& name, const std::string& text) {
-  const std::string path = ::testing::TempDir() + name + ".toml";
-  std::ofstream(path) << text;
-  return path;
-}
 
 std::string plateCase(const std::string& element) {
   return R"(

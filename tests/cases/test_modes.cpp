@@ -6,15 +6,12 @@
 
 #include "app/RunCase.hpp"
 #include "case/CaseSpec.hpp"
+#include "support/Scenes.hpp"
 
 using namespace chute;
+using chute::testing::writeCase;
 
 namespace {
-std::string writeCase(const std::string& name, const std::string& text) {
-  const std::string path = ::testing::TempDir() + name + ".toml";
-  std::ofstream(path) << text;
-  return path;
-}
 
 // A bead of weight W on a rope through its slider, ends fixed at (0,0,0) and (2,0,0).
 std::string beadCase(const std::string& solver, const std::string& extra = "",

@@ -13,15 +13,12 @@
 #include "app/RunCase.hpp"
 #include "case/CaseSpec.hpp"
 #include "solver/StructuralSystem.hpp"
+#include "support/Scenes.hpp"
 
 using namespace chute;
+using chute::testing::writeCase;
 
 namespace {
-std::string writeCase(const std::string& name, const std::string& text) {
-  const std::string path = ::testing::TempDir() + name + ".toml";
-  std::ofstream(path) << text;
-  return path;
-}
 
 // Pieces of the scenes. Units m, kg, s, N.
 const char* kLines = R"(

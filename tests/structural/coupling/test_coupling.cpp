@@ -17,17 +17,14 @@
 #include "solver/GeneralizedAlpha.hpp"
 #include "support/AssembledJacobian.hpp"
 #include "support/FiniteDifference.hpp"
+#include "support/Scenes.hpp"
 #include "terms/SlidingGroupTerm.hpp"
 
 using namespace chute;
 using namespace chute::coupling;
+using chute::testing::writeCase;
 
 namespace {
-std::string writeCase(const std::string& name, const std::string& text) {
-  const std::string path = ::testing::TempDir() + name + ".toml";
-  std::ofstream(path) << text;
-  return path;
-}
 template <int N>
 std::array<Vec3, N> unstack(const Eigen::VectorXd& v) {
   std::array<Vec3, N> out;

@@ -1,63 +1,26 @@
-// Membrane, pressure and drag kernels: tangents against central differences of forces, forces
-// against differences of the energy, in the taut, wrinkled and slack states; patch tests.
+// Membrane kernel: tangents against central differences of forces, forces against differences of
+// the energy, in the taut, wrinkled and slack states; patch tests; mass.
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
 #include <random>
 
-#include "kernels/LineDragKernel.hpp"
 #include "kernels/MembraneKernel.hpp"
-#include "kernels/PressureKernel.hpp"
 #include "support/FiniteDifference.hpp"
+#include "support/MembraneGeometry.hpp"
 
 using namespace chute::kernels;
+using chute::testing::deformed;
 using chute::testing::fdGradient;
 using chute::testing::fdJacobian;
+using chute::testing::referenceNodes;
 using chute::testing::relativeError;
+using chute::testing::stack;
+using chute::testing::unstack;
 
 namespace {
 
 const MembraneMaterial kFabric{4.32e6, 0.3, 5e-4, 1.6};
-
-Mat3 randomRotation(std::mt19937& rng) {
-  std::normal_distribution<double> n(0, 1);
-  return Eigen::Quaterniond(n(rng), n(rng), n(rng), n(rng)).normalized().toRotationMatrix();
-}
-
-template <int N>
-std::array<Vec3, N> referenceNodes() {
-  if constexpr (N == 3)
-    return {Vec3(0.1, 0.2, 0.0), Vec3(1.3, 0.1, 0.1), Vec3(0.4, 0.9, -0.05)};
-  else
-    return {Vec3(0.0, 0.0, 0.0), Vec3(1.1, 0.05, 0.0), Vec3(1.2, 0.9, 0.02), Vec3(-0.1, 1.0, 0.0)};
-}
-
-// Current nodes: a homogeneous stretch (lx, ly, shear) of the reference, rotated and with a
-// small non-homogeneous perturbation (so that quads see varying strain).
-template <int N>
-std::array<Vec3, N> deformed(const std::array<Vec3, N>& X, double lx, double ly, double shear,
-                             std::mt19937& rng, double noise) {
-  Mat3 U;
-  U << lx, shear, 0, 0, ly, 0, 0, 0, 1;
-  const Mat3 Q = randomRotation(rng);
-  std::uniform_real_distribution<double> u(-noise, noise);
-  std::array<Vec3, N> x;
-  for (int i = 0; i < N; ++i) x[i] = Q * (U * X[i]) + Vec3(u(rng), u(rng), u(rng)) + Vec3(2, -1, 3);
-  return x;
-}
-
-template <int N>
-Eigen::VectorXd stack(const std::array<Vec3, N>& x) {
-  Eigen::VectorXd v(3 * N);
-  for (int i = 0; i < N; ++i) v.segment<3>(3 * i) = x[i];
-  return v;
-}
-template <int N>
-std::array<Vec3, N> unstack(const Eigen::VectorXd& v) {
-  std::array<Vec3, N> x;
-  for (int i = 0; i < N; ++i) x[i] = v.segment<3>(3 * i);
-  return x;
-}
 
 template <int N>
 MembraneReference<N> reference(const std::array<Vec3, N>& X) {
@@ -118,28 +81,6 @@ TEST(MembraneKernel, TriangleTangentAndForceMatchFiniteDifferencesInEveryState) 
 
 TEST(MembraneKernel, QuadTangentAndForceMatchFiniteDifferencesInEveryState) {
   for (const auto& c : kStates) checkMembraneFD<4>(c);
-}
-
-TEST(MembraneKernel, PlaneStressTangentMatchesItsStressAcrossStates) {
-  // The relaxed energy is C1: stress continuous across the state boundaries; tangent = dS/de.
-  double worst = 0;
-  for (const Vec3& e :
-       {Vec3(0.02, 0.01, 0.004), Vec3(0.03, -0.02, 0.01), Vec3(0.01, -0.004, 0.002)}) {
-    const auto ps = planeStressSVK(e, 1e6, 0.3, true);
-    auto stress = [](const Eigen::VectorXd& y) -> Eigen::VectorXd {
-      return planeStressSVK(Vec3(y), 1e6, 0.3, true).stress;
-    };
-    worst =
-        std::max(worst, relativeError(ps.tangent, fdJacobian(stress, Eigen::VectorXd(e), 1e-9)));
-  }
-  EXPECT_LE(worst, 1e-6);
-  // Continuity of the stress at the taut/wrinkled boundary E2 = -nu E1.
-  const double nu = 0.3, e1 = 0.02;
-  const auto below = planeStressSVK(Vec3(e1, -nu * e1 - 1e-12, 0), 1e6, nu, true);
-  const auto above = planeStressSVK(Vec3(e1, -nu * e1 + 1e-12, 0), 1e6, nu, true);
-  EXPECT_EQ(below.state, WrinkleState::Wrinkled);
-  EXPECT_EQ(above.state, WrinkleState::Taut);
-  EXPECT_LE((below.stress - above.stress).norm(), 1e-5 * above.stress.norm());
 }
 
 TEST(MembranePatch, UniformStretchGivesTheExactUniformStress) {
@@ -206,59 +147,4 @@ TEST(MembraneKernel, LumpedMassIsRowSumOfConsistentAndTotalsTheElementMass) {
              membraneMass<4>(r4, kFabric.density, true).diagonal())
                 .norm(),
             1e-15);
-}
-
-TEST(PressureKernel, LoadStiffnessMatchesFiniteDifferencesAndTotalsPressureTimesArea) {
-  std::mt19937 rng(9);
-  const double p = 3.7;
-  double worst = 0;
-  for (int trial = 0; trial < 10; ++trial) {
-    const auto x3 = deformed<3>(referenceNodes<3>(), 1.1, 0.9, 0.2, rng, 0.05);
-    const auto x4 = deformed<4>(referenceNodes<4>(), 1.1, 0.9, 0.2, rng, 0.05);
-    const auto l3 = pressureLoad<3>(x3, p, true);
-    const auto l4 = pressureLoad<4>(x4, p, true);
-    auto f3 = [&](const Eigen::VectorXd& y) -> Eigen::VectorXd {
-      return pressureLoad<3>(unstack<3>(y), p, false).force;
-    };
-    auto f4 = [&](const Eigen::VectorXd& y) -> Eigen::VectorXd {
-      return pressureLoad<4>(unstack<4>(y), p, false).force;
-    };
-    worst = std::max(worst, relativeError(l3.dForce, fdJacobian(f3, stack<3>(x3), 1e-6)));
-    worst = std::max(worst, relativeError(l4.dForce, fdJacobian(f4, stack<4>(x4), 1e-6)));
-    // Total force = p times the vector area.
-    const Vec3 area3 = 0.5 * (x3[1] - x3[0]).cross(x3[2] - x3[0]);
-    Vec3 total = Vec3::Zero();
-    for (int i = 0; i < 3; ++i) total += l3.force.segment<3>(3 * i);
-    EXPECT_LE((total - p * area3).norm(), 1e-12 * p * area3.norm());
-  }
-  std::printf("pressure load stiffness: worst relative error vs FD %.2e\n", worst);
-  EXPECT_LE(worst, 1e-6);
-}
-
-TEST(DragKernel, PositionAndVelocityTangentsMatchFiniteDifferences) {
-  std::mt19937 rng(2);
-  std::normal_distribution<double> n(0, 1);
-  const double c = 0.5 * 0.0023769 * 1.2 * 0.03;
-  double worstX = 0, worstV = 0;
-  for (int trial = 0; trial < 20; ++trial) {
-    Eigen::VectorXd x(6), v(6);
-    for (int k = 0; k < 6; ++k) x[k] = n(rng), v[k] = 20 * n(rng);
-    const Vec3 wind(3, -2, 1);
-    auto at = [&](const Eigen::VectorXd& xx, const Eigen::VectorXd& vv, bool t) {
-      return lineDrag(xx.head<3>(), xx.tail<3>(), vv.head<3>(), vv.tail<3>(), wind, c, t);
-    };
-    const auto d = at(x, v, true);
-    auto fx = [&](const Eigen::VectorXd& y) -> Eigen::VectorXd { return at(y, v, false).residual; };
-    auto fv = [&](const Eigen::VectorXd& y) -> Eigen::VectorXd { return at(x, y, false).residual; };
-    worstX = std::max(worstX, relativeError(d.dPosition, fdJacobian(fx, x, 1e-6)));
-    worstV = std::max(worstV, relativeError(d.dVelocity, fdJacobian(fv, v, 1e-5)));
-    // Drag opposes the normal relative motion.
-    const Vec3 e = (x.tail<3>() - x.head<3>()).normalized();
-    Vec3 vr = 0.5 * (v.head<3>() + v.tail<3>()) - wind;
-    vr -= vr.dot(e) * e;
-    EXPECT_GT(d.residual.head<3>().dot(vr), 0.0);
-  }
-  std::printf("line drag: worst relative error dr/dx %.2e, dr/dv %.2e\n", worstX, worstV);
-  EXPECT_LE(worstX, 1e-6);
-  EXPECT_LE(worstV, 1e-6);
 }

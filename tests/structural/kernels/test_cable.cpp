@@ -1,0 +1,117 @@
+// Finite-difference and invariant checks of the two-node cable kernel (F1-F5) at many random
+// configurations, and the location of its slack / taut switch (RG4).
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <random>
+
+#include "kernels/CableKernel.hpp"
+#include "support/FiniteDifference.hpp"
+#include "support/LineGeometry.hpp"
+
+using namespace chute;
+using namespace chute::kernels;
+using chute::testing::fdGradient;
+using chute::testing::fdJacobian;
+using chute::testing::randomUnit;
+using chute::testing::relativeError;
+using chute::testing::rope;
+
+TEST(CableKernel, TangentMatchesFiniteDifferenceOfForceAndForceOfEnergy) {
+  std::mt19937 rng(1);
+  double worstK = 0, worstF = 0;
+  for (bool tensionOnly : {true, false})
+    for (double strain : {0.03, 1e-4, -0.02}) {
+      if (tensionOnly && strain < 0) continue;
+      for (int trial = 0; trial < 50; ++trial) {
+        const double L = 0.5 + trial * 0.05;
+        const Vec3 xa(0.3, -0.2, 1.1);
+        const Vec3 xb = xa + L * std::sqrt(1 + 2 * strain) * randomUnit(rng);
+        Eigen::VectorXd x(6);
+        x << xa, xb;
+        const auto mat = rope(tensionOnly);
+        const auto r = cableForce(xa, xb, L, mat, true);
+        auto force = [&](const Eigen::VectorXd& y) -> Eigen::VectorXd {
+          return cableForce(y.head<3>(), y.tail<3>(), L, mat, false).force;
+        };
+        auto energy = [&](const Eigen::VectorXd& y) {
+          return cableForce(y.head<3>(), y.tail<3>(), L, mat, false).energy;
+        };
+        const double h = 1e-6 * L;
+        worstK = std::max(worstK, relativeError(r.stiffness, fdJacobian(force, x, h)));
+        worstF = std::max(worstF, relativeError(r.force, fdGradient(energy, x, h)));
+      }
+    }
+  std::printf("cable: worst relative error  K vs FD(f) %.2e   f vs FD(W) %.2e\n", worstK, worstF);
+  EXPECT_LE(worstK, 1e-6);
+  EXPECT_LE(worstF, 1e-6);
+}
+
+TEST(CableKernel, SlackCableCarriesNothingTrussCarriesCompression) {
+  const Vec3 xa(0, 0, 0), xb(0.9, 0, 0);
+  const auto slack = cableForce(xa, xb, 1.0, rope(true), true);
+  EXPECT_EQ(slack.force.norm(), 0.0);
+  EXPECT_EQ(slack.stiffness.norm(), 0.0);
+  EXPECT_EQ(slack.energy, 0.0);
+  const auto truss = cableForce(xa, xb, 1.0, rope(false), true);
+  EXPECT_LT(truss.axialForce, 0.0);
+  // f = dW/dx; the element pushes its nodes apart, so the force on node a, -f_a, points away
+  // from b (along -x) and the one on b along +x.
+  EXPECT_LT(-truss.force[0], 0.0);
+  EXPECT_GT(-truss.force[3], 0.0);
+}
+
+TEST(CableKernel, RigidMotionInvariants) {
+  std::mt19937 rng(7);
+  const Vec3 xa(1, 2, 3), xb = xa + 1.05 * randomUnit(rng);
+  const auto r = cableForce(xa, xb, 1.0, rope(), true);
+  // Translation is in the null space; an infinitesimal rotation W x maps to W f.
+  Eigen::VectorXd t(6), x(6), Wx(6), Wf(6);
+  t << 1, -2, 0.5, 1, -2, 0.5;
+  EXPECT_LE((r.stiffness * t).norm(), 1e-9 * r.stiffness.norm());
+  const Vec3 w(0.3, -0.4, 0.8);
+  x << xa, xb;
+  Wx << w.cross(xa), w.cross(xb);
+  Wf << w.cross(Vec3(r.force.head<3>())), w.cross(Vec3(r.force.tail<3>()));
+  EXPECT_LE((r.stiffness * Wx - Wf).norm(), 1e-9 * r.stiffness.norm());
+  EXPECT_LE((r.force.head<3>() + r.force.tail<3>()).norm(), 1e-12 * r.force.norm());
+}
+
+TEST(CableKernel, LumpedMassIsRowSumOfConsistentMass) {
+  const auto mat = rope();
+  const Mat6 Mc = cableMass(2.0, mat, MassKind::Consistent);
+  const Mat6 Ml = cableMass(2.0, mat, MassKind::Lumped);
+  EXPECT_LE((Mc.rowwise().sum() - Ml.diagonal()).norm(), 1e-14);
+  EXPECT_NEAR(Ml.trace() / 3, mat.density * mat.area * 2.0, 1e-14);
+}
+
+TEST(SlackTautCrossing, FindsWhereTheLengthPassesTheReferenceLength) {
+  // Random motions across |d| = L both ways: the fraction returned lands on |d + f delta| = L;
+  // motions that stay on one side, or start or end within the band, give 1.
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const double L = 0.25;
+  double worst = 0.0;
+  int crossings = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const Vec3 d = Vec3(u(rng), u(rng), u(rng)) * 0.3, delta = Vec3(u(rng), u(rng), u(rng)) * 0.2;
+    const double f = slackTautCrossing(d, delta, L);
+    const double l0 = d.norm(), l1 = (d + delta).norm();
+    const bool crosses = (l0 < L) != (l1 < L) && std::abs(l0 - L) > kSlackTautBand * L &&
+                         std::abs(l1 - L) > kSlackTautBand * L;
+    if (!crosses) {
+      EXPECT_EQ(f, 1.0);
+      continue;
+    }
+    ++crossings;
+    ASSERT_GT(f, 0.0);
+    ASSERT_LT(f, 1.0);
+    worst = std::max(worst, std::abs((d + f * delta).norm() - L) / L);
+  }
+  std::printf("slack/taut crossing: %d crossings, |l(f) - L| / L <= %.2e\n", crossings, worst);
+  EXPECT_GT(crossings, 100);
+  EXPECT_LE(worst, 1e-12);
+  // Within the band at the start: on the switch, not across it.
+  EXPECT_EQ(slackTautCrossing(Vec3(L * (1 + 0.5 * kSlackTautBand), 0, 0), Vec3(-0.1, 0, 0), L),
+            1.0);
+}

@@ -1,0 +1,41 @@
+// Line drag kernel: position and velocity tangents against central differences; drag opposes the
+// normal relative motion.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <random>
+
+#include "kernels/LineDragKernel.hpp"
+#include "support/FiniteDifference.hpp"
+
+using namespace chute::kernels;
+using chute::testing::fdJacobian;
+using chute::testing::relativeError;
+
+TEST(DragKernel, PositionAndVelocityTangentsMatchFiniteDifferences) {
+  std::mt19937 rng(2);
+  std::normal_distribution<double> n(0, 1);
+  const double c = 0.5 * 0.0023769 * 1.2 * 0.03;
+  double worstX = 0, worstV = 0;
+  for (int trial = 0; trial < 20; ++trial) {
+    Eigen::VectorXd x(6), v(6);
+    for (int k = 0; k < 6; ++k) x[k] = n(rng), v[k] = 20 * n(rng);
+    const Vec3 wind(3, -2, 1);
+    auto at = [&](const Eigen::VectorXd& xx, const Eigen::VectorXd& vv, bool t) {
+      return lineDrag(xx.head<3>(), xx.tail<3>(), vv.head<3>(), vv.tail<3>(), wind, c, t);
+    };
+    const auto d = at(x, v, true);
+    auto fx = [&](const Eigen::VectorXd& y) -> Eigen::VectorXd { return at(y, v, false).residual; };
+    auto fv = [&](const Eigen::VectorXd& y) -> Eigen::VectorXd { return at(x, y, false).residual; };
+    worstX = std::max(worstX, relativeError(d.dPosition, fdJacobian(fx, x, 1e-6)));
+    worstV = std::max(worstV, relativeError(d.dVelocity, fdJacobian(fv, v, 1e-5)));
+    // Drag opposes the normal relative motion.
+    const Vec3 e = (x.tail<3>() - x.head<3>()).normalized();
+    Vec3 vr = 0.5 * (v.head<3>() + v.tail<3>()) - wind;
+    vr -= vr.dot(e) * e;
+    EXPECT_GT(d.residual.head<3>().dot(vr), 0.0);
+  }
+  std::printf("line drag: worst relative error dr/dx %.2e, dr/dv %.2e\n", worstX, worstV);
+  EXPECT_LE(worstX, 1e-6);
+  EXPECT_LE(worstV, 1e-6);
+}
