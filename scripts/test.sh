@@ -10,5 +10,10 @@ bash scripts/install-paraview.sh
 export CHUTE_REQUIRE_PARAVIEW=1  # ParaView.OpensTheSeriesWithItsOwnReader fails instead of skipping
 echo "== verification figures (paper section 3) =="
 build/bin/test_verification --gtest_brief=1 | grep -vE '^\[' || true
-echo "== all tests =="
-cd build && ctest --output-on-failure --parallel "$(nproc)"
+cd build
+# ParaView's reader check on its own, first: in the parallel run it failed twice in CI with "bad X
+# server connection" right after another X test had shut its Xvfb down (it passes alone).
+echo "== ParaView reader check =="
+ctest --output-on-failure -R '^ParaView\.'
+echo "== all other tests =="
+ctest --output-on-failure --parallel "$(nproc)" -E '^ParaView\.'
