@@ -60,11 +60,7 @@ TimeStepper::Result TimeStepper::advanceTo(
     const SystemSnapshot before = sys_->saveState(s);
     const NewtonReport rep = integrator_->step(s, h);
     counters_.newtonIterations += rep.iterations;
-    if (!rep.converged) {
-      StepControl control = s.control;
-      s = sys_->loadState(before);
-      s.control = control;
-    }
+    if (!rep.converged) s = sys_->loadState(before);
     const auto verdict = control_.judge(s.control, rep, h);
     if (verdict == StepController::Verdict::EventRetry) {
       ++counters_.eventRetries;  // retried to end where the event happens
