@@ -12,12 +12,17 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "app/CborNesting.hpp"
+
 namespace chute {
 
 namespace {
 constexpr int kFormat = 2;
 // A checkpoint holds a few vectors of the model's size: anything far larger is not one.
 constexpr std::uintmax_t kMaxBytes = std::uintmax_t{4} << 30;
+// The deepest a checkpoint nests is 4 (payload, terms, a term's record, its lists); anything far
+// deeper is refused before the recursive CBOR reader sees it (app/CborNesting.hpp).
+constexpr int kMaxNesting = 16;
 
 // FNV-1a over raw bytes: a fingerprint of the model, and the payload's checksum (it detects
 // damage and edits, not a forger who recomputes it; the values are range-checked as well).
@@ -181,6 +186,8 @@ Checkpoint readCheckpoint(const std::string& path) {
   const std::vector<std::uint8_t> bytes{std::istreambuf_iterator<char>(in),
                                         std::istreambuf_iterator<char>()};
   try {
+    if (auto why = cborNestingProblem(bytes, kMaxNesting); !why.empty())
+      throw std::runtime_error(why);
     const auto outer = nlohmann::json::from_cbor(bytes);
     if (!outer.is_object() || !outer.contains("format"))
       throw std::runtime_error("no format field");
@@ -192,6 +199,8 @@ Checkpoint readCheckpoint(const std::string& path) {
     sum.add(payload.data(), payload.size());
     if (outer.at("checksum").get<std::uint64_t>() != sum.h)
       throw std::runtime_error("checksum mismatch: the file is damaged or was edited");
+    if (auto why = cborNestingProblem(payload, kMaxNesting); !why.empty())
+      throw std::runtime_error("payload: " + why);
     return checkpointOf(nlohmann::json::from_cbor(payload));
   } catch (const std::exception& ex) {
     throw std::runtime_error(path + ": not a valid chute checkpoint (" + ex.what() + ")");

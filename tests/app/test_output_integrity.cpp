@@ -116,3 +116,47 @@ TEST(OutputIntegrity, ARestartWithOtherSolverSettingsOrABadCheckpointChangesNoth
       refused, tried);
   EXPECT_EQ(refused, tried);
 }
+
+// A checkpoint nested hundreds of thousands of levels deep (the outer document, or a payload
+// whose checksum is right) is refused with one line before the recursive CBOR reader would
+// overflow the stack on it.
+TEST(OutputIntegrity, ADeeplyNestedCheckpointIsRefusedNotACrash) {
+  const fs::path dir = chute::testing::freshTempDir("chute_test_integrity_", "nested");
+  ASSERT_EQ(runChute("run " + kBead + " --quiet --out " + dir.string() + " --checkpoint-every 300")
+                .status,
+            0);
+  const std::string probes = bytes(dir / "probes.csv");
+  const std::string ckpt = (dir / "nested.cbor").string();
+  const std::string deep = std::string(400000, '\x81') + '\x00';  // [[[...[0]...]]]
+  // The outer document {format: 2, payload: <deep>, checksum: FNV-1a(deep)}, CBOR by hand.
+  std::uint64_t h = 1469598103934665603ull;
+  for (unsigned char c : deep) h = (h ^ c) * 1099511628211ull;
+  std::string forged = "\xa3";
+  forged +=
+      "\x66"
+      "format"
+      "\x02";
+  forged +=
+      "\x67"
+      "payload"
+      "\x5a";  // byte string, 4-byte length
+  for (int s = 24; s >= 0; s -= 8) forged += static_cast<char>((deep.size() >> s) & 0xff);
+  forged += deep;
+  forged +=
+      "\x68"
+      "checksum"
+      "\x1b";
+  for (int s = 56; s >= 0; s -= 8) forged += static_cast<char>((h >> s) & 0xff);
+  for (const auto& [what, content] :
+       {std::pair<std::string, std::string>{"outer document", deep}, {"payload", forged}}) {
+    std::ofstream(ckpt, std::ios::binary) << content;
+    const auto o =
+        runChute("run " + kBead + " --quiet --out " + dir.string() + " --restart " + ckpt);
+    std::printf("%s nested 400000 deep: status %d, stderr: %s", what.c_str(), o.status,
+                o.err.c_str());
+    EXPECT_EQ(o.status, 2) << what;
+    EXPECT_EQ(lines(o.err), 1) << what;
+    EXPECT_NE(o.err.find("nested more than"), std::string::npos) << what;
+    EXPECT_EQ(bytes(dir / "probes.csv"), probes) << what;
+  }
+}
