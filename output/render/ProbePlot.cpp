@@ -26,6 +26,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "io/InputFile.hpp"
 #include "render/VirtualDisplay.hpp"
 
 namespace chute::render {
@@ -86,11 +87,16 @@ constexpr std::array<std::array<unsigned char, 3>, 8> kPalette = {{{31, 119, 180
                                                                    {227, 119, 194},
                                                                    {23, 190, 207}}};
 
+// The units line of the run's summary.json, if it has one (a run stopped early may have none).
+// Read through io::readInputFile like probes.csv: a FIFO or /dev/zero named summary.json would
+// otherwise block or never end.
 std::string unitsOf(const std::string& runDir) {
-  std::ifstream f(fs::path(runDir) / "summary.json");
-  if (!f) return {};
+  const std::string path = (fs::path(runDir) / "summary.json").string();
+  std::error_code ec;
+  if (!fs::exists(fs::symlink_status(path, ec)) || ec) return {};
+  const std::string text = io::readInputFile(path, std::uintmax_t{1} << 20);
   try {
-    const auto j = nlohmann::json::parse(f);
+    const auto j = nlohmann::json::parse(text);
     return j.value("units", std::string());
   } catch (const std::exception&) {
     return {};

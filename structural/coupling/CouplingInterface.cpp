@@ -103,9 +103,12 @@ double CouplingInterface::advance(double dt) {
     throw CouplingError("advance: the time step must be positive, got " + num(dt));
   const double target = state_.t + dt;
   // A window too short to move time, or one that would take more steps than any run can.
-  if (target == state_.t)
+  // The stepper counts a stop within 1e-12 dt of the time as reached (round-off of summed
+  // steps): a shorter window would return at once, OK, with time unchanged.
+  if (target == state_.t || stepper_->reached(state_.t, target))
     throw CouplingError("advance: the time step " + num(dt) +
-                        " is below the resolution of the time " + num(state_.t));
+                        " is below the resolution of the time " + num(state_.t) +
+                        " (1e-12 of solver.dt)");
   if (dt / spec_.solver.dtMin > kMaxStepsPerWindow)
     throw CouplingError("advance: a window of " + num(dt) + " would take more than " +
                         num(kMaxStepsPerWindow) + " steps of dt_min");
