@@ -99,11 +99,13 @@ Checkpoint checkpointOf(const nlohmann::json& j) {
   c.solverSettings = j.at("solver").get<std::map<std::string, std::string>>();
   auto& s = c.stepping.snapshot.state;
   s.t = finite(j, "t");
+  if (s.t < 0.0) throw std::runtime_error("t is negative (a run starts at t = 0)");
   s.x = fromVector(j.at("x").get<std::vector<double>>());
   s.v = fromVector(j.at("v").get<std::vector<double>>());
   s.a = fromVector(j.at("a").get<std::vector<double>>());
   s.control.dt = finite(j, "dt");
   s.control.eventStep = finite(j, "event_step");
+  if (s.control.eventStep < 0.0) throw std::runtime_error("event_step is negative");
   s.control.successesSinceCut =
       static_cast<int>(count(j.at("successes_since_cut"), "successes_since_cut", 0, 1 << 20));
   for (const auto& t : j.at("terms")) {

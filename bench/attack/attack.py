@@ -260,6 +260,87 @@ def arg_inputs(ctx, rng, n):
     return out
 
 
+HOSTILE_VALUES = [float("nan"), float("inf"), float("-inf"), -1, 0, 1e308, -1e308, 5e-324, -0.0,
+                  2 ** 63 - 1, 2 ** 64 - 1, -2 ** 63, 2 ** 31, "x", "", [], {}, None, True,
+                  b"\x00" * 9, 1.5, [float("nan")] * 3, [[[[[]]]]]]
+
+
+def leaves(v, path=()):
+    """Every position in a decoded payload: (path, value)."""
+    yield path, v
+    if isinstance(v, dict):
+        for k, x in v.items():
+            yield from leaves(x, path + (k,))
+    elif isinstance(v, list):
+        for i, x in enumerate(v):
+            yield from leaves(x, path + (i,))
+
+
+def checkpoint_inputs(ctx, rng, n):
+    """The run's checkpoint damaged (bytes changed: the checksum must refuse it) or forged (a
+    field of the payload replaced, deleted, shortened or lengthened under a correct checksum:
+    the field checks must refuse it or the restart must run cleanly)."""
+    out = []
+    for k in range(n):
+        if k % 3 == 0:
+            data, kind = mutate_bytes(rng, ctx.checkpoint, text=False)
+            out.append(inputs.restart_input(ctx, "damaged %d %s" % (k, kind), data, ANY_CLEAN))
+            continue
+        how = []
+
+        def edit(p):
+            spots = [(path, v) for path, v in leaves(p) if path]
+            path, value = rng.choice(spots)
+            parent = p
+            for key in path[:-1]:
+                parent = parent[key]
+            what = rng.choice(["value", "value", "value", "delete", "shorten", "lengthen"])
+            if what == "delete" or (what in ("shorten", "lengthen") and not isinstance(value, list)):
+                if isinstance(parent, dict):
+                    del parent[path[-1]]
+                else:
+                    parent.pop(path[-1])
+                what = "delete"
+            elif what == "shorten":
+                del value[len(value) // 2:]
+            elif what == "lengthen":
+                value.extend(value[:1] * rng.choice([1, 7, 100000]) or [0.0])
+            else:
+                parent[path[-1]] = rng.choice(HOSTILE_VALUES)
+            how.append("%s %s" % (what, ".".join(map(str, path))))
+
+        data = inputs.forged(ctx, edit)
+        out.append(inputs.restart_input(ctx, ("forged %d %s" % (k, how[0]))[:70], data,
+                                        ANY_CLEAN))
+    return out
+
+
+def capi_inputs(ctx, rng, n):
+    """Host sessions of random calls with hostile arguments (capi_session.py checks the
+    promises of chute_coupling.h after every call)."""
+    dts = ["5e-324", "1e-20", "1e-300", "1e300", "nan", "inf", "-inf", "-1", "0", "-0.0", "1e9",
+           "0.0005", "0.0005", "0.002"]
+    kinds = ["nan", "inf", "-inf", "1e308", "-1e308", "0", "1", "huge", "5e-324", "-3"]
+    getters = ["reference_coordinates", "current_coordinates", "displacements", "velocities",
+               "accelerations", "face_normals", "face_areas"]
+    out = []
+    for k in range(n):
+        ops = []
+        for _ in range(rng.randint(2, 8)):
+            what = rng.choice(["advance", "advance", "pressures", "vpressures", "forces", "save",
+                               "restore", "getters", "null", "nullhandle"])
+            if what == "advance":
+                ops.append("advance:" + rng.choice(dts))
+            elif what in ("pressures", "vpressures", "forces"):
+                ops.append(what + ":" + rng.choice(kinds))
+            elif what == "null":
+                ops.append("null:" + rng.choice(getters))
+            else:
+                ops.append(what)
+        out.append(inputs.capi_input(ctx, ("session %d %s" % (k, " ".join(ops)))[:70], ops))
+    return out
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--chute", default=os.path.join(SOURCE, "build", "bin", "chute"))
@@ -278,7 +359,8 @@ def main():
     todo = (inputs.corpus(ctx) + case_inputs(ctx, rng, int(300 * s)) +
             set_inputs(ctx, rng, int(200 * s)) + msh_inputs(ctx, rng, int(300 * s)) +
             geo_inputs(ctx, rng) + csv_inputs(ctx, rng, int(100 * s)) +
-            arg_inputs(ctx, rng, int(200 * s)))
+            arg_inputs(ctx, rng, int(200 * s)) + checkpoint_inputs(ctx, rng, int(150 * s)) +
+            capi_inputs(ctx, rng, int(60 * s)))
     print("%d inputs, %s build" % (len(todo), "ASan/UBSan" if asan else "plain"), flush=True)
     start = time.time()
     table = harness.Table()

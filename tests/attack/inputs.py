@@ -14,6 +14,10 @@ import subprocess
 import sys
 from collections import namedtuple
 
+import cbor
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+
 Input = namedtuple("Input", "cls name cmd expect marker timeout")
 ERROR = {"error"}
 OK = {"success"}
@@ -75,6 +79,14 @@ def setup(ctx):
     with open(os.path.join(run_dir, "probes.csv")) as f:
         ctx.probes = f.read()
     ctx.columns = ctx.probes.splitlines()[0].split(",")[1]
+    # A run with a checkpoint (bead_5: a sliding group, so term histories are in it), kept as
+    # the pristine output directory every restart input starts from.
+    ctx.ckpt_run = ctx.path("ckpt_run")
+    subprocess.run([ctx.chute, "run", ctx.case("bead_5.toml"), "--out", ctx.ckpt_run, "--quiet",
+                    "--checkpoint-every", "20", "--set", "solver.t_end=0.2"], check=True,
+                   capture_output=True)
+    with open(os.path.join(ctx.ckpt_run, "checkpoint.cbor"), "rb") as f:
+        ctx.checkpoint = f.read()
     with open(os.path.join(ctx.source, "mesh", "examples", "flat_canopy.geo")) as f:
         geo = f.read()
     ctx.evil_geo = ctx.write("evil.geo", 'System "touch %s";\n%s' % (ctx.marker, geo))
@@ -120,6 +132,41 @@ def replace_count(text, section, delta=None, value=None, fmt="22a"):
     n = int(parts[k])
     parts[k] = str(value if value is not None else n + delta).encode()
     return text[:start] + b" ".join(parts) + text[end:]
+
+
+CHECKPOINT = "checkpoint (--restart)"
+CAPI = "C API (ctypes host)"
+
+
+def restart_input(ctx, name, data, expect=ERROR):
+    """`chute run bead_5 --restart` with a checkpoint file of these bytes (or at this path, for
+    FIFOs and the like), on a fresh copy of the run's output; a refusal must leave it as it was
+    (restart_check.py)."""
+    ctx.restarts = getattr(ctx, "restarts", 0) + 1
+    if isinstance(data, str):
+        path = data
+    else:
+        path = ctx.write(os.path.join("ckpt", "%d.cbor" % ctx.restarts), data)
+    cmd = [sys.executable, os.path.join(HERE, "restart_check.py"), ctx.chute,
+           ctx.case("bead_5.toml"), ctx.ckpt_run, ctx.path("ckpt_out", str(ctx.restarts)), path]
+    return Input(CHECKPOINT, name, cmd, expect, None, 60)
+
+
+def forged(ctx, edit):
+    """The checkpoint with its payload decoded, edited by edit(payload) and re-encoded under a
+    correct checksum: what reaches the field checks (a damaged file stops at the checksum)."""
+    outer = cbor.loads(ctx.checkpoint)
+    payload = cbor.loads(outer["payload"])
+    payload = edit(payload) or payload
+    outer["payload"] = cbor.dumps(payload)
+    outer["checksum"] = cbor.fnv1a(outer["payload"])
+    return cbor.dumps(outer)
+
+
+def capi_input(ctx, name, ops, case=None, expect=OK):
+    cmd = [sys.executable, os.path.join(HERE, "capi_session.py"), ctx.lib,
+           case or ctx.case("canopy_coupled.toml")] + ops
+    return Input(CAPI, name, cmd, expect, None, 120)
 
 
 def corpus(ctx):
@@ -215,6 +262,60 @@ def corpus(ctx):
     add(Input(G, "mesh geo --out is the script", [c, "mesh", "geo", syntax, "--out", syntax],
               ERROR, None, 10))
 
+
+    # ---- checkpoints (--restart)
+    good = ctx.checkpoint
+    add(restart_input(ctx, "the run's own checkpoint", good, OK))
+    add(restart_input(ctx, "re-encoded unchanged (codec check)", forged(ctx, lambda p: None), OK))
+    for name, path in [("fifo", ctx.path("fifo.msh")), ("dev zero", "/dev/zero"),
+                       ("directory", ctx.path("dir.toml")), ("missing", ctx.path("none.cbor"))]:
+        add(restart_input(ctx, "checkpoint is a " + name, path))
+    add(restart_input(ctx, "empty", b""))
+    add(restart_input(ctx, "truncated", good[: len(good) // 2]))
+    add(restart_input(ctx, "nested 400000 deep", b"\x81" * 400000 + b"\x00"))
+    deep = b"\x81" * 400000 + b"\x00"
+    add(restart_input(ctx, "payload nested 400000 deep, checksum right", cbor.dumps(
+        {"format": 2, "payload": deep, "checksum": cbor.fnv1a(deep)})))
+    add(restart_input(ctx, "format 3", cbor.dumps(dict(cbor.loads(good), format=3))))
+
+    def setter(key, value):
+        def edit(p):
+            p[key] = value
+        return edit
+
+    for name, edit in [("x with a NaN", lambda p: p["x"].__setitem__(0, float("nan"))),
+                       ("x one short", lambda p: p["x"].pop()),
+                       ("x empty", setter("x", [])),
+                       ("t = inf", setter("t", float("inf"))),
+                       ("t = -1", setter("t", -1.0)),
+                       ("dt = 0", setter("dt", 0.0)),
+                       ("counters 2^63", setter("counters", [2 ** 63 - 1] * 5)),
+                       ("terms emptied", setter("terms", [])),
+                       ("a term's ints out of range", lambda p: p["terms"][0].__setitem__(
+                           "ints", [2 ** 31 + 7] * len(p["terms"][0]["ints"]))),
+                       ("a term's reals NaN", lambda p: p["terms"][0].__setitem__(
+                           "reals", [float("nan")] * len(p["terms"][0]["reals"]))),
+                       ("model hash changed", setter("model_hash", 1)),
+                       ("solver dt changed", lambda p: p["solver"].__setitem__(
+                           "solver.dt", "0.001")),
+                       ("probe rows 1e15", lambda p: p["output"].__setitem__("probe_rows",
+                                                                             10 ** 15)),
+                       ("x is a string", setter("x", "x")),
+                       ("key deleted", lambda p: p.pop("v"))]:
+        add(restart_input(ctx, "forged: " + name, forged(ctx, edit)))
+
+    # ---- the C API, from a host program
+    add(capi_input(ctx, "windows that cannot move time or never end",
+                   ["advance:5e-324", "advance:1e-20", "advance:1e300", "advance:nan",
+                    "advance:inf", "advance:-1", "advance:0", "advance:-0.0"]))
+    add(capi_input(ctx, "non-finite and absurd loads",
+                   ["pressures:nan", "pressures:inf", "vpressures:-inf", "forces:nan",
+                    "pressures:1e308", "forces:-1e308"]))
+    add(capi_input(ctx, "checkpoint order, NULL pointers and handles",
+                   ["restore", "save", "advance:0.002", "restore", "getters",
+                    "null:velocities", "null:face_areas", "null:set_face_pressures",
+                    "nullhandle"]))
+
     # ---- CSV inputs of plot
     P = "plot CSV"
     run_dir = ctx.path("run")
@@ -233,6 +334,12 @@ def corpus(ctx):
         with open(os.path.join(d, "probes.csv"), "w") as f:
             f.write(text)
         add(Input(P, name, plot + [d], expect, None, 60))
+    d = ctx.path("plot_summary_fifo")
+    os.makedirs(d, exist_ok=True)
+    shutil.copy(os.path.join(run_dir, "probes.csv"), d)
+    if not os.path.lexists(os.path.join(d, "summary.json")):
+        os.mkfifo(os.path.join(d, "summary.json"))
+    add(Input(P, "summary.json is a fifo", plot + [d], ERROR, None, 10))
     for name, target in [("fifo", ctx.path("fifo.csv")), ("dev zero", "/dev/zero"),
                          ("directory", ctx.path("dir.toml"))]:
         d = ctx.path("plot_" + name.replace(" ", "_"))
