@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
@@ -13,6 +14,35 @@
 #include <string>
 
 namespace chute::render {
+
+namespace {
+// The Xvfb this process started, for the signal handlers below (a lock-free atomic is safe to
+// read in a handler).
+std::atomic<pid_t> gServer{-1};
+static_assert(std::atomic<pid_t>::is_always_lock_free);
+
+// SIGINT / SIGTERM / SIGHUP while rendering: the server is our child and would outlive us (a
+// SIGTERM sent to chute alone, by `timeout` or a batch system, does not reach it). Stop it, then
+// die of the signal as before. Only kill(), signal() and raise(): async-signal-safe.
+void stopServerAndDie(int sig) {
+  const pid_t pid = gServer.load();
+  if (pid > 0) ::kill(pid, SIGTERM);
+  ::signal(sig, SIG_DFL);
+  ::raise(sig);
+}
+
+// Handlers only where the program has none of its own (`chute run` installs its own).
+void stopServerOnSignals() {
+  for (const int sig : {SIGINT, SIGTERM, SIGHUP}) {
+    struct sigaction old {};
+    if (::sigaction(sig, nullptr, &old) != 0 || old.sa_handler != SIG_DFL) continue;
+    struct sigaction sa {};
+    sa.sa_handler = stopServerAndDie;
+    ::sigemptyset(&sa.sa_mask);
+    ::sigaction(sig, &sa, nullptr);
+  }
+}
+}  // namespace
 
 VirtualDisplay::VirtualDisplay() {
   if (const char* d = std::getenv("DISPLAY"); d && *d) {
@@ -33,6 +63,8 @@ VirtualDisplay::VirtualDisplay() {
     ::_exit(127);
   }
   ::close(fds[1]);
+  gServer.store(pid_);
+  stopServerOnSignals();
   std::string number;
   pollfd p{fds[0], POLLIN, 0};
   char buf[32];
@@ -47,6 +79,7 @@ VirtualDisplay::VirtualDisplay() {
   if (number.empty()) {
     ::kill(pid_, SIGTERM);
     ::waitpid(pid_, nullptr, 0);
+    gServer.store(-1);
     pid_ = -1;
     throw std::runtime_error(
         "no DISPLAY and Xvfb could not be started (install the Debian package xvfb)");
@@ -57,6 +90,7 @@ VirtualDisplay::VirtualDisplay() {
 
 VirtualDisplay::~VirtualDisplay() {
   if (pid_ <= 0) return;
+  gServer.store(-1);
   ::kill(pid_, SIGTERM);
   ::waitpid(pid_, nullptr, 0);
   ::unsetenv("DISPLAY");

@@ -1,6 +1,10 @@
 // `chute render` and `chute plot` from the command line, with DISPLAY unset (they must start
 // their own Xvfb): non-blank PNGs of the requested size, and clear errors for bad requests.
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
 #include <vtkImageData.h>
@@ -11,10 +15,13 @@
 #include <vtkXMLUnstructuredGridReader.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "render/ColourLayers.hpp"
@@ -184,6 +191,63 @@ double scaleTop(const std::vector<double>& v) {
   return p99 > v.front() ? std::min(p99, v.back()) : v.back();
 }
 }  // namespace
+
+// A SIGTERM sent to `chute render` alone (as `timeout` or a batch system sends it) stops the
+// Xvfb it started: before, the server was left running for good.
+TEST(Render, ASigtermWhileRenderingStopsItsXvfb) {
+  const fs::path dir = smallRun("sigterm");
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    ::unsetenv("DISPLAY");
+    const int devnull = ::open("/dev/null", O_WRONLY);
+    ::dup2(devnull, 1), ::dup2(devnull, 2);
+    const std::string out = (dir / "frames").string();
+    // Every frame at full HD: seconds of rendering, time enough to see the server start.
+    ::execl(kChute.c_str(), kChute.c_str(), "render", dir.c_str(), "--all", "--size", "1920x1080",
+            "--out", out.c_str(), "--quiet", static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  // The Xvfb whose parent is chute (from /proc: "pid (comm) state ppid ...").
+  auto serverOf = [](pid_t parent) -> pid_t {
+    for (const auto& e : fs::directory_iterator("/proc")) {
+      std::ifstream in(e.path() / "stat");
+      pid_t p = 0, pp = 0;
+      std::string comm, state;
+      if (in >> p >> comm >> state >> pp && pp == parent && comm == "(Xvfb)") return p;
+    }
+    return -1;
+  };
+  pid_t server = -1;
+  for (int k = 0; k < 400 && server < 0; ++k) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(25));
+    server = serverOf(pid);
+  }
+  ASSERT_GT(server, 0) << "chute render started no Xvfb within 10 s";
+  // Wait for the first snapshot: the server is up and in use (a server killed while it starts
+  // dies of the closed -displayfd pipe anyway, which would prove nothing).
+  const fs::path frames = dir / "frames";
+  bool rendering = false;
+  for (int k = 0; k < 800 && !rendering; ++k) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(25));
+    std::error_code ec;
+    rendering = fs::exists(frames, ec) && !fs::is_empty(frames, ec);
+  }
+  ASSERT_TRUE(rendering) << "no snapshot written within 20 s";
+  ::kill(pid, SIGTERM);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM);
+  bool gone = false;
+  for (int k = 0; k < 200 && !gone; ++k) {  // it is reparented and reaped once it has exited
+    gone = ::kill(server, 0) != 0;
+    if (!gone) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  std::printf("chute render (pid %d) got SIGTERM; its Xvfb (pid %d) %s\n", pid, server,
+              gone ? "exited" : "is still running after 10 s");
+  EXPECT_TRUE(gone);
+  if (!gone) ::kill(server, SIGKILL);
+}
 
 TEST(Render, ColoursMembranesByStressAndLinesByForceByDefault) {
   const auto dir = sheetRun("sheet");
