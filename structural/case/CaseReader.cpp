@@ -55,10 +55,17 @@ CaseSpec readCaseFromString(const std::string& text, const std::string& file,
   if (top.has("output")) caseio::readOutput(c, top.table("output"));
   if (top.has("reference")) caseio::readReference(c, top.table("reference"));
   if (mesh) holdUnusedMeshNodes(m, *mesh);
-  if (DofMap(m).numEquations() == 0)
+  const long equations = DofMap(m).numEquations();
+  if (equations == 0)
     top.fail(top.has("boundary") ? "boundary" : "nodes",
              "every degree of freedom is fixed or prescribed: there is nothing "
              "to solve");
+  if (equations > c.solver.maxEquations)
+    top.table("solver").fail(
+        "max_equations", "the model has " + std::to_string(equations) +
+                             " equations, more than the limit " +
+                             std::to_string(c.solver.maxEquations) +
+                             " (raise solver.max_equations to run it: expect minutes per step)");
   top.finish();
   return c;
 }

@@ -37,6 +37,9 @@ struct SolverSpec {
   std::string type = "dynamic";  // or "static"
   double dt = 1e-3, tEnd = 1.0, dtMin = 0.0, rhoInf = 0.9;
   int maxNewton = 25;
+  // Most equations a run may have before it starts (docs/limits.md): a model within the node
+  // limit can still take minutes per step and gigabytes in the factorisation.
+  long maxEquations = 300000;
   double tolDisplacement = 0.0;  // 0: 1e-10 x model size
   bool slackTautEvents = true;   // cut steps at cable slack / taut switches
   bool sliderEvents = true;      // cut steps where a slider reaches a node (false: Bossak only)

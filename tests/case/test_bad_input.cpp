@@ -903,6 +903,15 @@ std::vector<Row> rows() {
        {},
        "membranes[1].divisions: more than 1000000 divisions",
        "divisions ="},
+      // Within the node limit, beyond the equation limit: 500 x 500 divisions are 251,001 nodes
+      // (753,003 equations), minutes per step.
+      {kSize,
+       appended("[[membranes]]\nname = \"sheet\"\nmaterial = \"film\"\nmesh = \"rectangle\"\n"
+                "size = [1.0, 1.0, 0.0]\ndivisions = [500, 500]\n"),
+       {},
+       "solver.max_equations: the model has",
+       "[solver]"},
+      {kSize, kBase, {"solver.max_equations=5"}, "more than the limit 5", "[solver]"},
       {kSize,
        replaced("path = [\"a\", \"c\"]",
                 "path = [\"a\", \"c\", \"d\"]\nelements_per_segment = 900000"),

@@ -53,6 +53,7 @@ void readSolver(CaseSpec& c, TomlTable s) {
                   ? SliderSearch::NearestLength
                   : SliderSearch::MaterialCoordinate;
   sv.maxNewton = static_cast<int>(s.integer("newton_max_iterations", 25, 1, 1000));
+  sv.maxEquations = s.integer("max_equations", sv.maxEquations, 1, 100000000);
   if (s.has("newton_tolerance")) sv.tolDisplacement = s.positive("newton_tolerance");
   sv.slackTautEvents = s.boolean("slack_events", true);
   sv.sliderEvents = s.boolean("slider_events", true);
