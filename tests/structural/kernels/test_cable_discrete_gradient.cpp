@@ -122,12 +122,16 @@ TEST(CableDiscreteGradient, DissipationNeverAddsEnergy) {
     const Pair p = randomPair(rng, 2e-3 * (trial % 3 - 1), 1e-3 * (trial % 5 - 2));
     const auto mat = rope(trial % 2 == 0);
     const auto r = cableDiscreteGradient(p.a0, p.b0, p.a1, p.b1, p.L, mat, 0.5, false);
-    const double work = r.force.dot(stack(p.a1, p.b1) - stack(p.a0, p.b0));
+    const Eigen::VectorXd dx = stack(p.a1, p.b1) - stack(p.a0, p.b0);
+    const double work = r.force.dot(dx);
     const double c = std::max(cableEnergyBranches(p.L, mat).at(r.strain0),
                               cableEnergyBranches(p.L, mat).at(r.strain1));
     const double expected =
         r.energy1 - r.energy0 + 0.25 * c * (r.strain1 - r.strain0) * (r.strain1 - r.strain0);
-    const double scale = std::max({std::abs(work), r.energy0, r.energy1});
+    // Round-off scale: the energies and force x motion term by term (a step on the kink
+    // between two strains of 1e-17 does work of that order).
+    const double scale =
+        std::max({r.energy0, r.energy1, r.force.cwiseAbs().dot(dx.cwiseAbs()), 1e-300});
     EXPECT_NEAR(work, expected, 1e-12 * scale);
     EXPECT_GE(work - (r.energy1 - r.energy0), -1e-12 * scale);
   }
