@@ -31,7 +31,7 @@ namespace chute {
 namespace {
 
 // What a restart must share with the run it continues (CheckpointFile.hpp); t_end may change.
-std::map<std::string, std::string> solverSettings(const SolverSpec& sv, const Model& m) {
+std::map<std::string, std::string> settingsOfEveryScheme(const SolverSpec& sv, const Model& m) {
   return {{"solver.dt", fmt::format("{}", sv.dt)},
           {"solver.dt_min", fmt::format("{}", sv.dtMin)},
           {"solver.rho_inf", fmt::format("{}", sv.rhoInf)},
@@ -43,6 +43,13 @@ std::map<std::string, std::string> solverSettings(const SolverSpec& sv, const Mo
           {"solver.search",
            sv.search == SliderSearch::NearestLength ? "nearest_length" : "material_coordinate"},
           {"solver.mass", m.massKind == kernels::MassKind::Lumped ? "lumped" : "consistent"}};
+}
+// energy_momentum's dissipation joins them (absent from other runs' checkpoints).
+std::map<std::string, std::string> solverSettings(const SolverSpec& sv, const Model& m) {
+  auto out = settingsOfEveryScheme(sv, m);
+  if (sv.integrator == "energy_momentum")
+    out["solver.em_dissipation"] = fmt::format("{}", sv.emDissipation);
+  return out;
 }
 
 std::optional<ReferenceError> compareWithReference(const CaseSpec& spec, const RunResult& r,
@@ -121,7 +128,7 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
   StructuralSystem sys(m, sv.search);
   NewtonSettings ns = newtonSettings(sv, m);
   ns.verbose = options.verboseNewton;
-  GeneralizedAlpha integrator(sys, sv.rhoInf, alphaScheme(sv), ns);
+  GeneralizedAlpha integrator(sys, sv.rhoInf, alphaScheme(sv), ns, sv.emDissipation);
   TimeStepper stepper(sys, integrator, sv.dt, sv.dtMin);
   const bool dynamic = sv.type != "static";
 

@@ -39,6 +39,11 @@ VERIFICATION = [
     ("test_bad_input", "bad input: one clear line and exit status 2 for each kind"),
     ("test_stress", "stability stress suite (short versions)"),
     ("test_c9_slider", "the half-scale C-9 with its slider to 1 s"),
+    ("test_cable_discrete_gradient", "energy-momentum cable force (EM3-EM5, EM8): discrete-gradient property, tangent vs central differences"),
+    ("test_membrane_discrete_gradient", "energy-momentum membrane force (EM9-EM10): discrete-gradient property across wrinkling states, tangent"),
+    ("test_sliding_discrete_gradient", "energy-momentum sliding element (EM11): discrete-gradient property, tangent"),
+    ("test_energy_momentum", "energy_momentum: stiff pendulums against the exact period and peak force, momenta of spinning free structures, dissipation, restart"),
+    ("test_energy_momentum_cases", "energy_momentum on bead_1 against the ellipse ODE, beside Bossak"),
 ]
 
 CSV_TABLES = [

@@ -21,6 +21,12 @@ struct EvalPoint {
   bool inertia = true;      // false in static mode
   double loadFactor = 1.0;  // scales external loads (static load stepping)
   double dt = 0.0;          // step length (0: static), for rate-dependent history (friction)
+  // Energy-momentum steps (docs/formulation.md EM1-EM2): the positions x_n the step started
+  // from; x is then the midpoint (x_n + x_{n+1}) / 2 and cx = 1/2. Terms with a strain energy
+  // use the discrete gradient between x_n and x_{n+1} = 2 x - x_n, their Jacobian with respect to
+  // x_{n+1} being 2 cx d r / d x_{n+1}; others are evaluated at the midpoint. nullptr otherwise.
+  const Eigen::VectorXd* xStart = nullptr;
+  double emDissipation = 0.0;  // EM8: energy-decaying parameter chi (0: energy conserving)
 };
 
 // A converged step, as its terms commit it: the end positions, the end time, the step length

@@ -44,7 +44,8 @@ struct SolverSpec {
   bool slackTautEvents = true;   // cut steps at cable slack / taut switches
   bool sliderEvents = true;      // cut steps where a slider reaches a node (false: Bossak only)
   SliderSearch search = SliderSearch::MaterialCoordinate;
-  std::string integrator = "bossak";  // or "generalized_alpha" (Chung-Hulbert)
+  std::string integrator = "bossak";  // or "generalized_alpha" (Chung-Hulbert), "energy_momentum"
+  double emDissipation = 0.0;         // energy_momentum's energy-decaying parameter chi (EM8)
   int loadSteps = 1;
   // Static: load factors grow geometrically from this to 1 over loadSteps (1: equal steps).
   double initialLoadFactor = 1.0;

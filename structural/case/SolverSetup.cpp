@@ -25,6 +25,7 @@ NewtonSettings newtonSettings(const SolverSpec& sv, const Model& m) {
 }
 
 AlphaScheme alphaScheme(const SolverSpec& sv) {
+  if (sv.integrator == "energy_momentum") return AlphaScheme::EnergyMomentum;
   return sv.integrator == "bossak" ? AlphaScheme::Bossak : AlphaScheme::ChungHulbert;
 }
 

@@ -3,6 +3,8 @@
 #include <Eigen/UmfPackSupport>
 #include <cmath>
 
+#include "solver/EnergyMomentumStep.hpp"
+
 namespace chute {
 
 GeneralizedAlphaParams GeneralizedAlphaParams::fromRhoInf(double rho, AlphaScheme scheme) {
@@ -22,8 +24,15 @@ GeneralizedAlphaParams GeneralizedAlphaParams::fromRhoInf(double rho, AlphaSchem
 }
 
 GeneralizedAlpha::GeneralizedAlpha(StructuralSystem& sys, double rhoInf, AlphaScheme scheme,
-                                   NewtonSettings newton)
-    : sys_(&sys), p_(GeneralizedAlphaParams::fromRhoInf(rhoInf, scheme)), newton_(sys, newton) {}
+                                   NewtonSettings newton, double emDissipation)
+    : sys_(&sys),
+      p_(GeneralizedAlphaParams::fromRhoInf(rhoInf, scheme)),
+      newton_(sys, newton),
+      scheme_(scheme),
+      emDissipation_(emDissipation) {
+  // The discrete gradient's tangent is not symmetric (EM5): LU from the start.
+  if (scheme == AlphaScheme::EnergyMomentum) newton_.linearSolver().useLU();
+}
 
 StructuralState GeneralizedAlpha::initialState() const {
   const Model& m = sys_->model();
@@ -117,6 +126,8 @@ class StepProblem final : public NewtonProblem {
 }  // namespace
 
 NewtonReport GeneralizedAlpha::step(StructuralState& s, double dt) {
+  if (scheme_ == AlphaScheme::EnergyMomentum)
+    return energyMomentumStep(*sys_, newton_, emDissipation_, s, dt);
   const StructuralState old = s;
   StructuralState n = s;
   // Predictor: positions stay where they are (the first Newton update is then a consistent

@@ -19,7 +19,9 @@ namespace chute {
 //    a node) are consistent at the step's end; with Chung-Hulbert a massless node's end-of-step
 //    position is off equilibrium by O(dt^2), undamped for rho_inf = 1.
 // rho_inf = 1 gives Newmark's trapezoidal rule with Bossak.
-enum class AlphaScheme { Bossak, ChungHulbert };
+// EnergyMomentum is not of the family: the midpoint-type scheme with discrete gradients
+// (solver/EnergyMomentumStep.hpp, docs/formulation.md section 10); rho_inf is not used.
+enum class AlphaScheme { Bossak, ChungHulbert, EnergyMomentum };
 
 struct GeneralizedAlphaParams {
   double alphaM, alphaF, beta, gamma;
@@ -28,7 +30,9 @@ struct GeneralizedAlphaParams {
 
 class GeneralizedAlpha {
  public:
-  GeneralizedAlpha(StructuralSystem& sys, double rhoInf, AlphaScheme scheme, NewtonSettings newton);
+  // emDissipation: the energy-decaying parameter chi of EnergyMomentum (EM8; 0: conserving).
+  GeneralizedAlpha(StructuralSystem& sys, double rhoInf, AlphaScheme scheme, NewtonSettings newton,
+                   double emDissipation = 0.0);
 
   // Initial state at rest or moving: positions from the model, prescribed velocities.
   StructuralState initialState() const;
@@ -48,6 +52,8 @@ class GeneralizedAlpha {
   StructuralSystem* sys_;
   GeneralizedAlphaParams p_;
   Newton newton_;
+  AlphaScheme scheme_;
+  double emDissipation_;
 };
 
 }  // namespace chute

@@ -1,5 +1,7 @@
 #include "terms/LineElementAssembly.hpp"
 
+#include "kernels/CableDiscreteGradient.hpp"
+
 namespace chute::line_assembly {
 
 using kernels::Mat6;
@@ -9,11 +11,29 @@ void assembleCable(const Model& m, int a, int b, double L, int material, const E
                    SystemAssembler& out) {
   const auto& mat = m.materials[material];
   const bool wantJ = out.wantMatrix();
-  const auto res = kernels::cableForce(pos(p.x, a), pos(p.x, b), L, mat, wantJ);
+  Vec6 r;
+  Mat6 J;
   ++out.work().lineElastic;
-  Vec6 r = res.force;
-  Mat6 J = p.cx * res.stiffness;
-  if (wantJ) addSlackTangent<2>(res, mat, L, {0, 1}, p.cx, J);
+  if (p.xStart) {
+    // Energy-momentum step: the discrete gradient between x_n and x_{n+1} (EM5).
+    const Eigen::VectorXd& x0 = *p.xStart;
+    const Vec3 a0 = pos(x0, a), b0 = pos(x0, b);
+    const auto dg = kernels::cableDiscreteGradient(
+        a0, b0, 2.0 * pos(p.x, a) - a0, 2.0 * pos(p.x, b) - b0, L, mat, p.emDissipation, wantJ);
+    r = dg.force;
+    J = (2.0 * p.cx) * dg.dForce;
+    if (wantJ && dg.stress == 0.0 && dg.strain1 <= 0.0) {
+      // A slack cable over the whole step: the RG5 spring keeps the matrix regular.
+      kernels::PolylineResult<2> slack;
+      slack.strain = dg.strain1;
+      addSlackTangent<2>(slack, mat, L, {0, 1}, p.cx, J);
+    }
+  } else {
+    const auto res = kernels::cableForce(pos(p.x, a), pos(p.x, b), L, mat, wantJ);
+    r = res.force;
+    J = p.cx * res.stiffness;
+    if (wantJ) addSlackTangent<2>(res, mat, L, {0, 1}, p.cx, J);
+  }
   if (mat.density > 0.0) {
     ++out.work().lineMass;
     if (p.inertia) {

@@ -2,6 +2,7 @@
 
 #include <type_traits>
 
+#include "kernels/MembraneDiscreteGradient.hpp"
 #include "kernels/Regularisations.hpp"
 #include "terms/MembraneElementAssembly.hpp"
 
@@ -50,12 +51,30 @@ void MembraneTerm::assembleElement(int k, const kernels::MembraneReference<N>& r
   const auto& mat = m_->membraneMaterials[e.material];
   const bool wantJ = out.wantMatrix();
   const auto x = gatherNodes<N>(p.x, e);
-  const auto res = kernels::membraneForce<N>(x, ref, mat, m_->membraneSets[e.set].wrinkling, wantJ);
+  const bool wrinkling = m_->membraneSets[e.set].wrinkling;
   ++out.work().membrane;
-  states_[k] = {res.state, res.principalStress, res.principalStrain};
-  Eigen::Matrix<double, 3 * N, 1> r = res.force;
-  Eigen::Matrix<double, 3 * N, 3 * N> J = p.cx * res.stiffness;
-  if (wantJ && res.state != kernels::WrinkleState::Taut) {
+  Eigen::Matrix<double, 3 * N, 1> r;
+  Eigen::Matrix<double, 3 * N, 3 * N> J;
+  kernels::WrinkleState state;
+  if (p.xStart) {
+    // Energy-momentum step: the discrete gradient between x_n and x_{n+1} = 2 x_mid - x_n (EM10).
+    const auto x0 = gatherNodes<N>(*p.xStart, e);
+    std::array<Vec3, N> x1;
+    for (int i = 0; i < N; ++i) x1[i] = 2.0 * x[i] - x0[i];
+    const auto dg =
+        kernels::membraneDiscreteGradient<N>(x0, x1, ref, mat, wrinkling, p.emDissipation, wantJ);
+    states_[k] = {dg.state, dg.principalStress, dg.principalStrain};
+    r = dg.force;
+    J = (2.0 * p.cx) * dg.dForce;
+    state = dg.state;
+  } else {
+    const auto res = kernels::membraneForce<N>(x, ref, mat, wrinkling, wantJ);
+    states_[k] = {res.state, res.principalStress, res.principalStrain};
+    r = res.force;
+    J = p.cx * res.stiffness;
+    state = res.state;
+  }
+  if (wantJ && state != kernels::WrinkleState::Taut) {
     // Slack or wrinkled fabric has no stiffness across the wrinkles: the Jacobian (never the
     // residual) gets a membrane tension of kMembraneSlackTangent E t in every direction (RG6), so
     // that slack regions do not make it singular. Converged states are untouched.

@@ -7,6 +7,7 @@
 
 #include "kernels/SliderFriction.hpp"
 #include "kernels/SlidingCableKernel.hpp"
+#include "kernels/SlidingDiscreteGradient.hpp"
 #include "terms/LineElementAssembly.hpp"
 
 namespace chute {
@@ -181,6 +182,22 @@ void SlidingGroupTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
       r = res.force;
       J = p.cx * res.stiffness;
       if (wantJ) addSlackPartTangents(res, mat, L, p.cx, J);
+    } else if (p.xStart) {
+      // Energy-momentum step: the discrete gradient of the element's length (EM11). The case
+      // reader allows it only without friction and mass (a step's topology is fixed: slider
+      // events end a step where a slider reaches a node).
+      const Eigen::VectorXd& x0 = *p.xStart;
+      const std::array<Vec3, 3> start = {pos(x0, n1), pos(x0, n2), pos(x0, n3)};
+      const std::array<Vec3, 3> end = {2.0 * x1 - start[0], 2.0 * x2 - start[1],
+                                       2.0 * x3 - start[2]};
+      const auto dg = kernels::slidingDiscreteGradient(start, end, L, mat, p.emDissipation, wantJ);
+      r = dg.force;
+      J = (2.0 * p.cx) * dg.dForce;
+      if (wantJ && dg.strain0 <= 0.0 && dg.strain1 <= 0.0) {
+        kernels::PolylineResult<3> slack;
+        slack.strain = dg.strain1;
+        addSlackTangent<3>(slack, mat, L, {0, 2, 1}, p.cx, J);
+      }
     } else {
       const auto res = kernels::slidingForce(x1, x2, x3, L, mat, wantJ);
       r = res.force;

@@ -13,6 +13,27 @@ namespace {
 constexpr double kMaxSteps = 1e9;
 constexpr double kLeastRelativeStep = 1e-15;
 
+// The terms the energy-momentum scheme has discrete gradients for (docs/formulation.md section
+// 10): any other strain energy would be integrated by the plain midpoint rule, which conserves
+// neither energy nor, for stiff parts, stability. Refused rather than run silently otherwise.
+void checkEnergyMomentumModel(const Model& m, TomlTable& s) {
+  std::string what;
+  for (const auto& g : m.groups) {
+    if (m.materials[g.material].density > 0.0)
+      what = "sliding group '" + g.name + "' with mass (configuration-dependent mass, F10)";
+    else if (g.numElements() > 1)
+      what = "sliding group '" + g.name +
+             "' of more than one element (a slider's hand-over at a node: its step fails)";
+    for (size_t k = 0; k < g.sliders.size() && what.empty(); ++k)
+      if (g.frictionOf(static_cast<int>(k)))
+        what = "friction, lock or one-way flow at the sliders of sliding group '" + g.name + "'";
+    if (!what.empty()) break;
+  }
+  if (!what.empty())
+    s.fail("integrator",
+           "\"energy_momentum\" does not support " + what + " (docs/formulation.md section 10)");
+}
+
 }  // namespace
 
 void readSolver(CaseSpec& c, TomlTable s) {
@@ -23,7 +44,14 @@ void readSolver(CaseSpec& c, TomlTable s) {
     sv.dt = s.positive("dt");
     sv.tEnd = s.positive("t_end");
     sv.rhoInf = s.number("rho_inf", 0.9);
-    sv.integrator = s.choice("integrator", "bossak", {"bossak", "generalized_alpha"});
+    sv.integrator =
+        s.choice("integrator", "bossak", {"bossak", "generalized_alpha", "energy_momentum"});
+    if (sv.integrator == "energy_momentum") {
+      sv.emDissipation = s.nonNegative("em_dissipation", 0.0);
+      checkEnergyMomentumModel(m, s);
+    } else {
+      s.notUsed({"em_dissipation"}, "without integrator = \"energy_momentum\"");
+    }
     m.massDamping = s.nonNegative("mass_damping", 0.0);
     if (sv.rhoInf < 0.0 || sv.rhoInf > 1.0) s.fail("rho_inf", "must be in [0, 1]");
     sv.dtMin = s.positive("dt_min", sv.dt * 1e-6);
@@ -39,7 +67,7 @@ void readSolver(CaseSpec& c, TomlTable s) {
              "the least step (dt_min = " + shortNumber(sv.dtMin) +
                  ") is lost in rounding near t_end: keep it above t_end * 1e-15");
   } else {
-    s.notUsed({"dt", "t_end", "rho_inf", "integrator", "mass_damping", "dt_min"},
+    s.notUsed({"dt", "t_end", "rho_inf", "integrator", "mass_damping", "dt_min", "em_dissipation"},
               "by static runs (type = \"static\")");
   }
   sv.loadSteps = static_cast<int>(s.integer("load_steps", 1, 1, 1000000));
