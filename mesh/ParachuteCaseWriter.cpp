@@ -28,7 +28,9 @@ std::string vec(double x, double y, double z) {
   return s.str();
 }
 
-void checkOptions(const ParachuteCaseOptions& o) {
+}  // namespace
+
+void checkParachuteCaseOptions(const ParachuteCaseOptions& o) {
   auto bad = [](const std::string& option, const std::string& why) {
     throw std::invalid_argument(option + ": " + why);
   };
@@ -39,14 +41,13 @@ void checkOptions(const ParachuteCaseOptions& o) {
   if (!(o.rampTime >= 0.0 && o.rampTime <= 1e6)) bad("--ramp-time", "must be in [0, 1e6]");
   if (!(o.probeInterval > 0.0)) bad("--probe-interval", "must be positive");
   if (!(o.vtuInterval >= 0.0)) bad("--vtu-interval", "must not be negative");
+  if (o.units != "ft" && o.units != "si") bad("--units", "expected ft or si");
 }
-
-}  // namespace
 
 void writeParachuteCase(const ParachuteSpec& spec, const GeneratedParachute& generated,
                         const std::string& caseFile, const std::string& msh,
                         const ParachuteCaseOptions& o) {
-  checkOptions(o);
+  checkParachuteCaseOptions(o);
   const ParachuteMaterials mat = parachuteMaterials(o.units);
   namespace fs = std::filesystem;
   const fs::path dir = fs::absolute(caseFile).parent_path();

@@ -23,6 +23,9 @@ struct ParachuteCaseOptions {
   double probeInterval = 0.01, vtuInterval = 0.05;  // vtuInterval 0: no series
 };
 
+// Throws std::invalid_argument naming the option (--pressure, --dt, ...) of a bad value.
+void checkParachuteCaseOptions(const ParachuteCaseOptions& options);
+
 // msh is referenced relative to the case file's folder. Throws std::invalid_argument for bad
 // options (naming them) and std::runtime_error if the case file cannot be written.
 void writeParachuteCase(const ParachuteSpec& spec, const GeneratedParachute& generated,

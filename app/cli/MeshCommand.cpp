@@ -7,6 +7,7 @@
 // (which can run commands) and writes its mesh (GeoScript.hpp); the only way chute runs a .geo.
 #include <fmt/core.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -212,6 +213,9 @@ Command addMeshCommand(CLI::App& app) {
         if (!a->box.empty()) a->spec.payloadBox = {a->box[0], a->box[1], a->box[2]};
         mesh::GeneratedParachute g;
         try {
+          if (p->count("--pressure") && !std::isfinite(a->caseOptions.pressure))
+            throw std::invalid_argument("--pressure: must be finite");
+          if (!a->caseFile.empty()) mesh::checkParachuteCaseOptions(a->caseOptions);
           g = mesh::generateParachute(a->spec, a->out);
           if (!a->caseFile.empty()) {
             mesh::writeParachuteCase(a->spec, g, a->caseFile, a->out, a->caseOptions);
