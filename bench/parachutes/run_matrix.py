@@ -140,6 +140,7 @@ def main():
         return fmt.format(r[k]) if k in r else "-"
 
     with open(os.path.join(a.results_dir, "results.md"), "w") as f:
+        f.write("# Generated-parachute matrix\n\n")
         f.write(f"Generated parachutes flown {a.t_end:g} s with the generated case unchanged "
                 f"(`{' '.join(['python3', 'bench/parachutes/run_matrix.py'] + sys.argv[1:])}`); "
                 "vent and slider as fractions of D; skirt radius (mean distance of the skirt "
