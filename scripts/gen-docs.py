@@ -35,6 +35,7 @@ VERIFICATION = [
     ("test_face_drag_plate", "a falling flat plate against its terminal speed"),
     ("test_coupling", "the coupling interface: tangents, case-file vs coupled pressure, implicit vs monolithic"),
     ("test_parachute_mesh", "the generated parachute: areas, lengths, groups, stress-free starts"),
+    ("test_generated_flight", "generated parachute cases fly unchanged: completion, skirt radius"),
     ("test_mesh_import", "gmsh import: groups, round trip, errors"),
     ("test_bad_input", "bad input: one clear line and exit status 2 for each kind"),
     ("test_stress", "stability stress suite (short versions)"),

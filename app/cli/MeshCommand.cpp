@@ -1,12 +1,13 @@
 // `chute mesh parachute --gores N --diameter D --line-length L --element-size h --out FILE.msh
 //  [--vent-diameter d] [--line-elements n] [--slider SIDE] [--payload-mass m] [--payload-box
 //  a,b,c] [--riser-length l] [--start flat|folded|inflated] [--case FILE.toml]
-//  [--config PARAMS.toml]`:
+//  [--units ft|si] [--pressure p] [--ramp-time s] [--dt s] [--t-end s] [--config PARAMS.toml]`:
 // a flat circular canopy with lines, slider and payload meshed with gmsh (docs/meshing.md).
 // `chute mesh geo SCRIPT.geo --out FILE.msh [--timeout s] [--max-memory MiB]`: runs a gmsh script
 // (which can run commands) and writes its mesh (GeoScript.hpp); the only way chute runs a .geo.
 #include <fmt/core.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -173,9 +174,17 @@ Command addMeshCommand(CLI::App& app) {
       ->default_val(0.005);
   p->add_option("--out", a->out, "output mesh (.msh, format 4.1)");
   p->add_option("--case", a->caseFile, "also write a case file that runs the mesh");
-  p->add_option("--pressure", a->caseOptions.pressure, "case: canopy pressure (ramped)");
-  p->add_option("--t-end", a->caseOptions.tEnd, "case: end time")->default_val(0.02);
-  p->add_option("--dt", a->caseOptions.dt, "case: time step")->default_val(1e-3);
+  p->add_option("--units", a->caseOptions.units,
+                "case: ft (ft, slug, s, lbf) or si (m, kg, s, N); the mesh's lengths are in them")
+      ->default_val("ft")
+      ->check(CLI::IsMember({"ft", "si"}));
+  p->add_option("--pressure", a->caseOptions.pressure,
+                "case: canopy pressure, the dynamic pressure of the descent (default 0.1 psf or "
+                "4.79 Pa; 0: none)");
+  p->add_option("--ramp-time", a->caseOptions.rampTime, "case: pressure ramp time")
+      ->default_val(0.1);
+  p->add_option("--t-end", a->caseOptions.tEnd, "case: end time")->default_val(2.0);
+  p->add_option("--dt", a->caseOptions.dt, "case: time step")->default_val(2e-3);
   p->add_flag("--quiet", a->quiet, "print nothing");
   return {
       mesh, [a, p, geoRun] {
@@ -204,6 +213,9 @@ Command addMeshCommand(CLI::App& app) {
         if (!a->box.empty()) a->spec.payloadBox = {a->box[0], a->box[1], a->box[2]};
         mesh::GeneratedParachute g;
         try {
+          if (p->count("--pressure") && !std::isfinite(a->caseOptions.pressure))
+            throw std::invalid_argument("--pressure: must be finite");
+          if (!a->caseFile.empty()) mesh::checkParachuteCaseOptions(a->caseOptions);
           g = mesh::generateParachute(a->spec, a->out);
           if (!a->caseFile.empty()) {
             mesh::writeParachuteCase(a->spec, g, a->caseFile, a->out, a->caseOptions);

@@ -234,7 +234,7 @@ def arg_inputs(ctx, rng, n):
                                 "--payload-box", "--riser-length", "--riser-elements", "--start",
                                 "--inflated-ratio", "--bundle-radius", "--slider-drop",
                                 "--line-slack", "--out", "--case", "--config", "--t-end", "--dt",
-                                "--max-elements"]),
+                                "--max-elements", "--units", "--pressure", "--ramp-time"]),
         "mesh geo": ([os.path.join(SOURCE, "mesh", "examples", "flat_canopy.geo")],
                      ["--out", "--timeout", "--max-memory"]),
     }

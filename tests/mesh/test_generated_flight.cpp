@@ -1,0 +1,110 @@
+// Generated parachutes fly with their generated case unchanged (the short version of
+// bench/parachutes/run_matrix.py): small coarse parachutes, ft and SI, folded / inflated / flat
+// starts, slider, vent and box payload, a few tenths of a second each. Each must complete (a
+// step that could not be recovered stops the run as "diverged"), and the canopy must open the
+// way a canopy opens: the skirt radius grows from the folded bundle and stays inside the flat
+// pattern's radius D / 2.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "ParachuteCaseWriter.hpp"
+#include "ParachuteGenerator.hpp"
+#include "app/RunCase.hpp"
+#include "case/CaseSpec.hpp"
+
+using namespace chute;
+using namespace chute::mesh;
+
+namespace {
+
+struct Flight {
+  RunResult run;
+  std::vector<double> radius;  // skirt.mean at each output time
+  std::string text;            // the case file
+};
+
+Flight fly(const std::string& name, const ParachuteSpec& s, const std::string& units, double tEnd) {
+  const std::string msh = ::testing::TempDir() + name + ".msh";
+  const std::string toml = ::testing::TempDir() + name + ".toml";
+  ParachuteCaseOptions o;
+  o.units = units;
+  writeParachuteCase(s, generateParachute(s, msh), toml, msh, o);
+  Flight f;
+  std::ifstream in(toml);
+  std::stringstream text;
+  text << in.rdbuf();
+  f.text = text.str();
+  const CaseSpec c = readCase(toml, {"solver.t_end=" + std::to_string(tEnd)});
+  f.run = runCase(c, RunOptions{});
+  const auto col =
+      std::find(f.run.columns.begin(), f.run.columns.end(), "skirt.mean") - f.run.columns.begin();
+  EXPECT_LT(col, static_cast<long>(f.run.columns.size()));
+  for (const auto& row : f.run.rows) f.radius.push_back(row[col]);
+  const double rmax = *std::max_element(f.radius.begin(), f.radius.end());
+  std::printf(
+      "%s: %s at t = %.3f s, %ld steps, %ld rejected, %.2f Newton/step, %d equations, %.1f s "
+      "wall; skirt radius / D %.4f -> %.4f (max %.4f)\n",
+      name.c_str(), f.run.status.c_str(), f.run.finalTime, f.run.steps, f.run.rejectedSteps,
+      f.run.newtonPerStep(), f.run.equations, f.run.wallTime, f.radius.front() / s.diameter,
+      f.radius.back() / s.diameter, rmax / s.diameter);
+  EXPECT_EQ(f.run.status, "completed") << f.run.reason;
+  EXPECT_NEAR(f.run.finalTime, tEnd, 1e-9);
+  EXPECT_LE(rmax, 0.5 * s.diameter * (1 + 1e-9));  // never beyond the flat pattern's radius
+  return f;
+}
+
+ParachuteSpec small(int gores, double diameter, double elementsPerDiameter) {
+  ParachuteSpec s;
+  s.gores = gores;
+  s.diameter = diameter;
+  s.lineLength = 0.85 * diameter;
+  s.lineElements = 4;
+  s.elementSize = diameter / elementsPerDiameter;
+  s.payloadMass = 1.0;
+  return s;
+}
+
+}  // namespace
+
+TEST(GeneratedFlight, FoldedSliderParachuteInSIOpensWithoutFailing) {
+  ParachuteSpec s = small(8, 1.5, 8);  // 1.5 m, slider 10 % of D
+  s.sliderSide = 0.15;
+  s.start = "folded";
+  const Flight f = fly("folded_slider_si", s, "si", 0.4);
+  // The folded bundle (skirt at D / 40) opens: the skirt radius at least doubles.
+  EXPECT_NEAR(f.radius.front(), s.diameter / 40, 0.01 * s.diameter);
+  EXPECT_GT(f.radius.back(), 2.0 * f.radius.front());
+  EXPECT_NE(f.text.find("units = \"m, kg, s, N\""), std::string::npos);
+}
+
+TEST(GeneratedFlight, InflatedVentedCanopyWithBoxPayloadInFeetStaysOpen) {
+  ParachuteSpec s = small(12, 5.0, 8);  // 5 ft, vent 10 %, a box on risers
+  s.ventDiameter = 0.5;
+  s.start = "inflated";
+  s.payloadBox = {0.5, 0.5, 0.4};
+  s.riserLength = 0.75;
+  const Flight f = fly("inflated_box_ft", s, "ft", 0.3);
+  // The spherical-cap start has its skirt at 0.7 of R; pressed by 0.1 psf it stays open.
+  EXPECT_GT(*std::min_element(f.radius.begin(), f.radius.end()), 0.25 * s.diameter);
+}
+
+TEST(GeneratedFlight, EverySolverSettingOfTheGeneratedCaseSaysWhy) {
+  ParachuteSpec s = small(8, 1.5, 4);
+  s.start = "flat";
+  const Flight f = fly("flat_si", s, "si", 0.05);
+  std::istringstream in(f.text.substr(f.text.find("[solver]")));
+  std::string line;
+  std::getline(in, line);
+  int settings = 0;
+  while (std::getline(in, line) && !line.empty()) {
+    if (line.rfind("type", 0) == 0) continue;
+    ++settings;
+    EXPECT_NE(line.find(" # "), std::string::npos) << "no reason given: " << line;
+  }
+  EXPECT_EQ(settings, 6);  // integrator, dt, t_end, rho_inf, slack_events, slider_events
+}
