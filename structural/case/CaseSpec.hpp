@@ -41,6 +41,8 @@ struct SolverSpec {
   bool slackTautEvents = true;   // cut steps at cable slack / taut switches
   bool sliderEvents = true;      // cut steps where a slider reaches a node (false: Bossak only)
   SliderSearch search = SliderSearch::MaterialCoordinate;
+  bool reuseTangent = false;          // modified Newton within a step (NewtonSettings)
+  bool symmetricPartSolver = false;   // linear_solver = "symmetric_part" (LinearSolver)
   std::string integrator = "bossak";  // or "generalized_alpha" (Chung-Hulbert)
   int loadSteps = 1;
   // Static: load factors grow geometrically from this to 1 over loadSteps (1: equal steps).
