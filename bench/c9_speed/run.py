@@ -4,7 +4,10 @@ step, the wall-time split per Newton iteration (summary.json "wall_time" / "newt
 and the skirt-radius history against a reference run of the same model at dt/4.
 
     python3 bench/c9_speed/run.py --reference            # once: the dt/4 reference (bench/results)
-    python3 bench/c9_speed/run.py --label NAME [--chute BIN] [--runs 3] [--t-end 1.0]
+    python3 bench/c9_speed/run.py --label NAME [--chute BIN] [--case TOML] [--runs 3] [--t-end 1.0]
+
+A binary of main needs main's case file (--case /work/main/cases/c9_slider.toml): the shipped
+case now sets keys main does not know.
 
 Appends one row per label to bench/results/c9_speed.csv and prints it. The skirt error is
 max over the probe times of |r - r_ref| / r_ref for skirt.mean, skirt.min and skirt.max (the
@@ -19,8 +22,8 @@ REF = os.path.join(RESULTS, "c9_speed_reference_probes.csv")
 COLS = ["skirt.mean", "skirt.min", "skirt.max"]
 
 
-def run(chute, sets, out):
-    cmd = ["nice", chute, "run", CASE, "--out", out, "--quiet"]
+def run(chute, sets, out, case=CASE):
+    cmd = ["nice", chute, "run", case, "--out", out, "--quiet"]
     for s in sets:
         cmd += ["--set", s]
     t0 = time.monotonic()
@@ -64,13 +67,14 @@ def main():
     ap.add_argument("--runs", type=int, default=3)
     ap.add_argument("--t-end", type=float, default=1.0)
     ap.add_argument("--label", default="run")
+    ap.add_argument("--case", default=CASE)
     ap.add_argument("--set", action="append", default=[], help="extra --set KEY=VALUE")
     ap.add_argument("--reference", action="store_true")
     args = ap.parse_args()
     sets = [f"solver.t_end={args.t_end}"] + args.set
     if args.reference:
         with tempfile.TemporaryDirectory() as out:
-            wall, s = run(args.chute, sets + ["solver.dt=0.0005"], out)
+            wall, s = run(args.chute, sets + ["solver.dt=0.0005"], out, args.case)
             assert s["status"] == "completed", s["status"]
             os.replace(os.path.join(out, "probes.csv"), REF)
         print(f"reference: dt/4 = 0.0005, {s['steps']} steps, {wall:.1f} s wall -> {REF}")
@@ -78,7 +82,7 @@ def main():
     walls, err = [], None
     for i in range(args.runs):
         with tempfile.TemporaryDirectory() as out:
-            wall, s = run(args.chute, sets, out)
+            wall, s = run(args.chute, sets, out, args.case)
             assert s["status"] == "completed", s["status"]
             walls.append(wall)
             if err is None:
