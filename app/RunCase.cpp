@@ -40,6 +40,8 @@ std::map<std::string, std::string> settingsOfEveryScheme(const SolverSpec& sv, c
           {"solver.tolerance", fmt::format("{}", sv.tolDisplacement)},
           {"solver.slack_events", sv.slackTautEvents ? "true" : "false"},
           {"solver.slider_events", sv.sliderEvents ? "true" : "false"},
+          {"solver.reuse_tangent", sv.reuseTangent ? "true" : "false"},
+          {"solver.linear_solver", sv.symmetricPartSolver ? "symmetric_part" : "auto"},
           {"solver.search",
            sv.search == SliderSearch::NearestLength ? "nearest_length" : "material_coordinate"},
           {"solver.mass", m.massKind == kernels::MassKind::Lumped ? "lumped" : "consistent"}};

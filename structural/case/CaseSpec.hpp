@@ -44,6 +44,8 @@ struct SolverSpec {
   bool slackTautEvents = true;   // cut steps at cable slack / taut switches
   bool sliderEvents = true;      // cut steps where a slider reaches a node (false: Bossak only)
   SliderSearch search = SliderSearch::MaterialCoordinate;
+  bool reuseTangent = false;          // modified Newton within a step (NewtonSettings)
+  bool symmetricPartSolver = false;   // linear_solver = "symmetric_part" (LinearSolver)
   std::string integrator = "bossak";  // or "generalized_alpha" (Chung-Hulbert), "energy_momentum"
   double emDissipation = 0.0;         // energy_momentum's energy-decaying parameter chi (EM8)
   int loadSteps = 1;

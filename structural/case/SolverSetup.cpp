@@ -21,6 +21,8 @@ NewtonSettings newtonSettings(const SolverSpec& sv, const Model& m) {
   ns.nominalStep = sv.dt;
   ns.slackTautEvents = sv.slackTautEvents;
   ns.sliderEvents = sv.sliderEvents;
+  ns.reuseTangent = sv.reuseTangent;
+  ns.symmetricPartSolver = sv.symmetricPartSolver;
   return ns;
 }
 

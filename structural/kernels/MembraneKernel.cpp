@@ -63,7 +63,7 @@ template <int NumNodes>
 MembraneResult<NumNodes> membraneForce(const std::array<Vec3, NumNodes>& x,
                                        const MembraneReference<NumNodes>& ref,
                                        const MembraneMaterial& mat, bool wrinkling,
-                                       bool withTangent) {
+                                       bool withTangent, bool withPrincipals) {
   constexpr int kDofs = 3 * NumNodes;
   MembraneResult<NumNodes> r;
   r.force.setZero();
@@ -97,6 +97,7 @@ MembraneResult<NumNodes> membraneForce(const std::array<Vec3, NumNodes>& x,
         for (int j = 0; j < NumNodes; ++j)
           r.stiffness.template block<3, 3>(3 * i, 3 * j).diagonal().array() += w * G(i, j);
     }
+    if (!withPrincipals) continue;
     Eigen::Matrix2d S;
     S << ps.stress[0], ps.stress[2], ps.stress[2], ps.stress[1];
     Eigen::Matrix2d Et;
@@ -132,9 +133,9 @@ Eigen::Matrix<double, NumNodes, NumNodes> membraneMass(const MembraneReference<N
 }
 
 template MembraneResult<3> membraneForce<3>(const std::array<Vec3, 3>&, const MembraneReference<3>&,
-                                            const MembraneMaterial&, bool, bool);
+                                            const MembraneMaterial&, bool, bool, bool);
 template MembraneResult<4> membraneForce<4>(const std::array<Vec3, 4>&, const MembraneReference<4>&,
-                                            const MembraneMaterial&, bool, bool);
+                                            const MembraneMaterial&, bool, bool, bool);
 template Eigen::Matrix<double, 3, 3> membraneMass<3>(const MembraneReference<3>&, double, bool);
 template Eigen::Matrix<double, 4, 4> membraneMass<4>(const MembraneReference<4>&, double, bool);
 

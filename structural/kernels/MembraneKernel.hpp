@@ -44,11 +44,13 @@ struct MembraneResult {
   Eigen::Vector2d principalStrain = Eigen::Vector2d::Zero();  // of E, averaged
 };
 
+// withPrincipals: also the principal values (two 2 x 2 eigen-solves per point, for output only;
+// left zero otherwise).
 template <int NumNodes>
 MembraneResult<NumNodes> membraneForce(const std::array<Vec3, NumNodes>& x,
                                        const MembraneReference<NumNodes>& ref,
                                        const MembraneMaterial& mat, bool wrinkling,
-                                       bool withTangent);
+                                       bool withTangent, bool withPrincipals = true);
 
 // Consistent mass rho t0 int N_i N_j dA (scalar per node pair; times I3) and its row sums.
 template <int NumNodes>

@@ -25,13 +25,22 @@ void chooseBlasThreads(int /*equations*/) {
 }  // namespace
 
 LinearSolver::LinearSolver(bool preferCholesky, Timings& timings)
-    : kind_(preferCholesky ? Kind::Cholmod : Kind::Umfpack), timings_(&timings) {}
+    : kind_(preferCholesky ? Kind::Cholmod : Kind::Umfpack),
+      preferred_(kind_),
+      timings_(&timings) {}
 
 LinearSolver::~LinearSolver() = default;
 
 bool LinearSolver::factorize(const SparseMatrix& A) {
   ScopedTimer timer(timings_->factorisation);
   ++timings_->factorisations;
+  if (kind_ == Kind::SymmetricPart) {
+    if (factorizeSymmetricPart(A)) return true;
+    // A zero pivot without pivoting: LU for good.
+    kind_ = Kind::Umfpack;
+    analysed_ = false;
+    ldlt_.reset();
+  }
   if (kind_ == Kind::Cholmod) {
     if (!cholmod_) {
       cholmod_ = std::make_unique<Eigen::CholmodDecomposition<SparseMatrix, Eigen::Lower>>();
@@ -74,10 +83,41 @@ bool LinearSolver::factorize(const SparseMatrix& A) {
   return umfpack_->info() == Eigen::Success;
 }
 
+bool LinearSolver::factorizeSymmetricPart(const SparseMatrix& A) {
+  if (!analysed_) {
+    // The pattern is structurally symmetric (cliques couple both ways): find each entry's
+    // transposed partner once.
+    const int n = static_cast<int>(A.cols());
+    transposed_.assign(A.nonZeros(), -1);
+    const int* outer = A.outerIndexPtr();
+    const int* inner = A.innerIndexPtr();
+    for (int j = 0; j < n; ++j)
+      for (int k = outer[j]; k < outer[j + 1]; ++k) {
+        const int i = inner[k];
+        const int* pos = std::lower_bound(inner + outer[i], inner + outer[i + 1], j);
+        if (pos == inner + outer[i + 1] || *pos != j) return false;  // not symmetric in pattern
+        transposed_[k] = static_cast<int>(pos - inner);
+      }
+    symmetricPart_ = A;
+    ldlt_ = std::make_unique<Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower>>();
+    ldlt_->analyzePattern(symmetricPart_);
+    analysed_ = true;
+    ++analyses_;
+  }
+  const double* a = A.valuePtr();
+  double* s = symmetricPart_.valuePtr();
+  for (size_t k = 0; k < transposed_.size(); ++k) s[k] = 0.5 * (a[k] + a[transposed_[k]]);
+  ldlt_->factorize(symmetricPart_);
+  return ldlt_->info() == Eigen::Success;
+}
+
 bool LinearSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   ScopedTimer timer(timings_->solve);
   ++timings_->solves;
-  if (kind_ == Kind::Cholmod) {
+  if (kind_ == Kind::SymmetricPart) {
+    x = ldlt_->solve(b);
+    if (ldlt_->info() != Eigen::Success) return false;
+  } else if (kind_ == Kind::Cholmod) {
     x = cholmod_->solve(b);
     if (cholmod_->info() != Eigen::Success) return false;
   } else {

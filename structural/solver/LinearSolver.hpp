@@ -1,11 +1,14 @@
 #pragma once
 // Sparse direct solves through SuiteSparse: CHOLMOD for symmetric positive definite matrices,
-// UMFPACK otherwise. The symbolic analysis is done once per pattern and reused; a failed
-// Cholesky (indefinite or singular matrix) falls back to UMFPACK for the rest of the run.
+// UMFPACK otherwise; on request (NS2) Eigen's simplicial LDL^T of the symmetric part. The symbolic
+// analysis is done once per pattern and reused; a failed Cholesky (indefinite or singular matrix)
+// falls back to UMFPACK for the rest of the run.
 #include <Eigen/CholmodSupport>
+#include <Eigen/SparseCholesky>
 #include <Eigen/UmfPackSupport>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "assembly/SystemAssembler.hpp"
 #include "solver/Timings.hpp"
@@ -14,7 +17,7 @@ namespace chute {
 
 class LinearSolver {
  public:
-  enum class Kind { Cholmod, Umfpack };
+  enum class Kind { Cholmod, Umfpack, SymmetricPart };
 
   // preferCholesky: the matrix is symmetric by construction (all terms say so).
   LinearSolver(bool preferCholesky, Timings& timings);
@@ -26,20 +29,35 @@ class LinearSolver {
   bool solve(const Eigen::VectorXd& b, Eigen::VectorXd& x);
 
   Kind kind() const { return kind_; }
+  // The kind asked for at the start (kind() differs after a fall-back to LU).
+  Kind preferred() const { return preferred_; }
   // LU from now on (a restart of a run whose Cholesky fell back to LU).
   void useLU() {
     if (kind_ != Kind::Umfpack) kind_ = Kind::Umfpack, analysed_ = false;
   }
-  std::string kindName() const { return kind_ == Kind::Cholmod ? "cholmod" : "umfpack"; }
+  std::string kindName() const {
+    return kind_ == Kind::Cholmod   ? "cholmod"
+           : kind_ == Kind::Umfpack ? "umfpack"
+                                    : "ldlt_symmetric_part";
+  }
+  // LDL^T of the symmetric part (A + A^T) / 2 from now on (solver.linear_solver =
+  // "symmetric_part"): an approximate tangent whose error, the skew part, Newton absorbs.
+  void useSymmetricPart() {
+    if (kind_ != Kind::SymmetricPart) kind_ = preferred_ = Kind::SymmetricPart, analysed_ = false;
+  }
   long analyses() const { return analyses_; }
 
  private:
-  Kind kind_;
+  Kind kind_, preferred_;
   bool analysed_ = false;
   long analyses_ = 0;
   Timings* timings_;
   std::unique_ptr<Eigen::CholmodDecomposition<SparseMatrix, Eigen::Lower>> cholmod_;
   std::unique_ptr<Eigen::UmfPackLU<SparseMatrix>> umfpack_;
+  std::unique_ptr<Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower>> ldlt_;
+  SparseMatrix symmetricPart_;
+  std::vector<int> transposed_;  // index of entry (j, i) for entry (i, j) in A's storage
+  bool factorizeSymmetricPart(const SparseMatrix& A);
 };
 
 }  // namespace chute

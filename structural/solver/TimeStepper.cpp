@@ -24,8 +24,10 @@ TimeStepper::Saved TimeStepper::save(const StructuralState& s) const {
   Saved out;
   out.snapshot = sys_->saveState(s);
   out.counters = counters_;
+  // Fell back to LU (from CHOLMOD or the symmetric part's LDL^T): a restart stays on LU.
+  const LinearSolver& ls = integrator_->linearSolver();
   out.linearSolverLU =
-      integrator_->linearSolver().kind() == LinearSolver::Kind::Umfpack && sys_->symmetric();
+      ls.kind() == LinearSolver::Kind::Umfpack && ls.preferred() != LinearSolver::Kind::Umfpack;
   return out;
 }
 

@@ -63,15 +63,16 @@ void MembraneTerm::assembleElement(int k, const kernels::MembraneReference<N>& r
     for (int i = 0; i < N; ++i) x1[i] = 2.0 * x[i] - x0[i];
     const auto dg =
         kernels::membraneDiscreteGradient<N>(x0, x1, ref, mat, wrinkling, p.emDissipation, wantJ);
-    states_[k] = {dg.state, dg.principalStress, dg.principalStrain};
+    states_[k].state = dg.state;
     r = dg.force;
-    J = (2.0 * p.cx) * dg.dForce;
+    if (wantJ) J = (2.0 * p.cx) * dg.dForce;
     state = dg.state;
   } else {
-    const auto res = kernels::membraneForce<N>(x, ref, mat, wrinkling, wantJ);
-    states_[k] = {res.state, res.principalStress, res.principalStrain};
+    // Principal stresses and strains are output-only: computed when output asks for them.
+    const auto res = kernels::membraneForce<N>(x, ref, mat, wrinkling, wantJ, false);
+    states_[k].state = res.state;
     r = res.force;
-    J = p.cx * res.stiffness;
+    if (wantJ) J = p.cx * res.stiffness;
     state = res.state;
   }
   if (wantJ && state != kernels::WrinkleState::Taut) {
@@ -91,12 +92,12 @@ void MembraneTerm::assembleElement(int k, const kernels::MembraneReference<N>& r
       Eigen::Matrix<double, 3 * N, 1> a;
       for (int i = 0; i < N; ++i) a.template segment<3>(3 * i) = p.a.segment<3>(3 * e.nodes[i]);
       r += M * a;
-      J += p.ca * M;
+      if (wantJ) J += p.ca * M;
       if (m_->massDamping > 0.0) {  // C v with C = alpha M (pseudo-dynamics, physical damping)
         Eigen::Matrix<double, 3 * N, 1> vel;
         for (int i = 0; i < N; ++i) vel.template segment<3>(3 * i) = p.v.segment<3>(3 * e.nodes[i]);
         r += m_->massDamping * M * vel;
-        J += p.cv * m_->massDamping * M;
+        if (wantJ) J += p.cv * m_->massDamping * M;
       }
     }
     if (m_->hasGravity()) {
@@ -109,6 +110,8 @@ void MembraneTerm::assembleElement(int k, const kernels::MembraneReference<N>& r
 }
 
 void MembraneTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
+  lastX_ = p.x;
+  principalsStale_ = true;
   for (size_t k = 0; k < m_->membranes.size(); ++k) {
     if (m_->membranes[k].numNodes == 3)
       assembleElement<3>(static_cast<int>(k), refs3_[slot_[k]], p, out);
@@ -117,13 +120,35 @@ void MembraneTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
   }
 }
 
+const std::vector<MembraneTerm::ElementState>& MembraneTerm::elementStates() const {
+  if (!principalsStale_) return states_;
+  // The same kernel at the same positions as the last assembly: the values it would have given.
+  for (size_t k = 0; k < m_->membranes.size(); ++k) {
+    const auto& e = m_->membranes[k];
+    const auto& mat = m_->membraneMaterials[e.material];
+    const bool wrinkling = m_->membraneSets[e.set].wrinkling;
+    auto one = [&](const auto& ref, auto nodesTag) {
+      constexpr int N = decltype(nodesTag)::value;
+      const auto res =
+          kernels::membraneForce<N>(gatherNodes<N>(lastX_, e), ref, mat, wrinkling, false, true);
+      states_[k] = {res.state, res.principalStress, res.principalStrain};
+    };
+    if (e.numNodes == 3)
+      one(refs3_[slot_[k]], std::integral_constant<int, 3>{});
+    else
+      one(refs4_[slot_[k]], std::integral_constant<int, 4>{});
+  }
+  principalsStale_ = false;
+  return states_;
+}
+
 void MembraneTerm::addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v, double,
                              EnergyBreakdown& en) const {
   auto one = [&](const auto& ref, const MembraneElement& e, auto nodesTag) {
     constexpr int N = decltype(nodesTag)::value;
     const auto& mat = m_->membraneMaterials[e.material];
     en.strain += kernels::membraneForce<N>(gatherNodes<N>(x, e), ref, mat,
-                                           m_->membraneSets[e.set].wrinkling, false)
+                                           m_->membraneSets[e.set].wrinkling, false, false)
                      .energy;
     if (mat.density <= 0.0) return;
     const auto Ms =
@@ -148,6 +173,7 @@ void MembraneTerm::addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
 // mechanics needs; they are kept with the history so that output after a restore (coupling
 // window, checkpoint) shows the restored state, not the last trial's.
 void MembraneTerm::save(History& h) const {
+  elementStates();  // principal values of the last assembly
   std::vector<int> wrinkle(states_.size());
   std::vector<double> values;
   values.reserve(4 * states_.size());
@@ -161,6 +187,7 @@ void MembraneTerm::save(History& h) const {
 }
 
 void MembraneTerm::load(HistoryReader& h) {
+  principalsStale_ = false;  // the loaded values stand until the next assembly
   const auto wrinkle = h.ints(states_.size(), 0, static_cast<int>(kernels::WrinkleState::Slack));
   const auto values = h.reals(4 * states_.size());
   for (size_t k = 0; k < states_.size(); ++k) {

@@ -25,8 +25,10 @@ class MembraneTerm final : public Term {
     Eigen::Vector2d principalStrain = Eigen::Vector2d::Zero();
   };
   // A function of the current strain, recomputed at every assembly (not history); kept so that
-  // output after a coupling checkpoint is restored shows the restored state.
-  const std::vector<ElementState>& elementStates() const { return states_; }
+  // output after a coupling checkpoint is restored shows the restored state. The principal
+  // values are output only: an assembly keeps its positions, and they are computed from those
+  // when asked for (four eigen-solves per quad were a tenth of a C-9 Newton iteration).
+  const std::vector<ElementState>& elementStates() const;
   bool hasHistory() const override { return true; }
   void save(History& h) const override;
   void load(HistoryReader& h) override;
@@ -41,7 +43,11 @@ class MembraneTerm final : public Term {
   std::vector<int> slot_;  // per element: index into refs3_ or refs4_
   std::vector<kernels::MembraneReference<3>> refs3_;
   std::vector<kernels::MembraneReference<4>> refs4_;
-  std::vector<ElementState> states_;
+  mutable std::vector<ElementState> states_;
+  // Positions of the last assembly, and whether states_' principal values are still to be
+  // computed from them.
+  Eigen::VectorXd lastX_;
+  mutable bool principalsStale_ = false;
 };
 
 }  // namespace chute

@@ -85,6 +85,9 @@ void readSolver(CaseSpec& c, TomlTable s) {
   if (s.has("newton_tolerance")) sv.tolDisplacement = s.positive("newton_tolerance");
   sv.slackTautEvents = s.boolean("slack_events", true);
   sv.sliderEvents = s.boolean("slider_events", true);
+  sv.reuseTangent = s.boolean("reuse_tangent", false);
+  sv.symmetricPartSolver =
+      s.choice("linear_solver", "auto", {"auto", "symmetric_part"}) == "symmetric_part";
   if (!sv.sliderEvents && sv.integrator != "bossak")
     s.fail("slider_events",
            "false needs integrator = \"bossak\" (forces at the step's end, where a slider "
