@@ -23,7 +23,18 @@ void readSolver(CaseSpec& c, TomlTable s) {
     sv.dt = s.positive("dt");
     sv.tEnd = s.positive("t_end");
     sv.rhoInf = s.number("rho_inf", 0.9);
-    sv.integrator = s.choice("integrator", "bossak", {"bossak", "generalized_alpha"});
+    sv.integrator =
+        s.choice("integrator", "bossak", {"bossak", "generalized_alpha", "central_difference"});
+    if (sv.integrator == "central_difference") {
+      // Explicit (docs/formulation.md EX1-EX8): dt is then the largest step allowed.
+      sv.safetyFactor = s.positive("safety_factor", 0.9);
+      if (sv.safetyFactor > 1.0) s.fail("safety_factor", "must be in (0, 1]");
+      sv.targetDt = s.nonNegative("target_dt", 0.0);
+      sv.stiffnessDamping = s.nonNegative("stiffness_damping", 0.0);
+    } else {
+      s.notUsed({"safety_factor", "target_dt", "stiffness_damping"},
+                "by implicit integrators (only by integrator = \"central_difference\")");
+    }
     m.massDamping = s.nonNegative("mass_damping", 0.0);
     if (sv.rhoInf < 0.0 || sv.rhoInf > 1.0) s.fail("rho_inf", "must be in [0, 1]");
     sv.dtMin = s.positive("dt_min", sv.dt * 1e-6);
@@ -39,7 +50,8 @@ void readSolver(CaseSpec& c, TomlTable s) {
              "the least step (dt_min = " + shortNumber(sv.dtMin) +
                  ") is lost in rounding near t_end: keep it above t_end * 1e-15");
   } else {
-    s.notUsed({"dt", "t_end", "rho_inf", "integrator", "mass_damping", "dt_min"},
+    s.notUsed({"dt", "t_end", "rho_inf", "integrator", "mass_damping", "dt_min", "safety_factor",
+               "target_dt", "stiffness_damping"},
               "by static runs (type = \"static\")");
   }
   sv.loadSteps = static_cast<int>(s.integer("load_steps", 1, 1, 1000000));
