@@ -71,6 +71,7 @@ CentralDifference::CentralDifference(StructuralSystem& sys, ExplicitSettings set
         if (const int e = sys.dofs().eq(n, k); e >= 0) addedEq_[e] = add;
     }
     addedByPart_.assign(byPart.begin(), byPart.end());
+    cachedX_.resize(0);  // the mass evaluated above is without the added mass
   }
   if (sys.numEquations() > 0) refuseMassless(lumpedMass(x0, 0.0));
 }
@@ -112,11 +113,17 @@ Eigen::VectorXd CentralDifference::lumpedMass(const Eigen::VectorXd& x, double t
     // its restart; only a cut changes it.
     fixedMass_ = massOf(fixedMassTerms_, x0_, t);
     fixedMassCuts_ = cuts;
+    cachedX_.resize(0);
   }
-  Eigen::VectorXd mass = fixedMass_ + addedEq_;
-  // A sliding element's lumped mass follows the slider's split (F10): evaluated at x.
-  if (!slidingTerms_.empty()) mass += massOf(slidingTerms_, x, t);
-  return mass;
+  // A sliding element's lumped mass follows the slider's split (F10): evaluated at x (the
+  // step's end positions are the next step's start: evaluated once for both).
+  if (!(cachedT_ == t && cachedX_.size() == x.size() && cachedX_ == x)) {
+    cachedMass_ = fixedMass_ + addedEq_;
+    if (!slidingTerms_.empty()) cachedMass_ += massOf(slidingTerms_, x, t);
+    cachedX_ = x;
+    cachedT_ = t;
+  }
+  return cachedMass_;
 }
 
 std::vector<double> CentralDifference::nodalMass(const Eigen::VectorXd& massEq) const {

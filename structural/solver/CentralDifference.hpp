@@ -80,7 +80,9 @@ class CentralDifference {
   std::vector<std::pair<std::string, double>> addedByPart_;
   std::vector<char> freeNode_;
   Record record_;
-  Eigen::VectorXd massEq_;  // the last lumped mass
+  // The last lumped mass and where it was evaluated (the active elements are those at x).
+  Eigen::VectorXd cachedMass_, cachedX_;
+  double cachedT_ = 0.0;
 };
 
 }  // namespace chute
