@@ -217,21 +217,12 @@ NewtonReport CentralDifference::step(StructuralState& s, double dt) {
     n.a[d] = c.acceleration(d % 3, n.t);
   }
   // EX3: hand-over checked every step. A driven slider is handed over where its path passes a
-  // node; a free slider whose motion passes a node inside the step is handed over there
-  // (the node and the slider meet at the fraction passageFraction gives) and goes on in the
-  // neighbouring element for the rest of the step's motion, as Newton does with
-  // slider_events = false.
+  // node; a free slider whose part to an end node turns round over the step has passed that
+  // node and is handed over to the neighbour there (notePassages), applied by the search below.
   if (sys_->drivesKinks()) sys_->crossDriven(s.x, n.x);
-  Eigen::VectorXd from = s.x, motion = n.x - s.x;
-  for (int pass = 0; pass < 16; ++pass) {
-    const double f = sys_->passageFraction(from, motion);
-    if (!(f < 1.0)) break;
-    Eigen::VectorXd meet = from + f * motion;
-    sys_->crossNow(meet);
-    sys_->updateState(meet);
-    motion *= 1.0 - f;
-    from = meet;
-    n.x = meet + motion;
+  if (!sys_->slidingGroups().empty()) {
+    const Eigen::VectorXd motion = n.x - s.x;
+    for (auto* g : sys_->slidingGroups()) g->state().notePassages(s.x, motion);
   }
   sys_->updateState(n.x);
   sys_->onConverged(n.x);  // a slider landing on a node is handed over at commit
