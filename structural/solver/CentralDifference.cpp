@@ -5,12 +5,16 @@
 #include <limits>
 #include <map>
 
+#include "kernels/Regularisations.hpp"
 #include "solver/StableStep.hpp"
 #include "terms/SlidingGroupTerm.hpp"
 
 namespace chute {
 
 namespace {
+
+// Arrival radius of explicit hand-overs, a fraction of the element's reference length (EX3).
+constexpr double kExplicitArrival = 1e-3;
 
 std::string nodeLabel(const Model& m, int n) {
   return m.nodeName[n].empty() ? "node " + std::to_string(n + 1) : m.nodeName[n];
@@ -222,7 +226,13 @@ NewtonReport CentralDifference::step(StructuralState& s, double dt) {
   if (sys_->drivesKinks()) sys_->crossDriven(s.x, n.x);
   if (!sys_->slidingGroups().empty()) {
     const Eigen::VectorXd motion = n.x - s.x;
-    for (auto* g : sys_->slidingGroups()) g->state().notePassages(s.x, motion);
+    for (auto* g : sys_->slidingGroups()) {
+      g->state().notePassages(s.x, motion);
+      // A slider whose approach stalls short of the node (the node, with mass, pulled along
+      // by the short part) is handed over within kExplicitArrival of the element's length
+      // (the node placed a hair ahead of it, as at an implicit arrival, RG2).
+      g->state().arriveAtNodes(m, n.x, kExplicitArrival, kernels::kSeparationFraction, true);
+    }
   }
   sys_->updateState(n.x);
   sys_->onConverged(n.x);  // a slider landing on a node is handed over at commit
