@@ -19,6 +19,7 @@
 #include "app/RunOutput.hpp"
 #include "app/StopSignals.hpp"
 #include "case/SolverSetup.hpp"
+#include "solver/CentralDifference.hpp"
 #include "solver/GeneralizedAlpha.hpp"
 #include "solver/StaticLoadStepper.hpp"
 #include "solver/TimeStepper.hpp"
@@ -44,7 +45,10 @@ std::map<std::string, std::string> settingsOfEveryScheme(const SolverSpec& sv, c
           {"solver.linear_solver", sv.symmetricPartSolver ? "symmetric_part" : "auto"},
           {"solver.search",
            sv.search == SliderSearch::NearestLength ? "nearest_length" : "material_coordinate"},
-          {"solver.mass", m.massKind == kernels::MassKind::Lumped ? "lumped" : "consistent"}};
+          {"solver.mass", m.massKind == kernels::MassKind::Lumped ? "lumped" : "consistent"},
+          {"solver.safety_factor", fmt::format("{}", sv.safetyFactor)},
+          {"solver.target_dt", fmt::format("{}", sv.targetDt)},
+          {"solver.stiffness_damping", fmt::format("{}", sv.stiffnessDamping)}};
 }
 // energy_momentum's dissipation joins them (absent from other runs' checkpoints).
 std::map<std::string, std::string> solverSettings(const SolverSpec& sv, const Model& m) {
@@ -120,6 +124,21 @@ class Progress {
   std::chrono::steady_clock::time_point last_{};
 };
 
+ExplicitRunInfo explicitSummary(const CentralDifference& cd, const Model& m) {
+  ExplicitRunInfo e;
+  const auto& rec = cd.record();
+  e.leastStep = rec.least;
+  e.largestStep = rec.largest;
+  if (rec.limitingNode >= 0)
+    e.limitingNode = m.nodeName[rec.limitingNode].empty()
+                         ? "node " + std::to_string(rec.limitingNode + 1)
+                         : m.nodeName[rec.limitingNode];
+  e.stepHistory = rec.history;
+  e.addedMass = cd.addedMass();
+  e.totalAddedMass = cd.totalAddedMass();
+  return e;
+}
+
 }  // namespace
 
 RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
@@ -133,6 +152,12 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
   GeneralizedAlpha integrator(sys, sv.rhoInf, alphaScheme(sv), ns, sv.emDissipation);
   TimeStepper stepper(sys, integrator, sv.dt, sv.dtMin);
   const bool dynamic = sv.type != "static";
+  std::optional<CentralDifference> explicitCd;
+  if (dynamic && sv.integrator == "central_difference") {
+    explicitCd.emplace(sys, ExplicitSettings{sv.safetyFactor, sv.targetDt, sv.stiffnessDamping},
+                       integrator.initialState().x);
+    stepper.useExplicit(*explicitCd);
+  }
 
   // The model's fingerprint: checked against a restart file and written into every checkpoint.
   const auto hash = modelHash(m);
@@ -226,6 +251,7 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
       if (r.status != "completed") out.lastGoodState(state);
       r.steps = n.steps, r.rejectedSteps = n.rejectedSteps, r.eventRetries = n.eventRetries;
       r.newtonIterations = n.newtonIterations, r.maxNewtonInStep = n.maxNewtonInStep;
+      if (explicitCd) r.explicitRun = explicitSummary(*explicitCd, m);
     }
   } catch (const OutputError& e) {
     // A full disk or a removed directory: the rows and frames before the failed write are whole.
@@ -315,6 +341,22 @@ void writeSummary(const std::string& path, const CaseSpec& spec, const RunResult
       {"search", spec.solver.search == SliderSearch::NearestLength ? "nearest_length"
                                                                    : "material_coordinate"}};
   j["sliding_handovers"] = r.handovers;
+  if (r.explicitRun) {
+    const auto& e = *r.explicitRun;
+    json added = json::object();
+    for (const auto& [part, mass] : e.addedMass) added[part] = mass;
+    json history = json::array();
+    for (const auto& [time, dt] : e.stepHistory) history.push_back({time, dt});
+    j["explicit"] = {{"safety_factor", spec.solver.safetyFactor},
+                     {"target_dt", spec.solver.targetDt},
+                     {"stiffness_damping", spec.solver.stiffnessDamping},
+                     {"least_step", e.leastStep},
+                     {"largest_step", e.largestStep},
+                     {"limiting_node", e.limitingNode},
+                     {"stable_step_history", history},
+                     {"added_mass", added},
+                     {"added_mass_total", e.totalAddedMass}};
+  }
   j["output"] = {
       {"probe_rows", r.times.size()}, {"vtu_frames", r.vtuFrames}, {"checkpoints", r.checkpoints}};
   if (!spec.units.empty()) j["units"] = spec.units;

@@ -34,6 +34,15 @@ struct ReferenceError {
   double relative() const { return motionSize > 0 ? maxError / motionSize : maxError; }
 };
 
+// What an explicit run (solver.integrator = "central_difference") reports in summary.json.
+struct ExplicitRunInfo {
+  double leastStep = 0.0, largestStep = 0.0;
+  std::string limitingNode;                               // the node that limited the least step
+  std::vector<std::pair<double, double>> stepHistory;     // (t, stable step), on 5 % changes
+  std::vector<std::pair<std::string, double>> addedMass;  // mass scaling, per part
+  double totalAddedMass = 0.0;
+};
+
 struct RunResult {
   std::string status = "completed";  // or "diverged", "interrupted"
   std::string reason;
@@ -53,6 +62,7 @@ struct RunResult {
   std::vector<double> times;
   std::vector<std::vector<double>> rows;
   std::optional<ReferenceError> reference;
+  std::optional<ExplicitRunInfo> explicitRun;
   double newtonPerStep() const { return steps ? double(newtonIterations) / steps : 0.0; }
 };
 

@@ -20,6 +20,7 @@ RESULTS = os.path.join(ROOT, "bench", "results")
 # Test programs whose figures make the verification page, with what they check.
 VERIFICATION = [
     ("test_verification", "the paper's pulley (F13) and bead (ellipse ODE) against independent references"),
+    ("test_central_difference", "explicit central differences: stable step vs wave speeds and the assembled system's highest frequency, pulley and bead vs their references, massless nodes, mass scaling, restart"),
     ("test_references", "the independent references themselves (closed forms, ODE solutions, Hencky)"),
     ("test_cable", "two-node cable: force vs energy, tangent vs force (central differences), slack/taut switch"),
     ("test_sliding_cable", "sliding element: force vs energy, tangent vs force (central differences)"),
@@ -54,6 +55,7 @@ CSV_TABLES = [
     ("scaling.csv", "Cost per Newton iteration against model size (`bench/scaling`)"),
     ("scaling_fit.csv", "Fitted exponents of the cost per iteration in dof"),
     ("stress.csv", "Stability stress suite, long runs (`python3 bench/stress.py`)"),
+    ("explicit_vs_implicit.csv", "Implicit (Bossak) against explicit (central differences) on the same scenes (`bench/explicit_vs_implicit.py`; docs/explicit.md)"),
     ("peer_calculix.csv", "chute against CalculiX on the same membrane problems (`bench/peer/run_peer.py`)"),
 ]
 

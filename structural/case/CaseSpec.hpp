@@ -44,10 +44,14 @@ struct SolverSpec {
   bool slackTautEvents = true;   // cut steps at cable slack / taut switches
   bool sliderEvents = true;      // cut steps where a slider reaches a node (false: Bossak only)
   SliderSearch search = SliderSearch::MaterialCoordinate;
-  bool reuseTangent = false;          // modified Newton within a step (NewtonSettings)
-  bool symmetricPartSolver = false;   // linear_solver = "symmetric_part" (LinearSolver)
-  std::string integrator = "bossak";  // or "generalized_alpha" (Chung-Hulbert), "energy_momentum"
-  double emDissipation = 0.0;         // energy_momentum's energy-decaying parameter chi (EM8)
+  bool reuseTangent = false;         // modified Newton within a step (NewtonSettings)
+  bool symmetricPartSolver = false;  // linear_solver = "symmetric_part" (LinearSolver)
+  // or "generalized_alpha" (Chung-Hulbert), "energy_momentum", "central_difference"
+  std::string integrator = "bossak";
+  double emDissipation = 0.0;  // energy_momentum's energy-decaying parameter chi (EM8)
+  // central_difference only: fraction of the stable step taken, mass scaling to a target step
+  // (0: off), stiffness-proportional damping beta (0: off).
+  double safetyFactor = 0.9, targetDt = 0.0, stiffnessDamping = 0.0;
   int loadSteps = 1;
   // Static: load factors grow geometrically from this to 1 over loadSteps (1: equal steps).
   double initialLoadFactor = 1.0;

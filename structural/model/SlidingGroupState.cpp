@@ -143,6 +143,25 @@ double SlidingGroupState::passageFraction(const Eigen::VectorXd& x, const Eigen:
   return fraction;
 }
 
+int SlidingGroupState::notePassages(const Eigen::VectorXd& x, const Eigen::VectorXd& dx) {
+  int passed = 0;
+  for (size_t s = 0; s < trial_.size(); ++s) {
+    if (driven_[s] || pendingHandover_[s] != 0) continue;
+    const int k = trial_[s];
+    const int n3 = def_->sliders[s];
+    for (int end = 0; end < 2; ++end) {
+      const int ni = def_->chain[k + end];
+      const Vec3 d = nodePos(x, n3) - nodePos(x, ni);
+      const Vec3 delta = nodePos(dx, n3) - nodePos(dx, ni);
+      if (d.dot(d + delta) >= 0.0) continue;
+      pendingHandover_[s] = end == 0 ? -1 : +1;
+      ++passed;
+      break;
+    }
+  }
+  return passed;
+}
+
 bool SlidingGroupState::arriveAtNodes(const Model& model, Eigen::VectorXd& x, double radiusFraction,
                                       double separationFraction, bool immediate) {
   bool changed = false;

@@ -40,6 +40,13 @@ class SlidingGroupState {
   bool arriveAtNodes(const Model& model, Eigen::VectorXd& x, double radiusFraction,
                      double separationFraction, bool immediate = false);
 
+  // Explicit integration (docs/formulation.md EX3), which has no iterations that would land a
+  // slider on a node: a free slider whose part to an end node of its element turns round over
+  // the motion dx from x, (d + delta) . d < 0 with d = x3 - xi, has passed that node and is
+  // handed over to the neighbour there at the next search() (at a chain end, or against another
+  // slider, it stays). Returns how many sliders passed a node.
+  int notePassages(const Eigen::VectorXd& x, const Eigen::VectorXd& dx);
+
   // Driven sliders: all three dofs follow a moving prescribed path. Where such a slider is at
   // any time is given, so its node passages need no locating in time: passageFraction() leaves
   // them out, and crossDriven() hands a driven slider over as soon as a motion from positions

@@ -5,6 +5,8 @@
 #include <limits>
 #include <sstream>
 
+#include "solver/CentralDifference.hpp"
+
 namespace chute {
 
 TimeStepper::TimeStepper(StructuralSystem& sys, GeneralizedAlpha& integrator, double dtNominal,
@@ -14,7 +16,10 @@ TimeStepper::TimeStepper(StructuralSystem& sys, GeneralizedAlpha& integrator, do
 StructuralState TimeStepper::start() {
   StructuralState s = integrator_->initialState();
   s.control = control_.initial();
-  integrator_->computeInitialAcceleration(s);
+  if (explicit_)
+    explicit_->computeAcceleration(s);
+  else
+    integrator_->computeInitialAcceleration(s);
   accelerationAfterCut(s);
   sys_->commit(CommitPoint{s.x, s.t, 0.0, s.t});
   return s;
@@ -44,7 +49,10 @@ void TimeStepper::accelerationAfterCut(StructuralState& s) {
   after.t = std::nextafter(s.t, std::numeric_limits<double>::infinity());
   for (int d = 0; d < after.a.size(); ++d)
     if (sys_->dofs().eqOfDof(d) >= 0) after.a[d] = 0.0;
-  integrator_->computeInitialAcceleration(after);
+  if (explicit_)
+    explicit_->computeAcceleration(after);
+  else
+    integrator_->computeInitialAcceleration(after);
   s.a = after.a;
 }
 
@@ -56,6 +64,29 @@ TimeStepper::Result TimeStepper::advanceTo(
   while (!reached(s.t, tStop)) {
     // The next stop: the target, the caller's next stop, the next cable cut.
     const double stop = std::min({tStop, nextStop(s.t), m.nextCutAfter(s.t)});
+    if (explicit_) {
+      // The stable step from the current positions; no sliver absorption (it would exceed it).
+      s.control.dt = explicit_->chooseStep(s.control.dt, control_.nominal(), s.x, s.t);
+      const double h = std::min(s.control.dt, stop - s.t);
+      const bool reachesStop = h == stop - s.t;
+      const NewtonReport rep = explicit_->step(s, h);
+      if (!rep.converged) {
+        std::ostringstream why;
+        why.precision(9);
+        why << "unstable explicit step at t = " << s.t << " (" << rep.failure << ")";
+        result.outcome = Outcome::BelowMinimum;
+        result.reason = why.str();
+        return result;
+      }
+      if (reachesStop) s.t = stop;
+      ++counters_.steps;
+      accelerationAfterCut(s);
+      if (!afterStep(s, 0)) {
+        result.outcome = Outcome::Stopped;
+        return result;
+      }
+      continue;
+    }
     const double h = control_.propose(s.control, s.t, stop);
     const bool reachesStop = control_.reachesStop();
     // The state the step starts from: a failed try goes back to exactly this.

@@ -22,9 +22,17 @@ struct StepCounters {
   }
 };
 
+class CentralDifference;
+
 class TimeStepper {
  public:
   TimeStepper(StructuralSystem& sys, GeneralizedAlpha& integrator, double dtNominal, double dtMin);
+  // Steps with explicit central differences instead (solver/CentralDifference.hpp): each step is
+  // the stable step at the step's start (at most dtNominal), cut to land on stops; the initial
+  // acceleration and that after a cut are the lumped-mass ones; an unstable (non-finite) step
+  // ends the run as BelowMinimum rather than being halved. GeneralizedAlpha still gives the
+  // initial state.
+  void useExplicit(CentralDifference& cd) { explicit_ = &cd; }
 
   // The state a run starts from: the model's positions and prescribed velocities, the
   // consistent acceleration (after a cut at the start time, without the cut set), committed.
@@ -69,6 +77,7 @@ class TimeStepper {
 
   StructuralSystem* sys_;
   GeneralizedAlpha* integrator_;
+  CentralDifference* explicit_ = nullptr;
   StepController control_;
   StepCounters counters_;
 };

@@ -45,12 +45,23 @@ void readSolver(CaseSpec& c, TomlTable s) {
     sv.tEnd = s.positive("t_end");
     sv.rhoInf = s.number("rho_inf", 0.9);
     sv.integrator =
-        s.choice("integrator", "bossak", {"bossak", "generalized_alpha", "energy_momentum"});
+        s.choice("integrator", "bossak",
+                 {"bossak", "generalized_alpha", "energy_momentum", "central_difference"});
     if (sv.integrator == "energy_momentum") {
       sv.emDissipation = s.nonNegative("em_dissipation", 0.0);
       checkEnergyMomentumModel(m, s);
     } else {
       s.notUsed({"em_dissipation"}, "without integrator = \"energy_momentum\"");
+    }
+    if (sv.integrator == "central_difference") {
+      // Explicit (docs/formulation.md EX1-EX8): dt is then the largest step allowed.
+      sv.safetyFactor = s.positive("safety_factor", 0.9);
+      if (sv.safetyFactor > 1.0) s.fail("safety_factor", "must be in (0, 1]");
+      sv.targetDt = s.nonNegative("target_dt", 0.0);
+      sv.stiffnessDamping = s.nonNegative("stiffness_damping", 0.0);
+    } else {
+      s.notUsed({"safety_factor", "target_dt", "stiffness_damping"},
+                "by implicit integrators (only by integrator = \"central_difference\")");
     }
     m.massDamping = s.nonNegative("mass_damping", 0.0);
     if (sv.rhoInf < 0.0 || sv.rhoInf > 1.0) s.fail("rho_inf", "must be in [0, 1]");
@@ -67,7 +78,8 @@ void readSolver(CaseSpec& c, TomlTable s) {
              "the least step (dt_min = " + shortNumber(sv.dtMin) +
                  ") is lost in rounding near t_end: keep it above t_end * 1e-15");
   } else {
-    s.notUsed({"dt", "t_end", "rho_inf", "integrator", "mass_damping", "dt_min", "em_dissipation"},
+    s.notUsed({"dt", "t_end", "rho_inf", "integrator", "mass_damping", "dt_min", "em_dissipation",
+               "safety_factor", "target_dt", "stiffness_damping"},
               "by static runs (type = \"static\")");
   }
   sv.loadSteps = static_cast<int>(s.integer("load_steps", 1, 1, 1000000));
@@ -88,7 +100,9 @@ void readSolver(CaseSpec& c, TomlTable s) {
   sv.reuseTangent = s.boolean("reuse_tangent", false);
   sv.symmetricPartSolver =
       s.choice("linear_solver", "auto", {"auto", "symmetric_part"}) == "symmetric_part";
-  if (!sv.sliderEvents && sv.integrator != "bossak")
+  // Slider hand-over inside a step needs the forces at the step's end: Bossak, or explicit
+  // (which always hands over inside the step).
+  if (!sv.sliderEvents && sv.integrator != "bossak" && sv.integrator != "central_difference")
     s.fail("slider_events",
            "false needs integrator = \"bossak\" (forces at the step's end, where a slider "
            "crossed inside the step is in its new element)");

@@ -1,0 +1,272 @@
+#include "solver/CentralDifference.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+
+#include "kernels/Regularisations.hpp"
+#include "solver/StableStep.hpp"
+#include "terms/SlidingGroupTerm.hpp"
+
+namespace chute {
+
+namespace {
+
+// Arrival radius of explicit hand-overs, a fraction of the element's reference length (EX3).
+constexpr double kExplicitArrival = 1e-3;
+
+std::string nodeLabel(const Model& m, int n) {
+  return m.nodeName[n].empty() ? "node " + std::to_string(n + 1) : m.nodeName[n];
+}
+
+// The part a node belongs to, for the mass-scaling report: its first membrane set, line set or
+// sliding group, else "point masses".
+std::vector<std::string> partOfNode(const Model& m) {
+  std::vector<std::string> part(m.numNodes());
+  for (const auto& e : m.membranes)
+    for (int i = 0; i < e.numNodes; ++i)
+      if (part[e.nodes[i]].empty()) part[e.nodes[i]] = m.membraneSets[e.set].name;
+  for (const auto& c : m.cables)
+    for (int n : {c.a, c.b})
+      if (part[n].empty()) part[n] = m.lineSets[c.set].name;
+  for (const auto& g : m.groups) {
+    for (int n : g.chain)
+      if (part[n].empty()) part[n] = m.lineSets[g.set].name;
+    for (int n : g.sliders)
+      if (part[n].empty()) part[n] = m.lineSets[g.set].name;
+  }
+  for (auto& p : part)
+    if (p.empty()) p = "point masses";
+  return part;
+}
+
+}  // namespace
+
+CentralDifference::CentralDifference(StructuralSystem& sys, ExplicitSettings settings,
+                                     const Eigen::VectorXd& x0)
+    : sys_(&sys), settings_(settings), massAssembler_(sys.dofs()) {
+  massAssembler_.buildPattern({});
+  for (const auto& t : sys.terms()) {
+    const bool sliding = dynamic_cast<const SlidingGroupTerm*>(t.get()) != nullptr;
+    (sliding ? slidingTerms_ : fixedMassTerms_).push_back(t.get());
+  }
+  const Model& m = sys.model();
+  freeNode_.assign(m.numNodes(), 0);
+  for (int d = 0; d < sys.dofs().numDofs(); ++d)
+    if (sys.dofs().eqOfDof(d) >= 0) freeNode_[d / 3] = 1;
+  addedEq_.setZero(sys.numEquations());
+  x0_ = x0;
+  if (settings_.targetStep > 0.0) {
+    // EX8: the least nodal mass for which the node's bound S_i / m_i allows the target step
+    // with the safety factor, m_i >= S_i (target / (2 safety))^2, from the start positions.
+    const Eigen::VectorXd massEq = lumpedMass(x0, 0.0);
+    const auto S = nodalStiffnessBound(m, groupStates(), x0, 0.0);
+    const auto mass = nodalMass(massEq);
+    const double r = settings_.targetStep / (2.0 * settings_.safety);
+    const auto part = partOfNode(m);
+    std::map<std::string, double> byPart;
+    for (int n = 0; n < m.numNodes(); ++n) {
+      if (!freeNode_[n]) continue;
+      const double add = std::max(0.0, S[n] * r * r - mass[n]);
+      if (add <= 0.0) continue;
+      byPart[part[n]] += add;
+      for (int k = 0; k < 3; ++k)
+        if (const int e = sys.dofs().eq(n, k); e >= 0) addedEq_[e] = add;
+    }
+    addedByPart_.assign(byPart.begin(), byPart.end());
+    cachedX_.resize(0);  // the mass evaluated above is without the added mass
+  }
+  if (sys.numEquations() > 0) refuseMassless(lumpedMass(x0, 0.0));
+}
+
+double CentralDifference::totalAddedMass() const {
+  double sum = 0.0;
+  for (const auto& [part, mass] : addedByPart_) sum += mass;
+  return sum;
+}
+
+std::vector<const SlidingGroupState*> CentralDifference::groupStates() const {
+  std::vector<const SlidingGroupState*> out;
+  for (const auto* g : sys_->slidingGroups()) out.push_back(&g->state());
+  return out;
+}
+
+Eigen::VectorXd CentralDifference::massOf(const std::vector<Term*>& terms, const Eigen::VectorXd& x,
+                                          double t) {
+  const long n = x.size();
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n), ones = Eigen::VectorXd::Ones(n);
+  // Residual-only evaluations (no Jacobian): the inertia M a is the only part linear in a, so
+  // r(a = 1) - r(a = 0) is M 1, the row sums of the mass (EX2).
+  auto residualWith = [&](const Eigen::VectorXd& a) {
+    const EvalPoint p{x, zero, a, t, 0.0, 0.0, 0.0, true, 0.0, 0.0};
+    massAssembler_.begin(false);
+    for (auto* term : terms) term->assemble(p, massAssembler_);
+    return Eigen::VectorXd(massAssembler_.residual());
+  };
+  return residualWith(ones) - residualWith(zero);
+}
+
+Eigen::VectorXd CentralDifference::lumpedMass(const Eigen::VectorXd& x, double t) {
+  const Model& m = sys_->model();
+  const int cuts = static_cast<int>(std::count_if(m.lineSets.begin(), m.lineSets.end(),
+                                                  [t](const LineSet& s) { return s.cutBy(t); }));
+  if (cuts != fixedMassCuts_) {
+    // Cables, membranes and point masses: a mass that does not move with the positions. It is
+    // evaluated at the start positions (not at x) so that it is the same bits in a run and in
+    // its restart; only a cut changes it.
+    fixedMass_ = massOf(fixedMassTerms_, x0_, t);
+    fixedMassCuts_ = cuts;
+    cachedX_.resize(0);
+  }
+  // A sliding element's lumped mass follows the slider's split (F10): evaluated at x (the
+  // step's end positions are the next step's start: evaluated once for both).
+  if (!(cachedT_ == t && cachedX_.size() == x.size() && cachedX_ == x)) {
+    cachedMass_ = fixedMass_ + addedEq_;
+    if (!slidingTerms_.empty()) cachedMass_ += massOf(slidingTerms_, x, t);
+    cachedX_ = x;
+    cachedT_ = t;
+  }
+  return cachedMass_;
+}
+
+std::vector<double> CentralDifference::nodalMass(const Eigen::VectorXd& massEq) const {
+  const Model& m = sys_->model();
+  std::vector<double> mass(m.numNodes(), 0.0);
+  for (int n = 0; n < m.numNodes(); ++n) {
+    double least = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < 3; ++k)
+      if (const int e = sys_->dofs().eq(n, k); e >= 0) least = std::min(least, massEq[e]);
+    mass[n] = std::isfinite(least) ? least : 0.0;
+  }
+  return mass;
+}
+
+void CentralDifference::refuseMassless(const Eigen::VectorXd& massEq) const {
+  const Model& m = sys_->model();
+  std::vector<int> massless;
+  for (int n = 0; n < m.numNodes(); ++n)
+    for (int k = 0; k < 3; ++k)
+      if (const int e = sys_->dofs().eq(n, k); e >= 0 && !(massEq[e] > 0.0)) {
+        massless.push_back(n);
+        break;
+      }
+  if (massless.empty()) return;
+  std::string names;
+  for (size_t i = 0; i < massless.size() && i < 8; ++i)
+    names += (i ? ", " : "") + nodeLabel(m, massless[i]);
+  if (massless.size() > 8) names += " and " + std::to_string(massless.size() - 8) + " more";
+  throw MasslessNodesError(
+      "solver.integrator = \"central_difference\": " + std::to_string(massless.size()) +
+      " free node(s) without mass (" + names +
+      "): explicit integration needs a mass at every free node (give the lines or fabric a "
+      "density, add a point mass, set solver.target_dt for mass scaling, or use an implicit "
+      "integrator)");
+}
+
+void CentralDifference::computeAcceleration(StructuralState& s) {
+  if (sys_->numEquations() == 0) return;
+  sys_->updateState(s.x);
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(s.x.size());
+  sys_->assemble(EvalPoint{s.x, s.v, zero, s.t, 0.0, 0.0, 0.0, true, 1.0, 0.0}, false);
+  const Eigen::VectorXd massEq = lumpedMass(s.x, s.t);
+  refuseMassless(massEq);
+  const Eigen::VectorXd& r = sys_->residual();
+  for (int d = 0; d < sys_->dofs().numDofs(); ++d)
+    if (const int e = sys_->dofs().eqOfDof(d); e >= 0) s.a[d] = -r[e] / massEq[e];
+}
+
+double CentralDifference::chooseStep(double lastStep, double maxStep, const Eigen::VectorXd& x,
+                                     double t) {
+  const Eigen::VectorXd massEq = lumpedMass(x, t);
+  refuseMassless(massEq);
+  const auto S = nodalStiffnessBound(sys_->model(), groupStates(), x, t);
+  const auto est = chute::stableStep(S, nodalMass(massEq), freeNode_);
+  const double stable = settings_.safety * dampedStableStep(est.dt, settings_.stiffnessDamping);
+  // EX5: the step changes only when the stable step leaves [step, 1.25 step], and then to 0.9
+  // of it. A step that followed the estimate from step to step near the stability limit mixes
+  // amplification matrices of different steps, whose product can grow (their eigenvalues lie on
+  // the unit circle but they are far from normal): measured on bead_1, it pumped energy into the
+  // rope's axial vibration until the rope went slack.
+  double dt = lastStep;
+  if (dt > stable || dt < 0.8 * stable) dt = 0.9 * stable;
+  dt = std::min(dt, maxStep);
+  if (record_.history.empty() || dt < record_.least) {
+    record_.least = dt;
+    record_.limitingNode = est.node;
+  }
+  record_.largest = std::max(record_.largest, dt);
+  if (record_.history.empty() || std::abs(dt / record_.history.back().second - 1.0) > 0.05)
+    record_.history.emplace_back(t, dt);
+  return dt;
+}
+
+NewtonReport CentralDifference::step(StructuralState& s, double dt) {
+  NewtonReport rep;
+  const Model& m = sys_->model();
+  const DofMap& dofs = sys_->dofs();
+  const int nd = dofs.numDofs();
+  StructuralState n = s;
+  n.t = s.t + dt;
+  // EX1: v_{n+1/2} = v_n + dt/2 a_n, x_{n+1} = x_n + dt v_{n+1/2}; prescribed dofs on their path.
+  const Eigen::VectorXd vHalf = s.v + 0.5 * dt * s.a;
+  for (int d = 0; d < nd; ++d) {
+    if (dofs.eqOfDof(d) >= 0) {
+      n.x[d] = s.x[d] + dt * vHalf[d];
+      continue;
+    }
+    const auto& c = m.constraint[d / 3];
+    n.x[d] = c.position(m.X[d / 3][d % 3] + m.u0[d / 3][d % 3], d % 3, n.t);
+    n.v[d] = c.speed(d % 3, n.t);
+    n.a[d] = c.acceleration(d % 3, n.t);
+  }
+  // EX3: hand-over checked every step. A driven slider is handed over where its path passes a
+  // node; a free slider whose part to an end node turns round over the step has passed that
+  // node and is handed over to the neighbour there (notePassages), applied by the search below.
+  if (sys_->drivesKinks()) sys_->crossDriven(s.x, n.x);
+  if (!sys_->slidingGroups().empty()) {
+    const Eigen::VectorXd motion = n.x - s.x;
+    for (auto* g : sys_->slidingGroups()) {
+      g->state().notePassages(s.x, motion);
+      // A slider whose approach stalls short of the node (the node, with mass, pulled along
+      // by the short part) is handed over within kExplicitArrival of the element's length
+      // (the node placed a hair ahead of it, as at an implicit arrival, RG2).
+      g->state().arriveAtNodes(m, n.x, kExplicitArrival, kernels::kSeparationFraction, true);
+    }
+  }
+  sys_->updateState(n.x);
+  sys_->onConverged(n.x);  // a slider landing on a node is handed over at commit
+  // EX2 with the velocity-dependent forces (drag, mass damping) at the forward-Euler
+  // prediction v_{n+1} ~ v_n + dt a_n (second-order local error), and EX7's stiffness-
+  // proportional damping as the internal forces at x + beta v.
+  Eigen::VectorXd vStar = s.v + dt * s.a;
+  for (int d = 0; d < nd; ++d)
+    if (dofs.eqOfDof(d) < 0) vStar[d] = n.v[d];
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(nd);
+  const bool damped = settings_.stiffnessDamping > 0.0;
+  const Eigen::VectorXd xEval =
+      damped ? Eigen::VectorXd(n.x + settings_.stiffnessDamping * vStar) : Eigen::VectorXd();
+  sys_->assemble(EvalPoint{damped ? xEval : n.x, vStar, zero, n.t, 0.0, 0.0, 0.0, true, 1.0, dt},
+                 false);
+  const Eigen::VectorXd massEq = lumpedMass(n.x, n.t);
+  refuseMassless(massEq);
+  const Eigen::VectorXd& r = sys_->residual();
+  for (int d = 0; d < nd; ++d) {
+    const int e = dofs.eqOfDof(d);
+    if (e < 0) continue;
+    n.a[d] = -r[e] / massEq[e];
+    n.v[d] = vHalf[d] + 0.5 * dt * n.a[d];
+  }
+  rep.iterations = 0;
+  if (!n.x.allFinite() || !n.v.allFinite() || !n.a.allFinite()) {
+    rep.failure = "non-finite state: the explicit step is unstable";
+    sys_->revert();
+    return rep;
+  }
+  sys_->commit(CommitPoint{n.x, n.t, dt, n.t});
+  s = n;
+  rep.converged = true;
+  return rep;
+}
+
+}  // namespace chute

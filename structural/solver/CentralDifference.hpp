@@ -1,0 +1,88 @@
+#pragma once
+// Explicit central-difference time integration (docs/formulation.md section 7b, EX1-EX8): lumped
+// mass, no Jacobian and no linear solve, one residual-only evaluation of every term per step, a
+// step bounded by the elements' wave speeds (StableStep) and recomputed from the current
+// positions before every step. The TimeStepper drives it as it drives GeneralizedAlpha (stops,
+// events, output, signals, checkpoints); the state it steps is (x_n, v_n, a_n), so a snapshot of
+// it is a restart bit for bit.
+#include <Eigen/Core>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "assembly/SystemAssembler.hpp"
+#include "solver/Newton.hpp"
+#include "solver/StructuralState.hpp"
+#include "solver/StructuralSystem.hpp"
+
+namespace chute {
+
+struct ExplicitSettings {
+  double safety = 0.9;            // fraction of the estimated stable step taken (EX5)
+  double targetStep = 0.0;        // > 0: mass scaling to this stable step (EX8)
+  double stiffnessDamping = 0.0;  // beta of Rayleigh damping C = beta K (EX7); 0: off
+};
+
+// Free dofs without mass: central differences cannot move them (M^-1). Names the nodes.
+class MasslessNodesError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class CentralDifference {
+ public:
+  // Mass scaling (targetStep > 0) is computed here, from the model's start positions x0; a free
+  // node without mass is refused here (MasslessNodesError), before the run starts.
+  CentralDifference(StructuralSystem& sys, ExplicitSettings settings, const Eigen::VectorXd& x0);
+
+  // a = M^-1 (f_ext - f_int) at (s.x, s.v, s.t), lumped mass (EX2). Throws MasslessNodesError.
+  void computeAcceleration(StructuralState& s);
+
+  // The step to take from positions x at time t, given the last step taken (the nominal step at
+  // the start): safety x the stable step (with damping), with hysteresis (EX5).
+  // At most maxStep (the case's dt).
+  double chooseStep(double lastStep, double maxStep, const Eigen::VectorXd& x, double t);
+
+  // Advances s by dt (EX1-EX3) and commits the terms' histories. Fails (converged = false, the
+  // terms reverted, s unchanged) only on a non-finite state: the run stops as unstable.
+  NewtonReport step(StructuralState& s, double dt);
+
+  const ExplicitSettings& settings() const { return settings_; }
+  // Stable-step record for summary.json: least and largest step taken, the node that limited
+  // the least, and (t, step) whenever the step changed by more than 5 % since the last entry.
+  struct Record {
+    double least = 0.0, largest = 0.0;
+    int limitingNode = -1;
+    std::vector<std::pair<double, double>> history;
+  };
+  const Record& record() const { return record_; }
+  // Mass added by mass scaling, per part (line set, membrane set, or "point masses").
+  const std::vector<std::pair<std::string, double>>& addedMass() const { return addedByPart_; }
+  double totalAddedMass() const;
+
+ private:
+  // Lumped (row-sum) mass per equation at x, t (EX2): the terms' inertia r(a = 1) - r(a = 0).
+  Eigen::VectorXd lumpedMass(const Eigen::VectorXd& x, double t);
+  Eigen::VectorXd massOf(const std::vector<Term*>& terms, const Eigen::VectorXd& x, double t);
+  std::vector<double> nodalMass(const Eigen::VectorXd& massEq) const;
+  void refuseMassless(const Eigen::VectorXd& massEq) const;
+  std::vector<const SlidingGroupState*> groupStates() const;
+
+  StructuralSystem* sys_;
+  ExplicitSettings settings_;
+  SystemAssembler massAssembler_;
+  std::vector<Term*> fixedMassTerms_, slidingTerms_;
+  Eigen::VectorXd fixedMass_;  // of the terms whose mass does not move, at fixedMassCuts_
+  int fixedMassCuts_ = -1;     // number of cut line sets fixedMass_ was computed with
+  Eigen::VectorXd x0_;         // the start positions
+  Eigen::VectorXd addedEq_;    // mass scaling, per equation
+  std::vector<std::pair<std::string, double>> addedByPart_;
+  std::vector<char> freeNode_;
+  Record record_;
+  // The last lumped mass and where it was evaluated (the active elements are those at x).
+  Eigen::VectorXd cachedMass_, cachedX_;
+  double cachedT_ = 0.0;
+};
+
+}  // namespace chute
