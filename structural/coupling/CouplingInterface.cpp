@@ -39,6 +39,12 @@ CouplingInterface::CouplingInterface(CaseSpec spec, const std::vector<std::strin
     : spec_(std::move(spec)), surface_(WetSurface::fromModel(spec_.model, surfaceSets)) {
   if (spec_.solver.type == "static")
     throw std::invalid_argument(spec_.file + ": a coupled run needs a dynamic case (solver.type)");
+  // The explicit path steps inside `chute run` only; coupling it would silently run the implicit
+  // scheme instead.
+  if (spec_.solver.integrator == "central_difference")
+    throw std::invalid_argument(spec_.file +
+                                ": solver.integrator = \"central_difference\" is not available "
+                                "to a coupled run (chute run only)");
   spec_ = withoutWetPressure(std::move(spec_), surface_);
   const Model& m = spec_.model;
   const SolverSpec& sv = spec_.solver;
