@@ -19,6 +19,7 @@
 #include "app/RunOutput.hpp"
 #include "app/StopSignals.hpp"
 #include "case/SolverSetup.hpp"
+#include "solver/EnergyMonitor.hpp"
 #include "solver/GeneralizedAlpha.hpp"
 #include "solver/StaticLoadStepper.hpp"
 #include "solver/TimeStepper.hpp"
@@ -152,6 +153,8 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
   }
   const bool write = !options.outDir.empty();
   RunOutput out(spec, sys, options.outDir, restart ? &restart->output : nullptr, r);
+  out.setEquilibrium([&](const StructuralState& s) { return integrator.equilibrium(s); });
+  EnergyMonitor monitor(sys, sv.energyTolerance);
 
   Progress progress(options.progress);
   try {
@@ -166,11 +169,15 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
       out.record(state);
       out.frame(state);
     } else {
+      if (!restart) state = stepper.start();
+      // A restarted run's balance starts afresh from the restored state (docs/output.md).
+      monitor.start(state, integrator.equilibrium(state));
+      out.setEnergyMonitor(&monitor);
       if (!restart) {
-        state = stepper.start();
         out.record(state);
         out.frame(state);
       }
+      StructuralState previous = state;  // the state each step starts from, for its work
       auto checkpoint = [&] {
         if (!write) return;
         ScopedTimer timer(sys.timings().output);
@@ -189,6 +196,14 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
           state, tEnd, [&](double) { return out.nextStop(); },
           [&](const StructuralState& s, int newton) {
             const auto& n = stepper.counters();
+            const bool balanced =
+                monitor.afterStep(previous, s, integrator.equilibrium(s), s.t - previous.t);
+            previous = s;
+            if (!balanced) {
+              r.status = "unstable";
+              r.reason = monitor.reason();
+              return false;
+            }
             const bool last = stepper.reached(s.t, tEnd);
             out.afterStep(s, n.steps, last);
             if (options.checkpointEvery > 0 && n.steps % options.checkpointEvery == 0 && !last)
@@ -217,6 +232,8 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
       if (r.status != "completed") out.lastGoodState(state);
       r.steps = n.steps, r.rejectedSteps = n.rejectedSteps, r.eventRetries = n.eventRetries;
       r.newtonIterations = n.newtonIterations, r.maxNewtonInStep = n.maxNewtonInStep;
+      r.balanceMax = monitor.largestBalance(), r.balanceScale = monitor.scale();
+      r.externalWork = monitor.work();
     }
   } catch (const OutputError& e) {
     // A full disk or a removed directory: the rows and frames before the failed write are whole.
@@ -311,6 +328,9 @@ void writeSummary(const std::string& path, const CaseSpec& spec, const RunResult
   if (!spec.units.empty()) j["units"] = spec.units;
   j["energy"] = {
       {"initial", r.energyInitial}, {"max_drift", r.energyMaxDrift}, {"max_kinetic", r.kineticMax}};
+  if (std::isfinite(r.balanceMax))
+    j["energy"]["balance"] = {
+        {"max", r.balanceMax}, {"scale", r.balanceScale}, {"work", r.externalWork}};
   if (r.reference) {
     const auto& e = *r.reference;
     j["reference"] = {{"kind", e.kind},

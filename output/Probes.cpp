@@ -88,7 +88,8 @@ std::array<double, 3> radiusAboutAxis(const ProbeSpec& p, const Eigen::VectorXd&
 }  // namespace
 
 std::vector<double> ProbeSet::evaluate(const StructuralSystem& sys, const StructuralState& s,
-                                       const EnergyBreakdown& e) const {
+                                       const EquilibriumPoint& eq, const EnergyBreakdown& e,
+                                       const ProbeBalance& balance) const {
   std::vector<double> out;
   for (const auto& p : probes_) {
     if (p.kind == "node_position" || p.kind == "node_velocity") {
@@ -102,7 +103,8 @@ std::vector<double> ProbeSet::evaluate(const StructuralSystem& sys, const Struct
       // Committed friction state (docs/friction.md); a frictionless slider reads as stuck-free:
       // state 0, its (equal) part forces.
       const auto& st = sys.slidingGroups()[p.group]->state();
-      const auto parts = sys.slidingGroups()[p.group]->activeParts(st.activeElement(p.slider), s.x);
+      const auto parts =
+          sys.slidingGroups()[p.group]->activeParts(st.activeElement(p.slider), eq.x);
       const auto& f = st.friction(p.slider);
       const bool fr = st.hasFriction(p.slider);
       out.push_back(fr ? static_cast<double>(f.state) : 0.0);
@@ -113,6 +115,8 @@ std::vector<double> ProbeSet::evaluate(const StructuralSystem& sys, const Struct
       out.push_back(parts.N2);
     } else if (p.kind == "energy") {
       out.insert(out.end(), {e.kinetic, e.strain, e.gravity, e.total()});
+    } else if (p.kind == "energy_balance") {
+      out.insert(out.end(), {balance.work, balance.balance});
     } else if (p.kind == "membrane_stress") {
       // Principal second Piola-Kirchhoff stresses averaged over the elements at the node.
       Eigen::Vector2d S = Eigen::Vector2d::Zero();
@@ -140,7 +144,7 @@ std::vector<double> ProbeSet::evaluate(const StructuralSystem& sys, const Struct
       const double c = std::clamp(d.dot(up) / std::max(d.norm(), 1e-300), -1.0, 1.0);
       out.push_back(std::acos(c) * 180.0 / M_PI);
     } else if (p.kind == "line_force") {
-      const auto [N, eps] = lineForce(*model_, sys, p.lineSet, p.element, s.x, s.t);
+      const auto [N, eps] = lineForce(*model_, sys, p.lineSet, p.element, eq.x, s.t);
       out.push_back(N);
       out.push_back(eps);
     } else if (p.kind == "skirt_radius") {

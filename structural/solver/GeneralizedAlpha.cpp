@@ -23,7 +23,9 @@ GeneralizedAlphaParams GeneralizedAlphaParams::fromRhoInf(double rho, AlphaSchem
 
 GeneralizedAlpha::GeneralizedAlpha(StructuralSystem& sys, double rhoInf, AlphaScheme scheme,
                                    NewtonSettings newton)
-    : sys_(&sys), p_(GeneralizedAlphaParams::fromRhoInf(rhoInf, scheme)), newton_(sys, newton) {}
+    : sys_(&sys), p_(GeneralizedAlphaParams::fromRhoInf(rhoInf, scheme)), newton_(sys, newton) {
+  eq_.atEnd = p_.alphaF == 0.0;
+}
 
 StructuralState GeneralizedAlpha::initialState() const {
   const Model& m = sys_->model();
@@ -136,6 +138,13 @@ NewtonReport GeneralizedAlpha::step(StructuralState& s, double dt) {
       newton_.solve(n.x, newton_.settings().toleranceFor(dt), problem, false, &old.x);
   if (rep.converged) {
     sys_->commit(CommitPoint{n.x, n.t, dt, problem.forceTime()});
+    if (!eq_.atEnd) {  // the alpha-point of the converged step (eq. TI5)
+      eq_.x = (1.0 - p_.alphaF) * n.x + p_.alphaF * old.x;
+      eq_.v = (1.0 - p_.alphaF) * n.v + p_.alphaF * old.v;
+      eq_.a = (1.0 - p_.alphaM) * n.a + p_.alphaM * old.a;
+      eq_.t = problem.forceTime();
+      eq_.tEnd = n.t;
+    }
     s = n;
   } else {
     sys_->revert();

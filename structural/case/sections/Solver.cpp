@@ -25,6 +25,7 @@ void readSolver(CaseSpec& c, TomlTable s) {
     sv.rhoInf = s.number("rho_inf", 0.9);
     sv.integrator = s.choice("integrator", "bossak", {"bossak", "generalized_alpha"});
     m.massDamping = s.nonNegative("mass_damping", 0.0);
+    sv.energyTolerance = s.nonNegative("energy_tolerance", sv.energyTolerance);
     if (sv.rhoInf < 0.0 || sv.rhoInf > 1.0) s.fail("rho_inf", "must be in [0, 1]");
     sv.dtMin = s.positive("dt_min", sv.dt * 1e-6);
     if (sv.dtMin > sv.dt) s.fail("dt_min", "must not exceed dt");
@@ -39,8 +40,9 @@ void readSolver(CaseSpec& c, TomlTable s) {
              "the least step (dt_min = " + shortNumber(sv.dtMin) +
                  ") is lost in rounding near t_end: keep it above t_end * 1e-15");
   } else {
-    s.notUsed({"dt", "t_end", "rho_inf", "integrator", "mass_damping", "dt_min"},
-              "by static runs (type = \"static\")");
+    s.notUsed(
+        {"dt", "t_end", "rho_inf", "integrator", "mass_damping", "dt_min", "energy_tolerance"},
+        "by static runs (type = \"static\")");
   }
   sv.loadSteps = static_cast<int>(s.integer("load_steps", 1, 1, 1000000));
   sv.initialLoadFactor = s.positive("initial_load_factor", 0.0 + 1.0);
