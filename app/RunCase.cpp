@@ -164,6 +164,7 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
       StaticLoadStepper statics(sys, integrator.newton());
       const auto rep = statics.solveFromStart(state, sv.loadSteps, sv.initialLoadFactor);
       r.newtonIterations = rep.iterations;
+      r.maxNewtonInStep = statics.maxIterationsInStep();
       r.steps = sv.loadSteps;
       if (!rep.converged) r.status = "diverged", r.reason = rep.failure;
       out.record(state);
@@ -223,6 +224,10 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
       if (result.outcome == TimeStepper::Outcome::BelowMinimum) {
         r.status = "diverged";
         r.reason = result.reason;
+      }
+      if (r.status == "completed" && !monitor.finish()) {
+        r.status = "unstable";
+        r.reason = monitor.reason();
       }
       if (r.status == "interrupted") checkpoint();
       const auto& n = stepper.counters();

@@ -87,4 +87,16 @@ bool EnergyMonitor::afterStep(const StructuralState& before, const StructuralSta
   return true;
 }
 
+bool EnergyMonitor::finish() {
+  const double S = fullScale(), b = balance();
+  if (tolerance_ <= 0.0 || !(b > tolerance_ * S)) return true;
+  reason_ = fmt::format(
+      "energy balance violated at the end of the run: the structure holds {:.6g} more energy "
+      "than the loads and supports gave it (E = {:.6g}, E0 = {:.6g}, work {:.6g}), above "
+      "solver.energy_tolerance = {:.3g} x the energy scale {:.6g}; the integration is unstable: "
+      "a smaller solver.dt or solver.rho_inf may help",
+      b, energy_, energy0_, work_, tolerance_, S);
+  return false;
+}
+
 }  // namespace chute

@@ -11,11 +11,11 @@
 // (B > 0). The scale S is the largest kinetic + strain energy so far, plus the gross work done,
 // plus the work gravity does on all the mass over the model's size (m |g| L: the floor of a
 // scene at rest). A run whose B stays above tolerance x S for kPersistentSteps steps in a row,
-// or exceeds S once, has made energy up: it is unstable, whatever its Newton did. (A start far
-// from equilibrium may gain a few per cent of its small energy for a few steps while the
-// numerical damping takes its stiff modes out, measured 6 steps on cases/airbag.toml; a
-// blow-up gains on every step.) The monitor knows no integrator: any integrator that gives an
-// equilibrium point per step (solver/EquilibriumPoint.hpp) plugs in.
+// exceeds S once, or ends above tolerance x S, has made energy up: it is unstable, whatever its
+// Newton did. (A start far from equilibrium may gain a few per cent of its small energy for a few
+// steps while the numerical damping takes its stiff modes out, measured 6 steps on
+// cases/airbag.toml; a blow-up gains on every step.) The monitor knows no integrator: any
+// integrator that gives an equilibrium point per step (solver/EquilibriumPoint.hpp) plugs in.
 #include <limits>
 #include <string>
 
@@ -39,6 +39,10 @@ class EnergyMonitor {
   // the balance is violated (reason()).
   bool afterStep(const StructuralState& before, const StructuralState& s,
                  const EquilibriumPoint& eq, double dt);
+
+  // At the end of a run: false when B is above tolerance x S there (the answer holds energy the
+  // integration made up, however briefly it has been above).
+  bool finish();
 
   double energy() const { return energy_; }                      // E(t_n)
   double work() const { return work_; }                          // W(t_0, t_n)
