@@ -39,11 +39,13 @@ void EnergyMonitor::start(const StructuralState& s, const EquilibriumPoint& eq) 
   scale_ = e.kinetic + std::abs(e.strain);
   largest_ = 0.0;
   stepsOver_ = 0;
+  steps_ = 0;
   reason_.clear();
 }
 
 bool EnergyMonitor::afterStep(const StructuralState& before, const StructuralState& s,
                               const EquilibriumPoint& eq, double dt) {
+  ++steps_;
   const Eigen::VectorXd dx = s.x - before.x;
   // The work of the step (EB1): loads without an energy, and the supports' reactions where the
   // supports move, at the step's equilibrium point.
@@ -89,7 +91,7 @@ bool EnergyMonitor::afterStep(const StructuralState& before, const StructuralSta
 
 bool EnergyMonitor::finish() {
   const double S = fullScale(), b = balance();
-  if (tolerance_ <= 0.0 || !(b > tolerance_ * S)) return true;
+  if (tolerance_ <= 0.0 || steps_ < 2 * kPersistentSteps || !(b > tolerance_ * S)) return true;
   reason_ = fmt::format(
       "energy balance violated at the end of the run: the structure holds {:.6g} more energy "
       "than the loads and supports gave it (E = {:.6g}, E0 = {:.6g}, work {:.6g}), above "
