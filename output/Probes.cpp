@@ -14,6 +14,7 @@
 #include <stdexcept>
 
 #include "kernels/CableKernel.hpp"
+#include "kernels/SliderFriction.hpp"
 #include "terms/MembraneTerm.hpp"
 #include "terms/SlidingGroupTerm.hpp"
 
@@ -101,7 +102,7 @@ std::vector<double> ProbeSet::evaluate(const StructuralSystem& sys, const Struct
       out.push_back(st.activeElement(p.slider));
     } else if (p.kind == "slider_friction") {
       // Committed friction state (docs/friction.md); a frictionless slider reads as stuck-free:
-      // state 0, its (equal) part forces.
+      // state 0, slip rate 0, its (equal) part forces, and the wrap angle of its geometry (FR3).
       const auto& st = sys.slidingGroups()[p.group]->state();
       const auto parts =
           sys.slidingGroups()[p.group]->activeParts(st.activeElement(p.slider), eq.x);
@@ -110,7 +111,16 @@ std::vector<double> ProbeSet::evaluate(const StructuralSystem& sys, const Struct
       out.push_back(fr ? static_cast<double>(f.state) : 0.0);
       out.push_back(fr ? f.slipRate : 0.0);
       out.push_back(parts.N1 > 0.0 ? parts.N2 / parts.N1 : (parts.N2 > 0.0 ? kInf : 1.0));
-      out.push_back(fr ? f.wrapAngle : 0.0);
+      if (fr) {
+        out.push_back(f.wrapAngle);
+      } else {
+        const auto& def = st.def();
+        const int k = st.activeElement(p.slider);
+        auto at = [&](int n) { return Vec3(eq.x.segment<3>(3 * n)); };
+        out.push_back(kernels::wrapAngle(at(def.chain[k]), at(def.chain[k + 1]),
+                                         at(def.sliders[p.slider]), def.refLength[k])
+                          .beta);
+      }
       out.push_back(parts.N1);
       out.push_back(parts.N2);
     } else if (p.kind == "energy") {

@@ -11,6 +11,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -212,4 +214,28 @@ TEST(MassDamping, ActsOnAPointMass) {
   std::printf("damped fall, alpha = %.1f 1/s: max |vz - exact| = %.3e m/s (terminal %.3f m/s)\n",
               alpha, err, kG / alpha);
   EXPECT_LT(err, 1e-5 * kG / alpha);
+}
+
+// A slider_friction probe on a frictionless slider reports the wrap angle of its geometry (it
+// reported 0): bead_1 at its start, rope from (0, 0) over the bead at (0.5, -0.5) to (2, 0):
+// beta = pi - the angle between the two straight parts at the bead.
+TEST(SliderFrictionProbe, FrictionlessSliderReportsItsWrapAngle) {
+  std::ifstream in(std::string(CHUTE_SOURCE_DIR) + "/cases/bead_1.toml");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  text += "\n[[output.probes]]\nname = \"fr\"\nkind = \"slider_friction\"\ngroup = \"rope\"\n";
+  const RunResult r =
+      runCase(readCase(chute::testing::writeCase("bead_1_wrap", text), {"solver.t_end=0.01"}),
+              RunOptions{});
+  ASSERT_EQ(r.status, "completed") << r.reason;
+  int col = -1;
+  for (size_t c = 0; c < r.columns.size(); ++c)
+    if (r.columns[c] == "fr.wrap_angle") col = static_cast<int>(c);
+  ASSERT_GE(col, 0);
+  const double a[2] = {-0.5, 0.5}, b[2] = {1.5, 0.5};
+  const double exact = M_PI - std::acos((a[0] * b[0] + a[1] * b[1]) /
+                                        (std::hypot(a[0], a[1]) * std::hypot(b[0], b[1])));
+  const double err = std::abs(r.rows[0][col] - exact);
+  std::printf("frictionless slider wrap angle at the start: %.15f rad, exact %.15f, error %.1e\n",
+              r.rows[0][col], exact, err);
+  EXPECT_LT(err, 1e-6);
 }
