@@ -20,6 +20,7 @@
 #include "app/StopSignals.hpp"
 #include "case/SolverSetup.hpp"
 #include "solver/CentralDifference.hpp"
+#include "solver/EnergyMonitor.hpp"
 #include "solver/GeneralizedAlpha.hpp"
 #include "solver/StaticLoadStepper.hpp"
 #include "solver/TimeStepper.hpp"
@@ -186,6 +187,8 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
   }
   const bool write = !options.outDir.empty();
   RunOutput out(spec, sys, options.outDir, restart ? &restart->output : nullptr, r);
+  out.setEquilibrium([&](const StructuralState& s) { return integrator.equilibrium(s); });
+  EnergyMonitor monitor(sys, sv.energyTolerance);
 
   Progress progress(options.progress);
   try {
@@ -195,16 +198,21 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
       StaticLoadStepper statics(sys, integrator.newton());
       const auto rep = statics.solveFromStart(state, sv.loadSteps, sv.initialLoadFactor);
       r.newtonIterations = rep.iterations;
+      r.maxNewtonInStep = statics.maxIterationsInStep();
       r.steps = sv.loadSteps;
       if (!rep.converged) r.status = "diverged", r.reason = rep.failure;
       out.record(state);
       out.frame(state);
     } else {
+      if (!restart) state = stepper.start();
+      // A restarted run's balance starts afresh from the restored state (docs/output.md).
+      monitor.start(state, integrator.equilibrium(state));
+      out.setEnergyMonitor(&monitor);
       if (!restart) {
-        state = stepper.start();
         out.record(state);
         out.frame(state);
       }
+      StructuralState previous = state;  // the state each step starts from, for its work
       auto checkpoint = [&] {
         if (!write) return;
         ScopedTimer timer(sys.timings().output);
@@ -223,6 +231,14 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
           state, tEnd, [&](double) { return out.nextStop(); },
           [&](const StructuralState& s, int newton) {
             const auto& n = stepper.counters();
+            const bool balanced =
+                monitor.afterStep(previous, s, integrator.equilibrium(s), s.t - previous.t);
+            previous = s;
+            if (!balanced) {
+              r.status = "unstable";
+              r.reason = monitor.reason();
+              return false;
+            }
             const bool last = stepper.reached(s.t, tEnd);
             out.afterStep(s, n.steps, last);
             if (options.checkpointEvery > 0 && n.steps % options.checkpointEvery == 0 && !last)
@@ -243,6 +259,10 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
         r.status = "diverged";
         r.reason = result.reason;
       }
+      if (r.status == "completed" && !monitor.finish()) {
+        r.status = "unstable";
+        r.reason = monitor.reason();
+      }
       if (r.status == "interrupted") checkpoint();
       const auto& n = stepper.counters();
       progress.update(n.steps, state.t, tEnd, state.control.dt, 0, n.newtonPerStep(),
@@ -252,6 +272,8 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
       r.steps = n.steps, r.rejectedSteps = n.rejectedSteps, r.eventRetries = n.eventRetries;
       r.newtonIterations = n.newtonIterations, r.maxNewtonInStep = n.maxNewtonInStep;
       if (explicitCd) r.explicitRun = explicitSummary(*explicitCd, m);
+      r.balanceMax = monitor.largestBalance(), r.balanceScale = monitor.scale();
+      r.externalWork = monitor.work();
     }
   } catch (const OutputError& e) {
     // A full disk or a removed directory: the rows and frames before the failed write are whole.
@@ -362,6 +384,9 @@ void writeSummary(const std::string& path, const CaseSpec& spec, const RunResult
   if (!spec.units.empty()) j["units"] = spec.units;
   j["energy"] = {
       {"initial", r.energyInitial}, {"max_drift", r.energyMaxDrift}, {"max_kinetic", r.kineticMax}};
+  if (std::isfinite(r.balanceMax))
+    j["energy"]["balance"] = {
+        {"max", r.balanceMax}, {"scale", r.balanceScale}, {"work", r.externalWork}};
   if (r.reference) {
     const auto& e = *r.reference;
     j["reference"] = {{"kind", e.kind},

@@ -1,6 +1,7 @@
 #pragma once
 // Runs a case: time stepping with step rejection, probes, the comparison with the case's
 // reference, summary.json. Used by `chute run` and by the case tests.
+#include <limits>
 #include <optional>
 #include <string>
 #include <utility>
@@ -58,6 +59,11 @@ struct RunResult {
   int vtuFrames = 0;
   long checkpoints = 0;
   double energyInitial = 0.0, energyMaxDrift = 0.0, kineticMax = 0.0;
+  // The energy balance (solver/EnergyMonitor.hpp) of a dynamic run: its largest value, its
+  // scale, and the work of loads and supports (NaN for statics).
+  double balanceMax = std::numeric_limits<double>::quiet_NaN(),
+         balanceScale = std::numeric_limits<double>::quiet_NaN(),
+         externalWork = std::numeric_limits<double>::quiet_NaN();
   std::vector<std::string> columns;
   std::vector<double> times;
   std::vector<std::vector<double>> rows;

@@ -4,6 +4,7 @@
 // energy figures of the rows. On a restart the output is first cut back to what it held when
 // the checkpoint was taken (OutputMark), whatever was written after it, so a restarted run's
 // output is the uninterrupted run's.
+#include <functional>
 #include <limits>
 #include <memory>
 #include <string>
@@ -12,6 +13,7 @@
 #include "VtuSeries.hpp"
 #include "app/CheckpointFile.hpp"
 #include "app/RunCase.hpp"
+#include "solver/EnergyMonitor.hpp"
 
 namespace chute {
 
@@ -36,6 +38,15 @@ class RunOutput {
   RunOutput(const CaseSpec& spec, StructuralSystem& sys, const std::string& outDir,
             const OutputMark* resume, RunResult& r);
   ~RunOutput();
+
+  // Where the equations of the step that ended in a state hold (the integrator's
+  // equilibrium(), solver/EquilibriumPoint.hpp): forces and energies are written there. Unset:
+  // the state itself.
+  void setEquilibrium(std::function<EquilibriumPoint(const StructuralState&)> f) {
+    equilibrium_ = std::move(f);
+  }
+  // The energy balance whose figures the energy_balance probes write (none: NaN).
+  void setEnergyMonitor(const EnergyMonitor* m) { monitor_ = m; }
 
   // The next output time after t (infinity: none), where the stepping must stop.
   double nextStop() const { return std::min(probeClock_.nextTime(), vtuClock_.nextTime()); }
@@ -64,6 +75,11 @@ class RunOutput {
   bool inertia_;
   double vtuLast_ = -std::numeric_limits<double>::infinity();
   OutputClock probeClock_, vtuClock_;
+  std::function<EquilibriumPoint(const StructuralState&)> equilibrium_;
+  const EnergyMonitor* monitor_ = nullptr;
+  EquilibriumPoint equilibriumOf(const StructuralState& s) const {
+    return equilibrium_ ? equilibrium_(s) : EquilibriumPoint{s.x, s.v, s.a, s.t};
+  }
 };
 
 }  // namespace chute

@@ -14,6 +14,7 @@
 #include <stdexcept>
 
 #include "kernels/CableKernel.hpp"
+#include "kernels/SliderFriction.hpp"
 #include "terms/MembraneTerm.hpp"
 #include "terms/SlidingGroupTerm.hpp"
 
@@ -88,7 +89,8 @@ std::array<double, 3> radiusAboutAxis(const ProbeSpec& p, const Eigen::VectorXd&
 }  // namespace
 
 std::vector<double> ProbeSet::evaluate(const StructuralSystem& sys, const StructuralState& s,
-                                       const EnergyBreakdown& e) const {
+                                       const EquilibriumPoint& eq, const EnergyBreakdown& e,
+                                       const ProbeBalance& balance) const {
   std::vector<double> out;
   for (const auto& p : probes_) {
     if (p.kind == "node_position" || p.kind == "node_velocity") {
@@ -100,19 +102,31 @@ std::vector<double> ProbeSet::evaluate(const StructuralSystem& sys, const Struct
       out.push_back(st.activeElement(p.slider));
     } else if (p.kind == "slider_friction") {
       // Committed friction state (docs/friction.md); a frictionless slider reads as stuck-free:
-      // state 0, its (equal) part forces.
+      // state 0, slip rate 0, its (equal) part forces, and the wrap angle of its geometry (FR3).
       const auto& st = sys.slidingGroups()[p.group]->state();
-      const auto parts = sys.slidingGroups()[p.group]->activeParts(st.activeElement(p.slider), s.x);
+      const auto parts =
+          sys.slidingGroups()[p.group]->activeParts(st.activeElement(p.slider), eq.x);
       const auto& f = st.friction(p.slider);
       const bool fr = st.hasFriction(p.slider);
       out.push_back(fr ? static_cast<double>(f.state) : 0.0);
       out.push_back(fr ? f.slipRate : 0.0);
       out.push_back(parts.N1 > 0.0 ? parts.N2 / parts.N1 : (parts.N2 > 0.0 ? kInf : 1.0));
-      out.push_back(fr ? f.wrapAngle : 0.0);
+      if (fr) {
+        out.push_back(f.wrapAngle);
+      } else {
+        const auto& def = st.def();
+        const int k = st.activeElement(p.slider);
+        auto at = [&](int n) { return Vec3(eq.x.segment<3>(3 * n)); };
+        out.push_back(kernels::wrapAngle(at(def.chain[k]), at(def.chain[k + 1]),
+                                         at(def.sliders[p.slider]), def.refLength[k])
+                          .beta);
+      }
       out.push_back(parts.N1);
       out.push_back(parts.N2);
     } else if (p.kind == "energy") {
       out.insert(out.end(), {e.kinetic, e.strain, e.gravity, e.total()});
+    } else if (p.kind == "energy_balance") {
+      out.insert(out.end(), {balance.work, balance.balance});
     } else if (p.kind == "membrane_stress") {
       // Principal second Piola-Kirchhoff stresses averaged over the elements at the node.
       Eigen::Vector2d S = Eigen::Vector2d::Zero();
@@ -140,7 +154,7 @@ std::vector<double> ProbeSet::evaluate(const StructuralSystem& sys, const Struct
       const double c = std::clamp(d.dot(up) / std::max(d.norm(), 1e-300), -1.0, 1.0);
       out.push_back(std::acos(c) * 180.0 / M_PI);
     } else if (p.kind == "line_force") {
-      const auto [N, eps] = lineForce(*model_, sys, p.lineSet, p.element, s.x, s.t);
+      const auto [N, eps] = lineForce(*model_, sys, p.lineSet, p.element, eq.x, s.t);
       out.push_back(N);
       out.push_back(eps);
     } else if (p.kind == "skirt_radius") {

@@ -2,6 +2,7 @@
 // Probe quantities of a run (docs/output.md: probes.csv, one column per "<probe>.<quantity>")
 // and the CSV file they go to, flushed row by row so a run stopped half-way leaves valid rows.
 #include <cstdio>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -11,13 +12,23 @@
 
 namespace chute {
 
+// The energy balance's figures a row writes (solver/EnergyMonitor.hpp; NaN without one).
+struct ProbeBalance {
+  double work = std::numeric_limits<double>::quiet_NaN();
+  double balance = std::numeric_limits<double>::quiet_NaN();
+};
+
 class ProbeSet {
  public:
   ProbeSet(const Model& model, std::vector<ProbeSpec> probes);
   std::vector<std::string> columns() const;
-  // energy: the system's energy at s (the run needs it anyway for its drift: evaluated once).
+  // The motion (positions, velocities, sliders) at s, the forces and strains at eq, where the
+  // step's equations hold (solver/EquilibriumPoint.hpp); energy: the system's energy at eq (the
+  // run needs it anyway for its drift: evaluated once).
+  // balance: the energy balance's work and balance (solver/EnergyMonitor.hpp; NaN without one).
   std::vector<double> evaluate(const StructuralSystem& sys, const StructuralState& s,
-                               const EnergyBreakdown& energy) const;
+                               const EquilibriumPoint& eq, const EnergyBreakdown& energy,
+                               const ProbeBalance& balance = {}) const;
   const std::vector<ProbeSpec>& probes() const { return probes_; }
   // Offset of probe p's first column in an evaluate() row.
   int columnOffset(int p) const { return offset_[p]; }

@@ -97,14 +97,15 @@ void FrameFields::select(const std::vector<std::string>& chosen) {
   }
 }
 
-SceneFrame buildFrame(StructuralSystem& sys, const StructuralState& s, const FrameFields& fields,
-                      bool inertia) {
+SceneFrame buildFrame(StructuralSystem& sys, const StructuralState& s, const EquilibriumPoint& eq,
+                      const FrameFields& fields, bool inertia) {
   const Model& m = sys.model();
   ++sys.workCounters().sceneFrames;
   SceneFrame f;
   f.t = s.t;
   f.points.assign(s.x.data(), s.x.data() + s.x.size());
   auto at = [&](int n) { return Vec3(s.x.segment<3>(3 * n)); };
+  auto atEq = [&](int n) { return Vec3(eq.x.segment<3>(3 * n)); };  // forces
 
   // Parts: line sets, then membrane sets, then the point masses.
   for (const auto& ls : m.lineSets) f.partNames.push_back(ls.name);
@@ -117,7 +118,7 @@ SceneFrame buildFrame(StructuralSystem& sys, const StructuralState& s, const Fra
   for (const auto& e : m.cables) {
     if (m.lineSets[e.set].cutBy(s.t)) continue;  // cut ([[events]]): no longer in the structure
     const auto& mat = m.materials[e.material];
-    const auto r = kernels::cableForce(at(e.a), at(e.b), e.L, mat, false);
+    const auto r = kernels::cableForce(atEq(e.a), atEq(e.b), e.L, mat, false);
     addCell(f, CellShape::Line, {e.a, e.b});
     c.add(mat.tensionOnly ? CellKind::Cable : CellKind::Truss, e.set, r.axialForce, r.strain, kNaN2,
           kNaN2, -1, kNaN, -1, kNaN);
@@ -130,14 +131,14 @@ SceneFrame buildFrame(StructuralSystem& sys, const StructuralState& s, const Fra
       const int a = def.chain[k], b = def.chain[k + 1];
       const int sl = st.sliderOfElement(k);
       if (sl < 0) {
-        const auto r = kernels::cableForce(at(a), at(b), def.refLength[k], mat, false);
+        const auto r = kernels::cableForce(atEq(a), atEq(b), def.refLength[k], mat, false);
         addCell(f, CellShape::Line, {a, b});
         c.add(CellKind::SlidingInactive, def.set, r.axialForce, r.strain, kNaN2, kNaN2, -1, kNaN,
               static_cast<int>(g), kNaN);
         continue;
       }
       const int node = def.sliders[sl];
-      const auto parts = sys.slidingGroups()[g]->activeParts(k, s.x);
+      const auto parts = sys.slidingGroups()[g]->activeParts(k, eq.x);
       const double sMat = st.materialCoordinate(sl, s.x);
       const bool friction = st.hasFriction(sl);
       const double stick = friction ? static_cast<double>(st.friction(sl).state) : kNaN;
@@ -189,7 +190,7 @@ SceneFrame buildFrame(StructuralSystem& sys, const StructuralState& s, const Fra
   if (fields.velocity) f.pointData.push_back(vectorField("velocity", s.v));
   if (fields.acceleration) f.pointData.push_back(vectorField("acceleration", s.a));
   if (fields.reaction || fields.appliedLoad) {
-    const auto forces = sys.nodalForces(s.x, s.v, s.a, s.t, inertia);
+    const auto forces = sys.nodalForces(eq.x, eq.v, eq.a, eq.t, inertia);
     if (fields.reaction) f.pointData.push_back(vectorField("reaction", forces.reaction));
     if (fields.appliedLoad) f.pointData.push_back(vectorField("applied_load", forces.applied));
   }

@@ -56,7 +56,13 @@ struct FrameFields {
 };
 
 // Builds frames of a system; the system's terms hold the element states it reports.
-SceneFrame buildFrame(StructuralSystem& sys, const StructuralState& s, const FrameFields& fields,
-                      bool inertia);
+// The geometry and motion are those of s, the forces, strains and reactions those of eq, where
+// the step's equations hold (solver/EquilibriumPoint.hpp).
+SceneFrame buildFrame(StructuralSystem& sys, const StructuralState& s, const EquilibriumPoint& eq,
+                      const FrameFields& fields, bool inertia);
+inline SceneFrame buildFrame(StructuralSystem& sys, const StructuralState& s,
+                             const FrameFields& fields, bool inertia) {
+  return buildFrame(sys, s, EquilibriumPoint{s.x, s.v, s.a, s.t}, fields, inertia);
+}
 
 }  // namespace chute

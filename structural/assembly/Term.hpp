@@ -64,6 +64,10 @@ class Term {
   // Whether assemble() depends on EvalPoint::loadFactor (loads, gravity). A term that says false
   // is left out of the evaluations that separate applied loads from the rest (output frames).
   virtual bool loadDependent() const { return true; }
+  // Whether this term's forces are loads that do work on the structure without an energy in
+  // addEnergy (pressure, drag, a flow's loads): the energy balance (solver/EnergyMonitor.hpp)
+  // adds up their work.
+  virtual bool doesExternalWork() const { return false; }
   // Kinks of the energy crossed by the motion (sliders at nodes, slack / taut): nullptr for
   // terms without any.
   virtual EventSource* events() { return nullptr; }

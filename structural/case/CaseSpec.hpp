@@ -55,6 +55,9 @@ struct SolverSpec {
   int loadSteps = 1;
   // Static: load factors grow geometrically from this to 1 over loadSteps (1: equal steps).
   double initialLoadFactor = 1.0;
+  // Dynamic: the largest energy gain, relative to the run's energy scale, that the energy
+  // balance allows before it stops the run as unstable (solver/EnergyMonitor.hpp); 0: off.
+  double energyTolerance = 0.05;
 };
 
 // Point fields a VTU frame can carry (cell fields are always written).

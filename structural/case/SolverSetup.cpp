@@ -28,7 +28,10 @@ NewtonSettings newtonSettings(const SolverSpec& sv, const Model& m) {
 
 AlphaScheme alphaScheme(const SolverSpec& sv) {
   if (sv.integrator == "energy_momentum") return AlphaScheme::EnergyMomentum;
-  return sv.integrator == "bossak" ? AlphaScheme::Bossak : AlphaScheme::ChungHulbert;
+  if (sv.integrator == "generalized_alpha") return AlphaScheme::ChungHulbert;
+  // Bossak, and central_difference: the explicit path uses the implicit integrator only for the
+  // start; its forces, like Bossak's, hold at the step's end (TI5: equilibrium point = state).
+  return AlphaScheme::Bossak;
 }
 
 }  // namespace chute

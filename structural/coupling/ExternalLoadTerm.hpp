@@ -18,6 +18,7 @@ class ExternalLoadTerm final : public Term {
  public:
   explicit ExternalLoadTerm(const WetSurface& surface);
   const char* name() const override { return "external_load"; }
+  bool doesExternalWork() const override { return true; }
   void addCouplings(std::vector<std::vector<int>>& cliques) const override;
   void assemble(const EvalPoint& p, SystemAssembler& out) override;
   void addEnergy(const Eigen::VectorXd&, const Eigen::VectorXd&, double,

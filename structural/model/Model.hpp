@@ -136,7 +136,7 @@ struct Model {
   std::vector<FaceDragLoadDef> faceDrags;
 
   Vec3 gravity = Vec3::Zero();
-  double massDamping = 0.0;  // Rayleigh mass-proportional damping C = alpha M (membranes)
+  double massDamping = 0.0;  // Rayleigh mass-proportional damping C = alpha M (every mass)
   kernels::MassKind massKind = kernels::MassKind::Lumped;
 
   int numNodes() const { return static_cast<int>(X.size()); }

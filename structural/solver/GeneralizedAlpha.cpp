@@ -32,6 +32,7 @@ GeneralizedAlpha::GeneralizedAlpha(StructuralSystem& sys, double rhoInf, AlphaSc
       emDissipation_(emDissipation) {
   // The discrete gradient's tangent is not symmetric (EM5): LU from the start.
   if (scheme == AlphaScheme::EnergyMomentum) newton_.linearSolver().useLU();
+  eq_.atEnd = p_.alphaF == 0.0;
 }
 
 StructuralState GeneralizedAlpha::initialState() const {
@@ -147,6 +148,13 @@ NewtonReport GeneralizedAlpha::step(StructuralState& s, double dt) {
       newton_.solve(n.x, newton_.settings().toleranceFor(dt), problem, false, &old.x);
   if (rep.converged) {
     sys_->commit(CommitPoint{n.x, n.t, dt, problem.forceTime()});
+    if (!eq_.atEnd) {  // the alpha-point of the converged step (eq. TI5)
+      eq_.x = (1.0 - p_.alphaF) * n.x + p_.alphaF * old.x;
+      eq_.v = (1.0 - p_.alphaF) * n.v + p_.alphaF * old.v;
+      eq_.a = (1.0 - p_.alphaM) * n.a + p_.alphaM * old.a;
+      eq_.t = problem.forceTime();
+      eq_.tEnd = n.t;
+    }
     s = n;
   } else {
     sys_->revert();

@@ -5,6 +5,7 @@
 // retries is the TimeStepper's. The integrator sees one matrix J = cx K + cv C + ca M.
 #include <Eigen/Core>
 
+#include "solver/EquilibriumPoint.hpp"
 #include "solver/Newton.hpp"
 #include "solver/StructuralState.hpp"
 #include "solver/StructuralSystem.hpp"
@@ -43,6 +44,10 @@ class GeneralizedAlpha {
   // terms' trial changes are reverted.
   NewtonReport step(StructuralState& s, double dt);
 
+  // Where the equations of the step that ended in s hold (EquilibriumPoint.hpp): s itself for
+  // Bossak, the alpha-point for Chung-Hulbert (a state no step of this integrator ended in: s).
+  EquilibriumPoint equilibrium(const StructuralState& s) const { return eq_.of(s); }
+
   const GeneralizedAlphaParams& params() const { return p_; }
   Newton& newton() { return newton_; }
   const LinearSolver& linearSolver() const { return newton_.linearSolver(); }
@@ -54,6 +59,7 @@ class GeneralizedAlpha {
   Newton newton_;
   AlphaScheme scheme_;
   double emDissipation_;
+  KeptEquilibrium eq_;
 };
 
 }  // namespace chute

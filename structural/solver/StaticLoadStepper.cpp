@@ -39,6 +39,7 @@ NewtonReport StaticLoadStepper::solve(StructuralState& s, int nSteps, double ini
     const Eigen::VectorXd start = x;
     NewtonReport rep = newton_->solve(x, tol, problem, true, nullptr);
     total.iterations += rep.iterations;
+    maxInStep_ = std::max(maxInStep_, rep.iterations);
     total.residualNorms.insert(total.residualNorms.end(), rep.residualNorms.begin(),
                                rep.residualNorms.end());
     if (!rep.converged) {

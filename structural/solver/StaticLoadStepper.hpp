@@ -15,10 +15,13 @@ class StaticLoadStepper {
   // A static run: from the model's positions (s, committed), solved in nSteps increments; the
   // solution is reported at t = 1, the full load factor.
   NewtonReport solveFromStart(StructuralState& s, int nSteps, double initialFactor);
+  // The most Newton iterations one load increment took (converged or not).
+  int maxIterationsInStep() const { return maxInStep_; }
 
  private:
   StructuralSystem* sys_;
   Newton* newton_;
+  int maxInStep_ = 0;
 };
 
 }  // namespace chute

@@ -103,6 +103,16 @@ StructuralSystem::NodalForces StructuralSystem::nodalForces(const Eigen::VectorX
   return f;
 }
 
+Eigen::VectorXd StructuralSystem::residualOverAllDofs(const EvalPoint& p, bool allTerms) {
+  Eigen::VectorXd out = Eigen::VectorXd::Zero(p.x.size());
+  assembler_.captureAllDofs(&out);
+  assembler_.begin(false);
+  for (const auto& term : terms_)
+    if (allTerms || term->doesExternalWork()) term->assemble(p, assembler_);
+  assembler_.captureAllDofs(nullptr);
+  return out;
+}
+
 bool StructuralSystem::symmetric() const {
   return std::all_of(terms_.begin(), terms_.end(),
                      [](const auto& t) { return t->symmetricJacobian(); });

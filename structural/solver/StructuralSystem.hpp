@@ -57,6 +57,10 @@ class StructuralSystem {
   NodalForces nodalForces(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
                           const Eigen::VectorXd& a, double t, bool inertia);
 
+  // Over all dofs: the residual of the terms that do external work (Term::doesExternalWork), or
+  // of every term when allTerms, at p (the energy balance).
+  Eigen::VectorXd residualOverAllDofs(const EvalPoint& p, bool allTerms);
+
   EnergyBreakdown energy(const Eigen::VectorXd& x, const Eigen::VectorXd& v, double t) const;
   EnergyBreakdown energy(const StructuralState& s) const { return energy(s.x, s.v, s.t); }
 

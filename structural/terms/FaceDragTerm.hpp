@@ -13,6 +13,7 @@ class FaceDragTerm final : public Term {
  public:
   explicit FaceDragTerm(const Model& m) : m_(&m) {}
   const char* name() const override { return "face_drag"; }
+  bool doesExternalWork() const override { return true; }
   void addCouplings(std::vector<std::vector<int>>& cliques) const override;
   void assemble(const EvalPoint& p, SystemAssembler& out) override;
   void addEnergy(const Eigen::VectorXd&, const Eigen::VectorXd&, double,

@@ -15,6 +15,7 @@ class LineDragTerm final : public Term {
   LineDragTerm(const Model& m, std::vector<const SlidingGroupState*> groups)
       : m_(&m), groups_(std::move(groups)) {}
   const char* name() const override { return "drag"; }
+  bool doesExternalWork() const override { return true; }
   void addCouplings(std::vector<std::vector<int>>& cliques) const override;
   void assemble(const EvalPoint& p, SystemAssembler& out) override;
   void addEnergy(const Eigen::VectorXd&, const Eigen::VectorXd&, double,

@@ -40,6 +40,10 @@ void assembleCable(const Model& m, int a, int b, double L, int material, const E
       const Mat6 M = kernels::cableMass(L, mat, m.massKind);
       r += M * gather2(p.a, a, b);
       J += p.ca * M;
+      if (m.massDamping > 0.0) {  // C v with C = alpha M (solver.mass_damping)
+        r += m.massDamping * M * gather2(p.v, a, b);
+        J += p.cv * m.massDamping * M;
+      }
     }
     if (m.hasGravity()) r -= p.loadFactor * kernels::cableGravity(L, mat, m.gravity);
   }

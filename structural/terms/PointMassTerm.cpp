@@ -17,6 +17,10 @@ void PointMassTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
     if (p.inertia) {
       r += mass * p.a.segment<3>(3 * n);
       J += p.ca * mass * Eigen::Matrix3d::Identity();
+      if (m_->massDamping > 0.0) {  // C v with C = alpha M (solver.mass_damping)
+        r += m_->massDamping * mass * p.v.segment<3>(3 * n);
+        J += p.cv * m_->massDamping * mass * Eigen::Matrix3d::Identity();
+      }
     }
     r -= p.loadFactor * mass * m_->gravity;
     ++out.work().pointMass;

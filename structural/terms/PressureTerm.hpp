@@ -10,6 +10,7 @@ class PressureTerm final : public Term {
  public:
   explicit PressureTerm(const Model& m) : m_(&m) {}
   const char* name() const override { return "pressure"; }
+  bool doesExternalWork() const override { return true; }
   void addCouplings(std::vector<std::vector<int>>& cliques) const override;
   void assemble(const EvalPoint& p, SystemAssembler& out) override;
   void addEnergy(const Eigen::VectorXd&, const Eigen::VectorXd&, double,

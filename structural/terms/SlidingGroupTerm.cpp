@@ -211,6 +211,12 @@ void SlidingGroupTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
             kernels::slidingInertia(x1, x2, x3, gather3(p.a, n1, n2, n3), L, mat, m_->massKind);
         r += in.force;
         J += p.ca * in.mass + p.cx * in.dForce;
+        if (m_->massDamping > 0.0) {  // C v with C = alpha M(x) (solver.mass_damping)
+          const auto dv =
+              kernels::slidingInertia(x1, x2, x3, gather3(p.v, n1, n2, n3), L, mat, m_->massKind);
+          r += m_->massDamping * dv.force;
+          J += m_->massDamping * (p.cv * dv.mass + p.cx * dv.dForce);
+        }
       }
       if (m_->hasGravity()) {
         const auto gr = kernels::slidingGravity(x1, x2, x3, L, mat, m_->gravity);

@@ -18,6 +18,7 @@ std::vector<std::string> ProbeSpec::columns() const {
   if (kind == "slider_friction")
     q = {"state", "slip_rate", "tension_ratio", "wrap_angle", "N1", "N2"};
   if (kind == "energy") q = {"kinetic", "strain", "gravity", "total"};
+  if (kind == "energy_balance") q = {"work", "balance"};
   if (kind == "line_force") q = {"N", "strain"};
   if (kind == "membrane_stress") q = {"S1", "S2"};
   if (kind == "edge_angle") q = {"angle"};
@@ -39,10 +40,10 @@ ProbeSpec readProbe(const Model& m, TomlTable t) {
         return (ch >= 0 && ch < 32) || ch == ',' || ch == '"';
       }))
     t.fail("name", "must be non-empty, without commas, quotes or control characters");
-  p.kind =
-      t.choice("kind", "node_position",
-               {"node_position", "node_velocity", "slider", "energy", "line_force",
-                "membrane_stress", "wrinkling", "slider_friction", "skirt_radius", "edge_angle"});
+  p.kind = t.choice(
+      "kind", "node_position",
+      {"node_position", "node_velocity", "slider", "energy", "energy_balance", "line_force",
+       "membrane_stress", "wrinkling", "slider_friction", "skirt_radius", "edge_angle"});
   const std::string why = "by a probe of kind \"" + p.kind + "\"";
   const bool atNode =
       p.kind == "node_position" || p.kind == "node_velocity" || p.kind == "membrane_stress";

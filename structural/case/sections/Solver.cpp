@@ -64,6 +64,7 @@ void readSolver(CaseSpec& c, TomlTable s) {
                 "by implicit integrators (only by integrator = \"central_difference\")");
     }
     m.massDamping = s.nonNegative("mass_damping", 0.0);
+    sv.energyTolerance = s.nonNegative("energy_tolerance", sv.energyTolerance);
     if (sv.rhoInf < 0.0 || sv.rhoInf > 1.0) s.fail("rho_inf", "must be in [0, 1]");
     sv.dtMin = s.positive("dt_min", sv.dt * 1e-6);
     if (sv.dtMin > sv.dt) s.fail("dt_min", "must not exceed dt");
@@ -79,7 +80,7 @@ void readSolver(CaseSpec& c, TomlTable s) {
                  ") is lost in rounding near t_end: keep it above t_end * 1e-15");
   } else {
     s.notUsed({"dt", "t_end", "rho_inf", "integrator", "mass_damping", "dt_min", "em_dissipation",
-               "safety_factor", "target_dt", "stiffness_damping"},
+               "safety_factor", "target_dt", "stiffness_damping", "energy_tolerance"},
               "by static runs (type = \"static\")");
   }
   sv.loadSteps = static_cast<int>(s.integer("load_steps", 1, 1, 1000000));

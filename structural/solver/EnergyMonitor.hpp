@@ -1,0 +1,69 @@
+#pragma once
+// The energy balance of a dynamic run (docs/formulation.md, eq. EB1): the energy of the
+// structure (kinetic + strain + gravity, at each step's equilibrium point) against the work done
+// on it by the loads that have no energy (pressure, drag, a flow's loads: Term::doesExternalWork)
+// and by the supports that move it (prescribed motion):
+//
+//   B(t_n) = E(t_n) - E(t_0) - W(t_0, t_n),  W += (f_loads + R) . (x_{n+1} - x_n) per step,
+//
+// the forces at the step's equilibrium point. B is what friction, damping, the cut of a set and
+// the integrator's numerical dissipation took out (B <= 0) or what the integration made up
+// (B > 0). The scale S is the largest kinetic + strain energy so far, plus the gross work done,
+// plus the work gravity does on all the mass over the model's size (m |g| L: the floor of a
+// scene at rest). A run whose B stays above tolerance x S for kPersistentSteps steps in a row,
+// exceeds S once, or ends above tolerance x S, has made energy up: it is unstable, whatever its
+// Newton did. (A start far from equilibrium may gain a few per cent of its small energy for a few
+// steps while the numerical damping takes its stiff modes out, measured 6 steps on
+// cases/airbag.toml; a blow-up gains on every step.) The monitor knows no integrator: any
+// integrator that gives an equilibrium point per step (solver/EquilibriumPoint.hpp) plugs in.
+#include <limits>
+#include <string>
+
+#include "solver/EquilibriumPoint.hpp"
+#include "solver/StructuralState.hpp"
+#include "solver/StructuralSystem.hpp"
+
+namespace chute {
+
+class EnergyMonitor {
+ public:
+  static constexpr int kPersistentSteps = 10;
+
+  // tolerance: the largest B allowed, relative to the scale (solver.energy_tolerance; <= 0: the
+  // balance is kept but never stops a run).
+  EnergyMonitor(StructuralSystem& sys, double tolerance);
+
+  // The state the balance starts from (a start, or the state a restart continues from).
+  void start(const StructuralState& s, const EquilibriumPoint& eq);
+  // After an accepted step from `before` to `s` with equilibrium point eq; returns false when
+  // the balance is violated (reason()).
+  bool afterStep(const StructuralState& before, const StructuralState& s,
+                 const EquilibriumPoint& eq, double dt);
+
+  // At the end of a run: false when B is above tolerance x S there (the answer holds energy the
+  // integration made up, however briefly it has been above). A run of fewer than
+  // 2 kPersistentSteps steps is not judged at its end: it may end inside a start's transient
+  // (cases/airbag.toml cut to 5 steps ends at B = 0.15 S, and 2 steps later B < 0).
+  bool finish();
+
+  double energy() const { return energy_; }                      // E(t_n)
+  double work() const { return work_; }                          // W(t_0, t_n)
+  double balance() const { return energy_ - energy0_ - work_; }  // B(t_n)
+  double scale() const { return fullScale(); }                   // S
+  double largestBalance() const { return largest_; }             // max B so far
+  const std::string& reason() const { return reason_; }
+
+ private:
+  StructuralSystem* sys_;
+  double tolerance_;
+  double energy0_ = 0.0, energy_ = 0.0, work_ = 0.0, grossWork_ = 0.0, scale_ = 0.0;
+  double largest_ = -std::numeric_limits<double>::infinity();
+  std::string reason_;
+  double fullScale() const { return scale_ + grossWork_ + gravityFloor_; }
+  bool supportsMove_ = false;  // any constrained dof with prescribed motion
+  double gravityFloor_ = 0.0;  // m |g| L
+  int stepsOver_ = 0;          // consecutive steps with B > tolerance x S
+  long steps_ = 0;             // steps since start()
+};
+
+}  // namespace chute
