@@ -72,10 +72,10 @@ MembraneDiscreteGradientResult<NumNodes> membraneDiscreteGradient(
   int worst = 0;
   for (int k = 0; k < MembraneReference<NumNodes>::kGauss; ++k) {
     const auto& dN = ref.dN[k];
-    const auto F0 = deformationGradient<NumNodes>(x0, dN);
-    const auto F1 = deformationGradient<NumNodes>(x1, dN);
-    const Eigen::Matrix<double, 3, 2> Fm = 0.5 * (F0 + F1);
-    const Vec3 e0 = greenStrain(F0), e1 = greenStrain(F1);
+    const auto Fstart = deformationGradient<NumNodes>(x0, dN);
+    const auto Fend = deformationGradient<NumNodes>(x1, dN);
+    const Eigen::Matrix<double, 3, 2> Fm = 0.5 * (Fstart + Fend);
+    const Vec3 e0 = greenStrain(Fstart), e1 = greenStrain(Fend);
     const GonzalezStress g = gonzalezStress(e0, e1, mat.E, mat.nu, wrinkling, chi);
     const PlaneStress p0 = planeStressSVK(e0, mat.E, mat.nu, wrinkling);
     const PlaneStress p1 = planeStressSVK(e1, mat.E, mat.nu, wrinkling);
@@ -87,7 +87,7 @@ MembraneDiscreteGradientResult<NumNodes> membraneDiscreteGradient(
     r.force.noalias() += w * Bm.transpose() * g.S;  // EM10
     if (withTangent) {
       // d/dx_{n+1} [B(F_mid)^T S_alg] = B(F_mid)^T dS/de_1 B(F_{n+1}) + (1/2) G(S_alg).
-      const auto B1 = strainOperator<NumNodes>(F1, dN);
+      const auto B1 = strainOperator<NumNodes>(Fend, dN);
       r.dForce.noalias() += w * Bm.transpose() * g.dSdE1 * B1;
       Eigen::Matrix2d S;
       S << g.S[0], g.S[2], g.S[2], g.S[1];
