@@ -492,3 +492,15 @@ TEST(CouplingInterfaceApi, WindowsThatCannotMoveTimeOrWouldNeverEndAreRefusedAnd
     EXPECT_GT(s.time(), t);
   }
 }
+
+TEST(CouplingInterfaceApi, RefusesTheExplicitIntegrator) {
+  // The coupling interface steps with the implicit integrator: a case asking for central
+  // differences is refused rather than run with generalized-alpha behind the user's back.
+  try {
+    CouplingInterface s(smallCanopy({"solver.integrator=\"central_difference\""}));
+    ADD_FAILURE() << "a central_difference case was accepted by the coupling interface";
+  } catch (const std::invalid_argument& e) {
+    std::printf("refused: %s\n", e.what());
+    EXPECT_NE(std::string(e.what()).find("central_difference"), std::string::npos);
+  }
+}
