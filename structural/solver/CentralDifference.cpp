@@ -210,16 +210,9 @@ NewtonReport CentralDifference::step(StructuralState& s, double dt) {
   n.t = s.t + dt;
   // EX1: v_{n+1/2} = v_n + dt/2 a_n, x_{n+1} = x_n + dt v_{n+1/2}; prescribed dofs on their path.
   const Eigen::VectorXd vHalf = s.v + 0.5 * dt * s.a;
-  for (int d = 0; d < nd; ++d) {
-    if (dofs.eqOfDof(d) >= 0) {
-      n.x[d] = s.x[d] + dt * vHalf[d];
-      continue;
-    }
-    const auto& c = m.constraint[d / 3];
-    n.x[d] = c.position(m.X[d / 3][d % 3] + m.u0[d / 3][d % 3], d % 3, n.t);
-    n.v[d] = c.speed(d % 3, n.t);
-    n.a[d] = c.acceleration(d % 3, n.t);
-  }
+  for (int d = 0; d < nd; ++d)
+    if (dofs.eqOfDof(d) >= 0) n.x[d] = s.x[d] + dt * vHalf[d];
+  sys_->prescribeMotion(n);
   // EX3: hand-over checked every step. A driven slider is handed over where its path passes a
   // node; a free slider whose part to an end node turns round over the step has passed that
   // node and is handed over to the neighbour there (notePassages), applied by the search below.

@@ -11,16 +11,7 @@ class EnergyMomentumProblem final : public NewtonProblem {
       : sys_(sys), old_(old), n_(n), dt_(dt), chi_(chi) {}
 
   // Constrained dofs follow their prescribed motion (fixed: where they started).
-  void prescribe() {
-    const Model& model = sys_.model();
-    for (int d = 0; d < sys_.dofs().numDofs(); ++d) {
-      if (sys_.dofs().eqOfDof(d) >= 0) continue;
-      const auto& c = model.constraint[d / 3];
-      n_.x[d] = c.position(model.X[d / 3][d % 3] + model.u0[d / 3][d % 3], d % 3, n_.t);
-      n_.v[d] = c.speed(d % 3, n_.t);
-      n_.a[d] = c.acceleration(d % 3, n_.t);
-    }
-  }
+  void prescribe() { sys_.prescribeMotion(n_); }
   void afterUpdate() override {
     // EM1: v_{n+1} = 2 (x_{n+1} - x_n) / dt - v_n; a = (v_{n+1} - v_n) / dt, the step's mean
     // acceleration (the inertia force of EM2).

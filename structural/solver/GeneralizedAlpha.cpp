@@ -83,16 +83,7 @@ class StepProblem final : public NewtonProblem {
       : sys_(sys), p_(p), old_(old), n_(n), dt_(dt) {}
 
   // Constrained dofs follow their prescribed motion (fixed: where they started).
-  void prescribe() {
-    const Model& model = sys_.model();
-    for (int d = 0; d < sys_.dofs().numDofs(); ++d) {
-      if (sys_.dofs().eqOfDof(d) >= 0) continue;
-      const auto& c = model.constraint[d / 3];
-      n_.x[d] = c.position(model.X[d / 3][d % 3] + model.u0[d / 3][d % 3], d % 3, n_.t);
-      n_.v[d] = c.speed(d % 3, n_.t);
-      n_.a[d] = c.acceleration(d % 3, n_.t);
-    }
-  }
+  void prescribe() { sys_.prescribeMotion(n_); }
   void afterUpdate() override {
     const double dt = dt_;
     n_.a = (n_.x - old_.x - dt * old_.v - dt * dt * (0.5 - p_.beta) * old_.a) / (p_.beta * dt * dt);

@@ -186,6 +186,17 @@ SystemSnapshot StructuralSystem::saveState(const StructuralState& s) const {
   return snap;
 }
 
+void StructuralSystem::prescribeMotion(StructuralState& s) const {
+  const Model& m = *model_;
+  for (int d = 0; d < dofs_.numDofs(); ++d) {
+    if (dofs_.eqOfDof(d) >= 0) continue;
+    const auto& c = m.constraint[d / 3];
+    s.x[d] = c.position(m.X[d / 3][d % 3] + m.u0[d / 3][d % 3], d % 3, s.t);
+    s.v[d] = c.speed(d % 3, s.t);
+    s.a[d] = c.acceleration(d % 3, s.t);
+  }
+}
+
 StructuralState StructuralSystem::loadState(const SystemSnapshot& snap) {
   const auto& s = snap.state;
   const long n = 3L * model_->numNodes();

@@ -30,6 +30,9 @@ class StructuralSystem {
 
   const Model& model() const { return *model_; }
   const DofMap& dofs() const { return dofs_; }
+  // Constrained dofs of s on their prescribed motion at s.t (fixed ones where they started):
+  // positions, velocities and accelerations. Free dofs are left alone.
+  void prescribeMotion(StructuralState& s) const;
   int numEquations() const { return dofs_.numEquations(); }
 
   // Discrete state updates (sliding search) for trial positions; returns the number of changes.
