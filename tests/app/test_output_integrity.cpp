@@ -26,7 +26,9 @@ struct Outcome {
 };
 
 Outcome runChute(const std::string& args) {
-  const fs::path err = fs::temp_directory_path() / "chute_output_integrity_stderr.txt";
+  // One file per test process: ctest runs these tests in parallel.
+  const fs::path err = fs::temp_directory_path() /
+                       ("chute_output_integrity_stderr_" + std::to_string(::getpid()) + ".txt");
   const std::string cmd = kChute + " " + args + " > /dev/null 2> " + err.string();
   const int raw = std::system(cmd.c_str());
   Outcome o;
