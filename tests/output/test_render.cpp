@@ -18,6 +18,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -192,10 +193,11 @@ double scaleTop(const std::vector<double>& v) {
 }
 }  // namespace
 
-// A SIGTERM sent to `chute render` alone (as `timeout` or a batch system sends it) stops the
-// Xvfb it started: before, the server was left running for good.
-TEST(Render, ASigtermWhileRenderingStopsItsXvfb) {
-  const fs::path dir = smallRun("sigterm");
+namespace {
+// Sends `sig` to `chute render` alone while it renders and checks that the Xvfb it started
+// exits too.
+void signalWhileRenderingStopsItsXvfb(int sig, const std::string& name) {
+  const fs::path dir = smallRun(name);
   const pid_t pid = ::fork();
   ASSERT_GE(pid, 0);
   if (pid == 0) {
@@ -234,19 +236,32 @@ TEST(Render, ASigtermWhileRenderingStopsItsXvfb) {
     rendering = fs::exists(frames, ec) && !fs::is_empty(frames, ec);
   }
   ASSERT_TRUE(rendering) << "no snapshot written within 20 s";
-  ::kill(pid, SIGTERM);
+  ::kill(pid, sig);
   int status = 0;
   ::waitpid(pid, &status, 0);
-  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM);
+  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == sig);
   bool gone = false;
   for (int k = 0; k < 200 && !gone; ++k) {  // it is reparented and reaped once it has exited
     gone = ::kill(server, 0) != 0;
     if (!gone) std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
-  std::printf("chute render (pid %d) got SIGTERM; its Xvfb (pid %d) %s\n", pid, server,
+  std::printf("chute render (pid %d) got %s; its Xvfb (pid %d) %s\n", pid, strsignal(sig), server,
               gone ? "exited" : "is still running after 10 s");
   EXPECT_TRUE(gone);
   if (!gone) ::kill(server, SIGKILL);
+}
+}  // namespace
+
+// A SIGTERM sent to `chute render` alone (as `timeout` or a batch system sends it) stops the
+// Xvfb it started (its handler stops the server): before, the server was left running for good.
+TEST(Render, ASigtermWhileRenderingStopsItsXvfb) {
+  signalWhileRenderingStopsItsXvfb(SIGTERM, "sigterm");
+}
+
+// SIGKILL runs no handler: the server learns of its parent's death from the kernel
+// (PR_SET_PDEATHSIG).
+TEST(Render, ASigkillWhileRenderingStopsItsXvfb) {
+  signalWhileRenderingStopsItsXvfb(SIGKILL, "sigkill");
 }
 
 TEST(Render, ColoursMembranesByStressAndLinesByForceByDefault) {
