@@ -45,6 +45,20 @@ def sanitized(binary):
     return "libasan" in out
 
 
+def runtime_libraries():
+    """The compiler's ASan and UBSan runtimes (to preload into an uninstrumented host)."""
+    libs = []
+    for name in ("libasan.so", "libubsan.so"):
+        try:
+            path = subprocess.run(["gcc", "-print-file-name=" + name], capture_output=True,
+                                  text=True, timeout=30).stdout.strip()
+        except (OSError, subprocess.SubprocessError):
+            path = ""
+        if os.path.isabs(path):
+            libs.append(path)
+    return libs
+
+
 def run(cmd, cwd, expect, timeout=20.0, mem_mb=4096, asan=False, marker=None, env=None):
     """Runs cmd (a list) in cwd; expect is the set of classes this input may end in."""
     full_env = dict(os.environ if env is None else env)
@@ -54,6 +68,10 @@ def run(cmd, cwd, expect, timeout=20.0, mem_mb=4096, asan=False, marker=None, en
             "detect_leaks=0:hard_rss_limit_mb=%d:max_allocation_size_mb=%d:"
             "allocator_may_return_null=1" % (mem_mb, mem_mb))
         full_env["UBSAN_OPTIONS"] = "print_stacktrace=1:halt_on_error=1"
+        if any(str(a).endswith(".so") for a in cmd):
+            # A host (Python) loading the instrumented libchute_coupling.so: the sanitizer
+            # runtimes must come first in its library list.
+            full_env["LD_PRELOAD"] = " ".join(runtime_libraries())
 
     def limits():
         os.setsid()
