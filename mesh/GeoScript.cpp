@@ -22,12 +22,27 @@ namespace chute::mesh {
 
 namespace {
 
+// The address space this process has mapped now (VmSize of /proc/self/status), 0 if unknown.
+rlim_t mappedBytes() {
+  std::FILE* f = std::fopen("/proc/self/status", "r");
+  if (!f) return 0;
+  char line[256];
+  unsigned long long kiB = 0;
+  while (std::fgets(line, sizeof line, f))
+    if (std::sscanf(line, "VmSize: %llu kB", &kiB) == 1) break;
+  std::fclose(f);
+  return static_cast<rlim_t>(kiB) * 1024;
+}
+
 // The child: gmsh runs the script and writes the mesh; a failure is one line written to `report`
 // (at most 1000 bytes: the pipe never fills) and the exit status 2. Never returns.
 [[noreturn]] void runChild(const std::string& geo, const std::string& tmp, double memoryMiB,
                            int report) {
   setpgid(0, 0);  // its own process group: commands the script starts die with it
-  const rlim_t bytes = static_cast<rlim_t>(memoryMiB * 1024.0 * 1024.0);
+  // The limit is on what the script adds to the address space chute already has mapped (its
+  // libraries; in a sanitizer build, the shadow memory reserved at start, terabytes that an
+  // absolute limit would not even cover).
+  const rlim_t bytes = mappedBytes() + static_cast<rlim_t>(memoryMiB * 1024.0 * 1024.0);
   const struct rlimit rl { bytes, bytes };
   setrlimit(RLIMIT_AS, &rl);
   int status = 0;

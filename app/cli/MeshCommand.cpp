@@ -100,7 +100,7 @@ std::function<int()> addMeshGeoCommand(CLI::App& mesh) {
   g->add_option("--timeout", a->limits.seconds, "seconds the script may run")
       ->default_val(a->limits.seconds)
       ->check(CLI::Range(0.1, 86400.0));
-  g->add_option("--max-memory", a->limits.memoryMiB, "MiB of address space for gmsh")
+  g->add_option("--max-memory", a->limits.memoryMiB, "MiB of address space gmsh may add")
       ->default_val(a->limits.memoryMiB)
       ->check(CLI::Range(64.0, 1048576.0));
   return [a] {
