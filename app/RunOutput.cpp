@@ -137,6 +137,11 @@ void RunOutput::afterStep(const StructuralState& s, long steps, bool last) {
   if (vtuClock_.due(s.t, steps, dt) || last) frame(s);
 }
 
+bool RunOutput::recordsAt(double t, long steps) const {
+  OutputClock c = probeClock_;  // due() moves the clock on: asked of a copy
+  return c.due(t, steps, spec_->solver.dt);
+}
+
 void RunOutput::lastGoodState(const StructuralState& s) {
   if (r_->times.empty() || r_->times.back() != s.t) record(s);
   frame(s);

@@ -52,6 +52,8 @@ class RunOutput {
   double nextStop() const { return std::min(probeClock_.nextTime(), vtuClock_.nextTime()); }
   // After an accepted step: rows and frames that are due (and both at the last step).
   void afterStep(const StructuralState& s, long steps, bool last);
+  // Whether afterStep at (t, steps) writes a probe row (the last step always does).
+  bool recordsAt(double t, long steps) const;
   // The state a run starts from, and the last good state of a run that stops early.
   void record(const StructuralState& s);
   void frame(const StructuralState& s);

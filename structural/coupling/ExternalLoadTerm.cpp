@@ -66,8 +66,12 @@ void ExternalLoadTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
       const auto pl = anyVertexPressure_ ? kernels::pressureLoadNodal<N>(x, pv, wantJ)
                                          : kernels::pressureLoad<N>(x, pf, wantJ);
       const Eigen::Matrix<double, 3 * N, 1> r = -pl.force;
+      if (!wantJ) {
+        out.add<N>(ids, r, nullptr);
+        return;
+      }
       const Eigen::Matrix<double, 3 * N, 3 * N> J = -p.cx * pl.dForce;
-      out.add<N>(ids, r, wantJ ? &J : nullptr);
+      out.add<N>(ids, r, &J);
     };
     if (s.faceSize[f] == 3)
       one(std::integral_constant<int, 3>{});

@@ -12,8 +12,10 @@ FaceDrag<NumNodes> faceDrag(const std::array<Vec3, NumNodes>& x,
                             double coefficient, bool steadySubtracted, bool withTangent) {
   FaceDrag<NumNodes> out;
   out.residual.setZero();
-  out.dPosition.setZero();
-  out.dVelocity.setZero();
+  if (withTangent) {  // residual-only evaluations (explicit steps) never read them
+    out.dPosition.setZero();
+    out.dVelocity.setZero();
+  }
   const Vec3 a = areaVector<NumNodes>(x);
   const double area = a.norm();
   if (area == 0.0 || coefficient == 0.0) return out;

@@ -20,8 +20,8 @@ template <int NumNodes>
 struct FaceDrag {
   static constexpr int kDofs = 3 * NumNodes;
   Eigen::Matrix<double, kDofs, 1> residual;
-  Eigen::Matrix<double, kDofs, kDofs> dPosition;
-  Eigen::Matrix<double, kDofs, kDofs> dVelocity;
+  Eigen::Matrix<double, kDofs, kDofs> dPosition;  // set only withTangent
+  Eigen::Matrix<double, kDofs, kDofs> dVelocity;  // set only withTangent
 };
 
 template <int NumNodes>

@@ -7,8 +7,10 @@ LineDrag lineDrag(const Vec3& xa, const Vec3& xb, const Vec3& va, const Vec3& vb
                   double coefficient, bool withTangent) {
   LineDrag out;
   out.residual.setZero();
-  out.dPosition.setZero();
-  out.dVelocity.setZero();
+  if (withTangent) {  // residual-only evaluations (explicit steps) never read them
+    out.dPosition.setZero();
+    out.dVelocity.setZero();
+  }
   const Vec3 d = xb - xa;
   const double l = d.norm();
   if (l == 0.0 || coefficient == 0.0) return out;

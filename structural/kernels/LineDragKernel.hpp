@@ -13,8 +13,8 @@ using Mat3 = Eigen::Matrix3d;
 // its derivatives with respect to the nodal positions and velocities.
 struct LineDrag {
   Eigen::Matrix<double, 6, 1> residual;
-  Eigen::Matrix<double, 6, 6> dPosition;
-  Eigen::Matrix<double, 6, 6> dVelocity;
+  Eigen::Matrix<double, 6, 6> dPosition;  // set only withTangent
+  Eigen::Matrix<double, 6, 6> dVelocity;  // set only withTangent
 };
 LineDrag lineDrag(const Vec3& xa, const Vec3& xb, const Vec3& va, const Vec3& vb, const Vec3& wind,
                   double coefficient /* (1/2) rho_air Cd d */, bool withTangent);

@@ -67,7 +67,7 @@ MembraneResult<NumNodes> membraneForce(const std::array<Vec3, NumNodes>& x,
   constexpr int kDofs = 3 * NumNodes;
   MembraneResult<NumNodes> r;
   r.force.setZero();
-  r.stiffness.setZero();
+  if (withTangent) r.stiffness.setZero();  // residual-only evaluations never read it
   int worst = 0;
   for (int k = 0; k < MembraneReference<NumNodes>::kGauss; ++k) {
     const auto& dN = ref.dN[k];

@@ -38,7 +38,7 @@ struct MembraneResult {
   static constexpr int kDofs = 3 * NumNodes;
   double energy = 0.0;
   Eigen::Matrix<double, kDofs, 1> force;
-  Eigen::Matrix<double, kDofs, kDofs> stiffness;
+  Eigen::Matrix<double, kDofs, kDofs> stiffness;  // set only withTangent
   WrinkleState state = WrinkleState::Taut;  // the most relaxed state of its integration points
   Eigen::Vector2d principalStress = Eigen::Vector2d::Zero();  // of S, averaged over the points
   Eigen::Vector2d principalStrain = Eigen::Vector2d::Zero();  // of E, averaged

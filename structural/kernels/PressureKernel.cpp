@@ -37,7 +37,7 @@ PressureLoad<NumNodes> integratePressure(const std::array<Vec3, NumNodes>& x,
                                          PressureAt&& pressureAt, bool withTangent) {
   PressureLoad<NumNodes> out;
   out.force.setZero();
-  out.dForce.setZero();
+  if (withTangent) out.dForce.setZero();  // residual-only evaluations never read it
   for (int k = 0; k < Rule::n; ++k) {
     const auto dNdXi = Rule::dNdXi(k);
     const auto N = Rule::N(k);

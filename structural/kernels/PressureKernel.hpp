@@ -14,7 +14,7 @@ using Mat3 = Eigen::Matrix3d;
 template <int NumNodes>
 struct PressureLoad {
   Eigen::Matrix<double, 3 * NumNodes, 1> force;
-  Eigen::Matrix<double, 3 * NumNodes, 3 * NumNodes> dForce;
+  Eigen::Matrix<double, 3 * NumNodes, 3 * NumNodes> dForce;  // set only withTangent
 };
 template <int NumNodes>
 PressureLoad<NumNodes> pressureLoad(const std::array<Vec3, NumNodes>& x, double p,

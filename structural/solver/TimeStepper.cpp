@@ -65,8 +65,11 @@ TimeStepper::Result TimeStepper::advanceTo(
     // The next stop: the target, the caller's next stop, the next cable cut.
     const double stop = std::min({tStop, nextStop(s.t), m.nextCutAfter(s.t)});
     if (explicit_) {
-      // The stable step from the current positions; no sliver absorption (it would exceed it).
-      s.control.dt = explicit_->chooseStep(s.control.dt, control_.nominal(), s.x, s.t);
+      // The stable step from the current positions, every kStableStepEvery steps of the run
+      // (a restart keeps the count) and after a cut (EX5); no sliver absorption (it would
+      // exceed it).
+      if (counters_.steps % CentralDifference::kStableStepEvery == 0 || m.hasCutAt(s.t))
+        s.control.dt = explicit_->chooseStep(s.control.dt, control_.nominal(), s.x, s.t);
       const double h = std::min(s.control.dt, stop - s.t);
       const bool reachesStop = h == stop - s.t;
       const NewtonReport rep = explicit_->step(s, h);

@@ -26,8 +26,12 @@ void LineDragTerm::addSegment(int a, int b, const Vec3& wind, double c, const Ev
   const auto d = kernels::lineDrag(p.x.segment<3>(3 * a), p.x.segment<3>(3 * b),
                                    p.v.segment<3>(3 * a), p.v.segment<3>(3 * b), wind, c, wantJ);
   ++out.work().drag;
+  if (!wantJ) {
+    out.add<2>({a, b}, d.residual, nullptr);
+    return;
+  }
   const Eigen::Matrix<double, 6, 6> J = p.cx * d.dPosition + p.cv * d.dVelocity;
-  out.add<2>({a, b}, d.residual, wantJ ? &J : nullptr);
+  out.add<2>({a, b}, d.residual, &J);
 }
 
 void LineDragTerm::assemble(const EvalPoint& p, SystemAssembler& out) {

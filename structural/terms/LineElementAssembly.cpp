@@ -31,18 +31,23 @@ void assembleCable(const Model& m, int a, int b, double L, int material, const E
   } else {
     const auto res = kernels::cableForce(pos(p.x, a), pos(p.x, b), L, mat, wantJ);
     r = res.force;
-    J = p.cx * res.stiffness;
-    if (wantJ) addSlackTangent<2>(res, mat, L, {0, 1}, p.cx, J);
+    if (wantJ) {
+      J = p.cx * res.stiffness;
+      addSlackTangent<2>(res, mat, L, {0, 1}, p.cx, J);
+    }
   }
   if (mat.density > 0.0) {
     ++out.work().lineMass;
-    if (p.inertia) {
+    const Vec6 acc = p.inertia ? gather2(p.a, a, b) : Vec6::Zero();
+    // A residual-only evaluation at zero acceleration without mass damping (the explicit step,
+    // EX2) has M a = 0: skipped.
+    if (p.inertia && (wantJ || m.massDamping > 0.0 || !acc.isZero(0.0))) {
       const Mat6 M = kernels::cableMass(L, mat, m.massKind);
-      r += M * gather2(p.a, a, b);
-      J += p.ca * M;
+      r += M * acc;
+      if (wantJ) J += p.ca * M;
       if (m.massDamping > 0.0) {  // C v with C = alpha M (solver.mass_damping)
         r += m.massDamping * M * gather2(p.v, a, b);
-        J += p.cv * m.massDamping * M;
+        if (wantJ) J += p.cv * m.massDamping * M;
       }
     }
     if (m.hasGravity()) r -= p.loadFactor * kernels::cableGravity(L, mat, m.gravity);

@@ -87,10 +87,13 @@ void MembraneTerm::assembleElement(int k, const kernels::MembraneReference<N>& r
   if (mat.density > 0.0) {
     const auto Ms =
         kernels::membraneMass<N>(ref, mat.density, m_->massKind == kernels::MassKind::Lumped);
-    if (p.inertia) {
-      const auto M = expand<N>(Ms);
-      Eigen::Matrix<double, 3 * N, 1> a;
+    Eigen::Matrix<double, 3 * N, 1> a;
+    if (p.inertia)
       for (int i = 0; i < N; ++i) a.template segment<3>(3 * i) = p.a.segment<3>(3 * e.nodes[i]);
+    // A residual-only evaluation at zero acceleration without mass damping (the explicit step,
+    // EX2) has M a = 0: skipped.
+    if (p.inertia && (wantJ || m_->massDamping > 0.0 || !a.isZero(0.0))) {
+      const auto M = expand<N>(Ms);
       r += M * a;
       if (wantJ) J += p.ca * M;
       if (m_->massDamping > 0.0) {  // C v with C = alpha M (pseudo-dynamics, physical damping)

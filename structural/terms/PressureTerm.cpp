@@ -35,8 +35,12 @@ void PressureTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
         const auto pl = kernels::pressureLoad<N>(gatherNodes<N>(p.x, e), pr, wantJ);
         ++out.work().pressure;
         const Eigen::Matrix<double, 3 * N, 1> r = -pl.force;
+        if (!wantJ) {
+          out.add<N>(nodeIds<N>(e), r, nullptr);
+          return;
+        }
         const Eigen::Matrix<double, 3 * N, 3 * N> J = -p.cx * pl.dForce;
-        out.add<N>(nodeIds<N>(e), r, wantJ ? &J : nullptr);
+        out.add<N>(nodeIds<N>(e), r, &J);
       };
       if (e.numNodes == 3)
         one(std::integral_constant<int, 3>{});

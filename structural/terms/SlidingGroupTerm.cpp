@@ -115,7 +115,12 @@ void SlidingGroupTerm::commit(const CommitPoint& c) {
     state_.setConvergedFriction(si, f);
   }
   state_.commit(x);
-  committedX_ = x;
+  // The committed positions serve the friction predictor only (FR15): a group without friction
+  // keeps its first copy (saved and loaded as it is) rather than copying every dof each step.
+  bool friction = false;
+  for (size_t s = 0; s < g.sliders.size(); ++s)
+    friction = friction || g.frictionOf(static_cast<int>(s)) != nullptr;
+  if (friction || committedX_.size() != x.size()) committedX_ = x;
   committedT_ = c.tForces;
 }
 
