@@ -41,6 +41,7 @@ void EnergyMonitor::start(const StructuralState& s, const EquilibriumPoint& eq) 
   scale_ = e.kinetic + std::abs(e.strain);
   largest_ = 0.0;
   stepsOver_ = stepsGrowing_ = 0;
+  startBalance_ = 0.0;
   steps_ = 0;
   reason_.clear();
 }
@@ -86,14 +87,16 @@ bool EnergyMonitor::afterStep(const StructuralState& before, const StructuralSta
         S);
     return false;
   }
+  if (steps_ == 2 * kPersistentSteps) startBalance_ = largest_;  // >= 0: a gain, not a loss
   stepsGrowing_ = closedViolated(b) ? stepsGrowing_ + 1 : 0;
   if (tolerance_ > 0.0 && stepsGrowing_ >= kPersistentSteps) {
     reason_ = fmt::format(
-        "energy grew without external work at t = {:.9g}: the structure gained {:.6g} (E = "
-        "{:.6g}, E0 = {:.6g}) with no load or moving support to give it, above {:.3g} x the "
-        "energy scale {:.6g} for {} steps (EB2); the integration is unstable: a smaller "
-        "solver.dt or solver.rho_inf may help",
-        s.t, b, energy_, energy0_, kClosedFraction * tolerance_, S, stepsGrowing_);
+        "energy grew without external work at t = {:.9g}: the structure gained {:.6g} since "
+        "its first {} steps (E = {:.6g}, E0 = {:.6g}) with no load or moving support to give "
+        "it, above {:.3g} x the energy scale {:.6g} for {} steps (EB2); the integration is "
+        "unstable: a smaller solver.dt or solver.rho_inf may help",
+        s.t, b - startBalance_, 2 * kPersistentSteps, energy_, energy0_,
+        kClosedFraction * tolerance_, S, stepsGrowing_);
     return false;
   }
   return true;
@@ -104,11 +107,12 @@ bool EnergyMonitor::finish() {
   if (tolerance_ <= 0.0 || steps_ < 2 * kPersistentSteps) return true;
   if (closedViolated(b)) {
     reason_ = fmt::format(
-        "energy grew without external work by the end of the run: the structure holds {:.6g} "
-        "more energy than at its start (E = {:.6g}, E0 = {:.6g}) with no load or moving "
-        "support to give it, above {:.3g} x the energy scale {:.6g} (EB2); the integration is "
-        "unstable: a smaller solver.dt or solver.rho_inf may help",
-        b, energy_, energy0_, kClosedFraction * tolerance_, S);
+        "energy grew without external work by the end of the run: the structure gained {:.6g} "
+        "since its first {} steps (E = {:.6g}, E0 = {:.6g}) with no load or moving support to "
+        "give it, above {:.3g} x the energy scale {:.6g} (EB2); the integration is unstable: a "
+        "smaller solver.dt or solver.rho_inf may help",
+        b - startBalance_, 2 * kPersistentSteps, energy_, energy0_, kClosedFraction * tolerance_,
+        S);
     return false;
   }
   if (!(b > tolerance_ * S)) return true;

@@ -23,7 +23,11 @@
 // at the end. A cable pendulum at 120 steps per period, rho_inf = 1, goes slack, gains 7 % of its
 // energy for 20 steps (B up to 0.011 S) and then snatches at 18 times the exact force; its energy
 // falls again afterwards, so only a bound on the way catches it. The good runs and stressed
-// shipped cases of bench/results/energy_monitor.md stay below 3e-4 S.
+// shipped cases of bench/results/energy_monitor.md stay below 3e-4 S. The growth is counted
+// from the largest balance (>= 0) of the first 2 kPersistentSteps steps: a start off
+// equilibrium may gain a few per cent while its stiff modes are damped out (the membrane of
+// tests/cases/test_pay_only.cpp released from a prestrain: 0.046 S in its first 10 steps), which
+// is EB1's to judge.
 #include <limits>
 #include <string>
 
@@ -72,8 +76,10 @@ class EnergyMonitor {
   bool supportsMove_ = false;  // any constrained dof with prescribed motion
   bool loads_ = false;         // any term doing external work
   bool closed() const { return !supportsMove_ && !loads_; }
+  double startBalance_ = 0.0;  // EB2: the largest B (>= 0) of the first 2 kPersistentSteps steps
   bool closedViolated(double b) const {
-    return closed() && b > kClosedFraction * tolerance_ * fullScale();
+    return closed() && steps_ > 2 * kPersistentSteps &&
+           b - startBalance_ > kClosedFraction * tolerance_ * fullScale();
   }
   double gravityFloor_ = 0.0;  // m |g| L
   int stepsOver_ = 0;          // consecutive steps with B > tolerance x S
