@@ -126,7 +126,6 @@ def main():
         for integ, rhos in (('bossak', (1.0, 0.9, 0.8)), ('generalized_alpha', (1.0, 0.9, 0.8)),
                             ('energy_momentum', (1.0,))):
             for rho in rhos:
-                errs = {}
                 for spp in (60, 120, 240):
                     runs.append((kind, deg, integ, spp, rho))
         runs.append((kind, deg, 'central_difference', 60, 1.0))
