@@ -160,6 +160,25 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
     stepper.useExplicit(*explicitCd);
   }
 
+  // Output times are stops every step lands on (TimeStepper::advanceTo), so an output interval
+  // shorter than solver.dt caps the step: chute says so rather than shrink dt silently (landing
+  // on output times keeps the rows at computed states, not interpolated ones; docs/output.md).
+  if (dynamic && !explicitCd) {
+    double cap = std::numeric_limits<double>::infinity();
+    std::string key;
+    if (spec.output.interval > 0.0 && spec.output.interval < cap)
+      cap = spec.output.interval, key = "output.interval";
+    if (spec.output.vtu.write && spec.output.vtu.interval > 0.0 && spec.output.vtu.interval < cap)
+      cap = spec.output.vtu.interval, key = "output.vtu.interval";
+    if (cap < sv.dt) {
+      r.outputStepCap = cap;
+      r.notes.push_back(fmt::format(
+          "{} = {:.6g} is shorter than solver.dt = {:.6g}: steps land on output times, so no "
+          "step is longer than {:.6g}",
+          key, cap, sv.dt, cap));
+    }
+  }
+
   // The model's fingerprint: checked against a restart file and written into every checkpoint.
   const auto hash = modelHash(m);
   StructuralState state;
@@ -373,6 +392,8 @@ void writeSummary(const std::string& path, const CaseSpec& spec, const RunResult
       {"mass", spec.model.massKind == kernels::MassKind::Lumped ? "lumped" : "consistent"},
       {"search", spec.solver.search == SliderSearch::NearestLength ? "nearest_length"
                                                                    : "material_coordinate"}};
+  if (std::isfinite(r.outputStepCap)) j["solver"]["dt_capped_by_output"] = r.outputStepCap;
+  if (!r.notes.empty()) j["notes"] = r.notes;
   j["sliding_handovers"] = r.handovers;
   if (r.explicitRun) {
     const auto& e = *r.explicitRun;

@@ -69,6 +69,10 @@ struct RunResult {
   std::vector<std::vector<double>> rows;
   std::optional<ReferenceError> reference;
   std::optional<ExplicitRunInfo> explicitRun;
+  // An output interval shorter than solver.dt caps every implicit step (steps land on output
+  // times): the cap (NaN: none) and a note saying so, on stderr and in summary.json.
+  double outputStepCap = std::numeric_limits<double>::quiet_NaN();
+  std::vector<std::string> notes;
   double newtonPerStep() const { return steps ? double(newtonIterations) / steps : 0.0; }
 };
 

@@ -48,6 +48,7 @@ int runCase(const RunArgs& a) {
     fmt::print(stderr, "chute: {}\n", e.what());
     return kExitBadInput;
   }
+  for (const auto& note : r.notes) fmt::print(stderr, "chute: {}: note: {}\n", spec.name, note);
   if (!a.quiet) {
     fmt::print(
         "{}: {} at t = {:.6g}: {} steps, {} rejected, {:.2f} Newton iterations/step, "

@@ -16,6 +16,8 @@ EnergyMonitor::EnergyMonitor(StructuralSystem& sys, double tolerance)
     if (c.velocity[d % 3] != 0.0 || (c.amplitude[d % 3] != 0.0 && c.frequency != 0.0))
       supportsMove_ = true;
   }
+  loads_ = std::any_of(sys.terms().begin(), sys.terms().end(),
+                       [](const auto& t) { return t->doesExternalWork(); });
   // m |g| L: the gravity potential of every mass raised by the model's size L (the bounding
   // box's diagonal) along -g.
   if (m.hasGravity() && !m.X.empty()) {
@@ -38,7 +40,8 @@ void EnergyMonitor::start(const StructuralState& s, const EquilibriumPoint& eq) 
   work_ = grossWork_ = 0.0;
   scale_ = e.kinetic + std::abs(e.strain);
   largest_ = 0.0;
-  stepsOver_ = 0;
+  stepsOver_ = stepsGrowing_ = 0;
+  startBalance_ = 0.0;
   steps_ = 0;
   reason_.clear();
 }
@@ -52,9 +55,7 @@ bool EnergyMonitor::afterStep(const StructuralState& before, const StructuralSta
   double w = 0.0;
   EvalPoint p{eq.x, eq.v, eq.a, eq.t};
   p.dt = dt;
-  const bool loads = std::any_of(sys_->terms().begin(), sys_->terms().end(),
-                                 [](const auto& t) { return t->doesExternalWork(); });
-  if (loads) w -= sys_->residualOverAllDofs(p, false).dot(dx);  // f_loads = -residual
+  if (loads_) w -= sys_->residualOverAllDofs(p, false).dot(dx);  // f_loads = -residual
   if (supportsMove_) {
     const Eigen::VectorXd r = sys_->residualOverAllDofs(p, true);
     for (int d = 0; d < sys_->dofs().numDofs(); ++d)
@@ -86,12 +87,35 @@ bool EnergyMonitor::afterStep(const StructuralState& before, const StructuralSta
         S);
     return false;
   }
+  if (steps_ == 2 * kPersistentSteps) startBalance_ = largest_;  // >= 0: a gain, not a loss
+  stepsGrowing_ = closedViolated(b) ? stepsGrowing_ + 1 : 0;
+  if (tolerance_ > 0.0 && stepsGrowing_ >= kPersistentSteps) {
+    reason_ = fmt::format(
+        "energy grew without external work at t = {:.9g}: the structure gained {:.6g} since "
+        "its first {} steps (E = {:.6g}, E0 = {:.6g}) with no load or moving support to give "
+        "it, above {:.3g} x the energy scale {:.6g} for {} steps (EB2); the integration is "
+        "unstable: a smaller solver.dt or solver.rho_inf may help",
+        s.t, b - startBalance_, 2 * kPersistentSteps, energy_, energy0_,
+        kClosedFraction * tolerance_, S, stepsGrowing_);
+    return false;
+  }
   return true;
 }
 
 bool EnergyMonitor::finish() {
   const double S = fullScale(), b = balance();
-  if (tolerance_ <= 0.0 || steps_ < 2 * kPersistentSteps || !(b > tolerance_ * S)) return true;
+  if (tolerance_ <= 0.0 || steps_ < 2 * kPersistentSteps) return true;
+  if (closedViolated(b)) {
+    reason_ = fmt::format(
+        "energy grew without external work by the end of the run: the structure gained {:.6g} "
+        "since its first {} steps (E = {:.6g}, E0 = {:.6g}) with no load or moving support to "
+        "give it, above {:.3g} x the energy scale {:.6g} (EB2); the integration is unstable: a "
+        "smaller solver.dt or solver.rho_inf may help",
+        b - startBalance_, 2 * kPersistentSteps, energy_, energy0_, kClosedFraction * tolerance_,
+        S);
+    return false;
+  }
+  if (!(b > tolerance_ * S)) return true;
   reason_ = fmt::format(
       "energy balance violated at the end of the run: the structure holds {:.6g} more energy "
       "than the loads and supports gave it (E = {:.6g}, E0 = {:.6g}, work {:.6g}), above "

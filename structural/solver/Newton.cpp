@@ -120,6 +120,7 @@ NewtonReport Newton::solve(Eigen::VectorXd& x, double tol, NewtonProblem& proble
     }
   }
   rep.failure = "no convergence in " + std::to_string(settings_.maxIterations) + " iterations";
+  rep.outOfIterations = true;
   return rep;
 }
 

@@ -50,6 +50,7 @@ struct NewtonReport {
   bool converged = false;
   int iterations = 0;
   std::string failure;                // why not converged
+  bool outOfIterations = false;       // the failure: maxIterations updates, all finite
   std::vector<double> residualNorms;  // ||R|| before each update
   std::vector<double> updateNorms;    // max |dx| of each update
   int stateChanges = 0;               // discrete changes (active elements) during the solve

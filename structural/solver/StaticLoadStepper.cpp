@@ -37,11 +37,22 @@ NewtonReport StaticLoadStepper::solve(StructuralState& s, int nSteps, double ini
     const double target = std::min(1.0, lambda + increment);
     StaticProblem problem(x, s.t, target);
     const Eigen::VectorXd start = x;
-    NewtonReport rep = newton_->solve(x, tol, problem, true, nullptr);
-    total.iterations += rep.iterations;
-    maxInStep_ = std::max(maxInStep_, rep.iterations);
-    total.residualNorms.insert(total.residualNorms.end(), rep.residualNorms.begin(),
-                               rep.residualNorms.end());
+    // ST1 (docs/formulation.md): an increment whose Newton ran out of iterations without
+    // diverging continues from its last iterate, up to kContinuations more times, before its
+    // load is halved: far from equilibrium (a ring on a stiff rope) the iterates wander before
+    // they enter the region of quadratic convergence, and a smaller load does not shorten that
+    // when the equilibrium does not depend on the load.
+    NewtonReport rep;
+    int inStep = 0;
+    for (int attempt = 0; attempt <= kContinuations; ++attempt) {
+      rep = newton_->solve(x, tol, problem, true, nullptr);
+      inStep += rep.iterations;
+      total.iterations += rep.iterations;
+      total.residualNorms.insert(total.residualNorms.end(), rep.residualNorms.begin(),
+                                 rep.residualNorms.end());
+      if (rep.converged || !rep.outOfIterations) break;
+    }
+    maxInStep_ = std::max(maxInStep_, inStep);
     if (!rep.converged) {
       x = start;
       sys_->revert();
@@ -49,7 +60,9 @@ NewtonReport StaticLoadStepper::solve(StructuralState& s, int nSteps, double ini
       if (increment < 1e-9) {
         char factor[32];  // significant digits: the factor may be 1e-9
         std::snprintf(factor, sizeof factor, "%.6g", target);
-        total.failure = rep.failure + " at load factor " + factor;
+        total.failure = "no convergence in " + std::to_string(inStep) + " iterations";
+        if (!rep.outOfIterations) total.failure = rep.failure;
+        total.failure += std::string(" at load factor ") + factor;
         return total;
       }
       continue;

@@ -180,11 +180,23 @@ TEST(Stress, CableCyclingSlackAndTaut) {
 TEST(Stress, CableWithMassiveNodesSnatchingTaut) {
   // (e') the same with a line of 10 g/m (2.5 g interior nodes, omega dt = 8 when taut): every
   // slack / taut switch is located in time (CableTerm::passageFraction), 1 s here (bench: 20 s).
+  // At the case's rho_inf = 1 the run makes energy up with nothing doing work on it (B = 0.117
+  // J = 0.012 S by t = 0.34 s; continued, it exceeds 0.05 S at 1.6 s:
+  // bench/results/energy_monitor.md), so it must end unstable by EB2 (docs/formulation.md), not
+  // complete; with the numerical damping of rho_inf = 0.8 it completes without gaining energy.
   const auto s = run("snatch, line with mass (1 s)", "stress_snatch",
                      {"solver.t_end=1", "materials.line.density=10000"});
-  printTable({s});
-  expectBounded(s, 0.12);
+  const auto d = run("the same, rho_inf 0.8", "stress_snatch",
+                     {"solver.t_end=1", "materials.line.density=10000", "solver.rho_inf=0.8"});
+  printTable({s, d});
+  EXPECT_EQ(s.r.status, "unstable");
+  EXPECT_NE(s.r.reason.find("without external work"), std::string::npos) << s.r.reason;
   EXPECT_GT(s.r.eventRetries, 0);
+  ASSERT_EQ(d.r.status, "completed") << d.r.reason;
+  EXPECT_GT(d.r.eventRetries, 0);
+  std::printf("rho_inf 0.8: largest balance %.3e of the scale %.4g (bound 1e-6)\n",
+              d.r.balanceMax / d.r.balanceScale, d.r.balanceScale);
+  EXPECT_LE(d.r.balanceMax, 1e-6 * d.r.balanceScale);
 }
 
 TEST(Stress, MasslessRopeNodes) {
