@@ -38,6 +38,12 @@ TimeStepper::Saved TimeStepper::save(const StructuralState& s) const {
 
 StructuralState TimeStepper::resume(const Saved& saved) {
   StructuralState s = sys_->loadState(saved.snapshot);
+  // The bound a case's own coordinates have (docs/limits.md): a finite but absurd value (a
+  // velocity of 1e308) overflows in the first step, after the output has been touched.
+  constexpr double kMaxState = 1e100;
+  if (s.x.cwiseAbs().maxCoeff() > kMaxState || s.v.cwiseAbs().maxCoeff() > kMaxState ||
+      s.a.cwiseAbs().maxCoeff() > kMaxState)
+    throw HistoryError("state beyond +-1e100");
   counters_ = saved.counters;
   if (saved.linearSolverLU) integrator_->linearSolver().useLU();
   return s;

@@ -301,6 +301,9 @@ def corpus(ctx):
                        ("probe rows 1e15", lambda p: p["output"].__setitem__("probe_rows",
                                                                              10 ** 15)),
                        ("x is a string", setter("x", "x")),
+                       # Finite but absurd (found by the long run under ASan): it overflowed in
+                       # the first step, after the output directory had been touched.
+                       ("a v entry 1e308", lambda p: p["v"].__setitem__(17, 1e308)),
                        ("key deleted", lambda p: p.pop("v"))]:
         add(restart_input(ctx, "forged: " + name, forged(ctx, edit)))
 
