@@ -16,55 +16,16 @@ import pathlib
 import subprocess
 import tempfile
 
+import pendulum_scene
+from pendulum_scene import period
+
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 CHUTE = os.environ.get('CHUTE', str(ROOT / 'build' / 'bin' / 'chute'))
 RESULTS = ROOT / 'bench' / 'results' / 'energy_monitor.md'
-G, EA = 9.81, 1.0e8
-
-
-def period(theta0):
-    k = math.sin(theta0 / 2)
-    a, b = 1.0, math.sqrt(1 - k * k)
-    while abs(a - b) > 1e-15:
-        a, b = (a + b) / 2, math.sqrt(a * b)
-    return 4 * math.sqrt(1 / G) * math.pi / (2 * a)
 
 
 def pendulum(kind, deg):
-    th = math.radians(deg)
-    return f'''name = "pendulum_{kind}_{deg:g}"
-[nodes]
-anchor = [0.0, 0.0, 0.0]
-mass = [{math.sin(th)!r}, 0.0, {-math.cos(th)!r}]
-[materials.rod]
-kind = "{kind}"
-E = {EA!r}
-area = 1.0
-[[cables]]
-name = "rod"
-material = "rod"
-path = ["anchor", "mass"]
-prestrain = {G * math.cos(th) / EA!r}
-[[point_masses]]
-node = "mass"
-mass = 1.0
-[boundary]
-fixed = ["anchor"]
-[loads]
-gravity = [0.0, 0.0, {-G!r}]
-[solver]
-dt = 0.01
-t_end = 1.0
-[output]
-every = 1
-[[output.probes]]
-name = "rod"
-kind = "line_force"
-set = "rod"
-[[output.probes]]
-name = "energy"
-kind = "energy"
-'''
+    return pendulum_scene.case(f"pendulum_{kind}_{deg:g}", kind, deg, 'dt = 0.01\nt_end = 1.0\n')
 
 
 def run(case, sets, tmp):

@@ -17,61 +17,19 @@ import pathlib
 import subprocess
 import tempfile
 
+import pendulum_scene
+from pendulum_scene import G, M, L, period
+
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 CHUTE = os.environ.get('CHUTE', str(ROOT / 'build' / 'bin' / 'chute'))
 RESULTS = ROOT / 'bench' / 'results' / 'pendulum_acceptance.md'
-G, EA, M, L = 9.81, 1.0e8, 1.0, 1.0
 PERIODS = float(os.environ.get('PERIODS', '4.3'))
 
 
-def period(theta0):
-    k = math.sin(theta0 / 2)
-    a, b = 1.0, math.sqrt(1 - k * k)
-    while abs(a - b) > 1e-15:
-        a, b = (a + b) / 2, math.sqrt(a * b)
-    return 4 * math.sqrt(L / G) * math.pi / (2 * a)
-
-
 def case(kind, deg, integrator, dt, t_end, rho):
-    th = math.radians(deg)
-    return f'''name = "pendulum_{kind}"
-[nodes]
-anchor = [0.0, 0.0, 0.0]
-mass = [{L * math.sin(th)!r}, 0.0, {-L * math.cos(th)!r}]
-[materials.rod]
-kind = "{kind}"
-E = {EA!r}
-area = 1.0
-[[cables]]
-name = "rod"
-material = "rod"
-path = ["anchor", "mass"]
-prestrain = {M * G * math.cos(th) / EA!r}
-[[point_masses]]
-node = "mass"
-mass = {M!r}
-[boundary]
-fixed = ["anchor"]
-[loads]
-gravity = [0.0, 0.0, {-G!r}]
-[solver]
-dt = {dt!r}
-t_end = {t_end!r}
-rho_inf = {rho!r}
-integrator = "{integrator}"
-[output]
-every = 1
-[[output.probes]]
-name = "mass"
-kind = "node_position"
-[[output.probes]]
-name = "rod"
-kind = "line_force"
-set = "rod"
-[[output.probes]]
-name = "energy"
-kind = "energy"
-'''
+    solver = (f'dt = {dt!r}\nt_end = {t_end!r}\nrho_inf = {rho!r}\n'
+              f'integrator = "{integrator}"\n')
+    return pendulum_scene.case(f"pendulum_{kind}", kind, deg, solver, position_probe=True)
 
 
 def measure(kind, deg, integrator, spp, rho, tmp):

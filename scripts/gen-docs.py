@@ -46,6 +46,8 @@ VERIFICATION = [
     ("test_sliding_discrete_gradient", "energy-momentum sliding element (EM11): discrete-gradient property, tangent"),
     ("test_energy_momentum", "energy_momentum: stiff pendulums against the exact period and peak force, momenta of spinning free structures, dissipation, restart"),
     ("test_energy_momentum_cases", "energy_momentum on bead_1 against the ellipse ODE, beside Bossak"),
+    ("test_static_far_start", "static ring on a rope from starts up to one rope length away (ST1) against the analytic equilibrium"),
+    ("test_signals", "signals while the case loads and during a static solve: exit status and what is written"),
 ]
 
 CSV_TABLES = [
