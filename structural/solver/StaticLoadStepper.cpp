@@ -33,6 +33,7 @@ NewtonReport StaticLoadStepper::solve(StructuralState& s, int nSteps, double ini
   const double growth = geometric ? std::pow(1.0 / initialFactor, 1.0 / (nSteps - 1)) : 1.0;
   if (geometric) increment = initialFactor;
   const double tol = newton_->settings().tolDisplacement;
+  bool halvedInThisStep = false;
   while (lambda < 1.0 - 1e-12) {
     const double target = std::min(1.0, lambda + increment);
     StaticProblem problem(x, s.t, target);
@@ -42,20 +43,29 @@ NewtonReport StaticLoadStepper::solve(StructuralState& s, int nSteps, double ini
     // load is halved: far from equilibrium (a ring on a stiff rope) the iterates wander before
     // they enter the region of quadratic convergence, and a smaller load does not shorten that
     // when the equilibrium does not depend on the load.
+    // The continuations are bounded so that a hopeless increment fails as fast as before: only
+    // on the first try of a load step (not after its load was halved) and only while the
+    // residual has come down (to half of where the increment started, at least once).
     NewtonReport rep;
     int inStep = 0;
+    double startResidual = -1.0, leastResidual = 0.0;
     for (int attempt = 0; attempt <= kContinuations; ++attempt) {
       rep = newton_->solve(x, tol, problem, true, nullptr);
       inStep += rep.iterations;
       total.iterations += rep.iterations;
       total.residualNorms.insert(total.residualNorms.end(), rep.residualNorms.begin(),
                                  rep.residualNorms.end());
-      if (rep.converged || !rep.outOfIterations) break;
+      if (rep.converged || !rep.outOfIterations || halvedInThisStep) break;
+      if (rep.residualNorms.empty()) break;
+      if (startResidual < 0.0) startResidual = leastResidual = rep.residualNorms.front();
+      for (const double r : rep.residualNorms) leastResidual = std::min(leastResidual, r);
+      if (!(leastResidual < 0.5 * startResidual)) break;
     }
     maxInStep_ = std::max(maxInStep_, inStep);
     if (!rep.converged) {
       x = start;
       sys_->revert();
+      halvedInThisStep = true;
       increment *= 0.5;
       if (increment < 1e-9) {
         char factor[32];  // significant digits: the factor may be 1e-9
@@ -68,6 +78,7 @@ NewtonReport StaticLoadStepper::solve(StructuralState& s, int nSteps, double ini
       continue;
     }
     sys_->commit(CommitPoint{x, s.t, 0.0, s.t});
+    halvedInThisStep = false;
     lambda = target;
     increment = geometric ? std::max(increment, lambda * (growth - 1.0)) : increment;
   }
