@@ -11,7 +11,7 @@ and time, and the figures it prints (measured errors, with the tolerance it asse
 source). performance.md: the tables of bench/results, as the benchmark scripts wrote them
 (bench/run_all regenerates those), with bench/summarize.py's acceptance table on top.
 """
-import argparse, csv, datetime, os, platform, re, subprocess, sys
+import argparse, csv, datetime, math, os, platform, re, subprocess, sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DOCS = os.path.join(ROOT, "docs")
@@ -70,6 +70,8 @@ def number(text):
     try:
         x = float(text)
     except ValueError:
+        return text
+    if not math.isfinite(x):
         return text
     if x == int(x) and abs(x) < 1e15 and "." not in text and "e" not in text.lower():
         return text
