@@ -200,6 +200,10 @@ def corpus(ctx):
     add(Input(S, "nodes.bead.2=5e-324 (bead on the rope line)",
               run_case(ctx, ctx.case("bead_1.toml"), "--set", "nodes.bead.2=5e-324"), ERROR,
               None, 20))
+    # A hopeless static solve fails in about a second (found by the long run under ASan: 37 s).
+    add(Input(S, "hencky loads.pressure.0.pressure=2147483648",
+              run_case(ctx, ctx.case("hencky.toml"), "--set",
+                       "loads.pressure.0.pressure=2147483648"), {"failed"}, None, 20))
     add(Input(S, "membranes.0.divisions.0=4", run_case(ctx, ctx.case("airbag.toml"), "--set",
               "membranes.0.divisions.0=4", "--set", "solver.t_end=2.5e-4"), OK, None, 60))
 
