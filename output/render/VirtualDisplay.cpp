@@ -3,7 +3,6 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
-#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -53,14 +52,9 @@ VirtualDisplay::VirtualDisplay() {
   // Xvfb picks a free display itself and writes its number to -displayfd when it is ready.
   int fds[2];
   if (::pipe2(fds, O_CLOEXEC) != 0) throw std::runtime_error("cannot start Xvfb: pipe failed");
-  const pid_t parent = ::getpid();
   pid_ = ::fork();
   if (pid_ < 0) throw std::runtime_error("cannot start Xvfb: fork failed");
   if (pid_ == 0) {
-    // SIGKILL of chute runs no handler: the kernel then sends the server SIGTERM itself. If
-    // chute died before this line, the server must not start at all.
-    ::prctl(PR_SET_PDEATHSIG, SIGTERM);
-    if (::getppid() != parent) ::_exit(127);
     ::dup2(fds[1], 3);  // dup2 clears close-on-exec on the copy
     const int devnull = ::open("/dev/null", O_RDWR);
     if (devnull >= 0) ::dup2(devnull, 1), ::dup2(devnull, 2);
