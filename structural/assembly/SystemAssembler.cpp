@@ -26,4 +26,15 @@ void SystemAssembler::begin(bool wantMatrix) {
   if (wantMatrix) std::fill(matrix_.valuePtr(), matrix_.valuePtr() + matrix_.nonZeros(), 0.0);
 }
 
+void SystemAssembler::accumulate(SystemAssembler& other) {
+  residual_ += other.residual_;
+  if (wantMatrix_ && other.wantMatrix_) {
+    double* v = matrix_.valuePtr();
+    const double* w = other.matrix_.valuePtr();
+    for (long k = 0; k < matrix_.nonZeros(); ++k) v[k] += w[k];
+  }
+  work_ += other.work_;
+  other.work_ = WorkCounters{};
+}
+
 }  // namespace chute

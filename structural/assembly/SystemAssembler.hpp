@@ -25,6 +25,9 @@ class SystemAssembler {
   void buildPattern(const std::vector<std::vector<int>>& nodeCliques);
 
   void begin(bool wantMatrix);
+  // Adds what another assembler with the same pattern gathered since its begin() (the second
+  // part of a split assembly) and its work counters, which it clears.
+  void accumulate(SystemAssembler& other);
 
   template <int N>
   void add(const std::array<int, N>& nodes, const Eigen::Matrix<double, 3 * N, 1>& r,

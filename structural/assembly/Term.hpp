@@ -27,6 +27,10 @@ struct EvalPoint {
   // x_{n+1} being 2 cx d r / d x_{n+1}; others are evaluated at the midpoint. nullptr otherwise.
   const Eigen::VectorXd* xStart = nullptr;
   double emDissipation = 0.0;  // EM8: energy-decaying parameter chi (0: energy conserving)
+  // Only the inertia M(x) a, nothing else (no internal, external or damping force): the explicit
+  // path's lumped mass of sliding elements, M(x) 1 (EX2). Honoured by the sliding group term,
+  // the only term whose mass moves with x; the others are never asked.
+  bool inertiaOnly = false;
 };
 
 // A converged step, as its terms commit it: the end positions, the end time, the step length

@@ -77,18 +77,26 @@ MembraneResult<NumNodes> membraneForce(const std::array<Vec3, NumNodes>& x,
     const Vec3 e(0.5 * (C(0, 0) - 1.0), 0.5 * (C(1, 1) - 1.0), C(0, 1));  // (E11, E22, 2E12)
     const PlaneStress ps = planeStressSVK(e, mat.E, mat.nu, wrinkling);
     worst = std::max(worst, static_cast<int>(ps.state));
-    // B: de = B dx; node i: (dN_i1 F1, dN_i2 F2, dN_i2 F1 + dN_i1 F2).
-    Eigen::Matrix<double, 3, kDofs> B;
-    for (int i = 0; i < NumNodes; ++i) {
-      B.template block<1, 3>(0, 3 * i) = dN(i, 0) * F.col(0).transpose();
-      B.template block<1, 3>(1, 3 * i) = dN(i, 1) * F.col(1).transpose();
-      B.template block<1, 3>(2, 3 * i) =
-          dN(i, 1) * F.col(0).transpose() + dN(i, 0) * F.col(1).transpose();
-    }
     const double w = ref.weight[k];
     r.energy += w * ps.energy;
-    r.force.noalias() += w * B.transpose() * ps.stress;
+    if (!withTangent) {
+      // Residual only: B^T S = F S2 dN^T node by node, with S2 the 2x2 stress matrix (the same
+      // sum as below without forming B).
+      Eigen::Matrix2d S2;
+      S2 << ps.stress[0], ps.stress[2], ps.stress[2], ps.stress[1];
+      const Eigen::Matrix<double, 3, NumNodes> f = w * (F * S2) * dN.transpose();
+      for (int i = 0; i < NumNodes; ++i) r.force.template segment<3>(3 * i) += f.col(i);
+    }
     if (withTangent) {
+      // B: de = B dx; node i: (dN_i1 F1, dN_i2 F2, dN_i2 F1 + dN_i1 F2).
+      Eigen::Matrix<double, 3, kDofs> B;
+      for (int i = 0; i < NumNodes; ++i) {
+        B.template block<1, 3>(0, 3 * i) = dN(i, 0) * F.col(0).transpose();
+        B.template block<1, 3>(1, 3 * i) = dN(i, 1) * F.col(1).transpose();
+        B.template block<1, 3>(2, 3 * i) =
+            dN(i, 1) * F.col(0).transpose() + dN(i, 0) * F.col(1).transpose();
+      }
+      r.force.noalias() += w * B.transpose() * ps.stress;
       r.stiffness.noalias() += w * B.transpose() * ps.tangent * B;
       Eigen::Matrix2d S;
       S << ps.stress[0], ps.stress[2], ps.stress[2], ps.stress[1];

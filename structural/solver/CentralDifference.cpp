@@ -123,7 +123,16 @@ Eigen::VectorXd CentralDifference::lumpedMass(const Eigen::VectorXd& x, double t
   // step's end positions are the next step's start: evaluated once for both).
   if (!(cachedT_ == t && cachedX_.size() == x.size() && cachedX_ == x)) {
     cachedMass_ = fixedMass_ + addedEq_;
-    if (!slidingTerms_.empty()) cachedMass_ += massOf(slidingTerms_, x, t);
+    if (!slidingTerms_.empty()) {
+      // M(x) 1 directly: the sliding group term evaluates only its inertia when asked.
+      const Eigen::VectorXd zero = Eigen::VectorXd::Zero(x.size());
+      const Eigen::VectorXd ones = Eigen::VectorXd::Ones(x.size());
+      EvalPoint p{x, zero, ones, t, 0.0, 0.0, 0.0, true, 0.0, 0.0};
+      p.inertiaOnly = true;
+      massAssembler_.begin(false);
+      for (auto* term : slidingTerms_) term->assemble(p, massAssembler_);
+      cachedMass_ += massAssembler_.residual();
+    }
     cachedX_ = x;
     cachedT_ = t;
   }

@@ -7,6 +7,7 @@
 
 #include "assembly/SystemAssembler.hpp"
 #include "assembly/Term.hpp"
+#include "assembly/TwoPartRunner.hpp"
 #include "model/Model.hpp"
 #include "model/SlidingGroupState.hpp"
 #include "solver/StructuralState.hpp"
@@ -38,6 +39,8 @@ class StructuralSystem {
   // Discrete state updates (sliding search) for trial positions; returns the number of changes.
   int updateState(const Eigen::VectorXd& x);
   void assemble(const EvalPoint& p, bool wantMatrix);
+  // Whether assemble() splits the terms into two parts (docs/performance.md, "Two threads").
+  bool assemblesInTwoParts() const { return !secondPart_.empty(); }
   const Eigen::VectorXd& residual() const { return assembler_.residual(); }
   const SparseMatrix& matrix() const { return assembler_.matrix(); }
   bool symmetric() const;
@@ -107,6 +110,14 @@ class StructuralSystem {
   std::vector<SlidingGroupTerm*> groups_;
   MembraneTerm* membranes_ = nullptr;
   SystemAssembler assembler_;
+  // Assembly in two parts (docs/performance.md, "Two threads"): the terms split by an estimate
+  // of their cost, the second part assembled into its own assembler on a second thread and then
+  // added to the first. The split depends on the scene only, never on the thread count, so a
+  // run gives the same bits with one thread or two.
+  void splitAssembly();
+  std::vector<Term*> firstPart_, secondPart_;
+  SystemAssembler secondAssembler_;
+  std::unique_ptr<TwoPartRunner> runner_;  // only with a second part
   Timings timings_;
   mutable long energyEvaluations_ = 0;
 };

@@ -10,6 +10,14 @@ using kernels::Vec6;
 void assembleCable(const Model& m, int a, int b, double L, int material, const EvalPoint& p,
                    SystemAssembler& out) {
   const auto& mat = m.materials[material];
+  if (p.inertiaOnly) {  // EX2's lumped mass of an inactive sliding element: M a only
+    if (mat.density > 0.0) {
+      ++out.work().lineMass;
+      const Vec6 r = kernels::cableMass(L, mat, m.massKind) * gather2(p.a, a, b);
+      out.add<2>({a, b}, r, nullptr);
+    }
+    return;
+  }
   const bool wantJ = out.wantMatrix();
   Vec6 r;
   Mat6 J;

@@ -171,6 +171,16 @@ void SlidingGroupTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
     const int n3 = g.sliders[s];
     const double L = g.refLength[k];
     const Vec3 x1 = pos(p.x, n1), x2 = pos(p.x, n2), x3 = pos(p.x, n3);
+    if (p.inertiaOnly) {
+      if (mat.density > 0.0) {
+        ++out.work().lineMass;
+        const Vec9 r =
+            kernels::slidingInertia(x1, x2, x3, gather3(p.a, n1, n2, n3), L, mat, m_->massKind)
+                .force;
+        out.add<3>({n1, n2, n3}, r, nullptr);
+      }
+      continue;
+    }
     ++out.work().sliding;
     Vec9 r;
     Mat9 J;

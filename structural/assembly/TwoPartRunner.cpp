@@ -1,0 +1,103 @@
+#include "assembly/TwoPartRunner.hpp"
+
+#include <chrono>
+#include <cstdlib>
+#include <cstring>
+
+namespace chute {
+
+namespace {
+
+// How long a waiting thread polls before it sleeps: longer than an explicit step (0.1-0.3 ms),
+// so that explicit runs never wait for a wake-up; an implicit iteration (a factorisation between
+// assemblies) costs the worker 1 ms of polling.
+constexpr auto kSpin = std::chrono::microseconds(1000);
+
+template <class Ready>
+bool spinUntil(Ready ready) {
+  const auto until = std::chrono::steady_clock::now() + kSpin;
+  for (int k = 0;; ++k) {
+    if (ready()) return true;
+#if defined(__x86_64__) || defined(__i386__)
+    __builtin_ia32_pause();  // spin-wait hint: leaves the core's resources to its sibling
+#endif
+    if ((k & 63) == 63 && std::chrono::steady_clock::now() > until) return false;
+  }
+}
+
+bool twoThreadsAllowed() {
+  const char* env = std::getenv("CHUTE_THREADS");
+  if (env && std::strcmp(env, "1") == 0) return false;
+  return std::thread::hardware_concurrency() >= 2;
+}
+
+}  // namespace
+
+TwoPartRunner::TwoPartRunner() {
+  if (twoThreadsAllowed()) worker_ = std::thread([this] { work(); });
+}
+
+TwoPartRunner::~TwoPartRunner() {
+  if (!worker_.joinable()) return;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    quit_ = true;
+  }
+  wake_.notify_one();
+  worker_.join();
+}
+
+void TwoPartRunner::work() {
+  unsigned seen = 0;
+  for (;;) {
+    if (!spinUntil([&] { return posted_.load(std::memory_order_acquire) != seen || quit_; })) {
+      std::unique_lock<std::mutex> lock(mutex_);
+      wake_.wait(lock, [&] { return posted_.load(std::memory_order_acquire) != seen || quit_; });
+    }
+    if (quit_) return;
+    seen = posted_.load(std::memory_order_acquire);
+    try {
+      (*job_)();
+    } catch (...) {
+      failure_ = std::current_exception();
+    }
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      finished_.store(seen, std::memory_order_release);
+    }
+    done_.notify_one();
+  }
+}
+
+void TwoPartRunner::run(const std::function<void()>& first, const std::function<void()>& second) {
+  if (!worker_.joinable()) {
+    first();
+    second();
+    return;
+  }
+  failure_ = nullptr;
+  job_ = &second;
+  unsigned ticket = 0;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    ticket = posted_.load(std::memory_order_relaxed) + 1;
+    posted_.store(ticket, std::memory_order_release);
+  }
+  wake_.notify_one();
+  std::exception_ptr mine;
+  try {
+    first();
+  } catch (...) {
+    mine = std::current_exception();
+  }
+  // Wait for the worker even when first() threw: second() still uses the caller's objects.
+  if (!spinUntil([&] { return finished_.load(std::memory_order_acquire) == ticket; })) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    done_.wait(lock, [&] { return finished_.load(std::memory_order_acquire) == ticket; });
+  }
+  job_ = nullptr;
+  if (mine) std::rethrow_exception(mine);
+  if (failure_) std::rethrow_exception(failure_);
+}
+
+}  // namespace chute
