@@ -6,6 +6,7 @@ but for t_end. Measures wall and CPU time per simulated second, peak memory (/us
 equations and Newton iterations per step; appends a row to fine_c9.csv beside this script.
 
     nice python3 bench/parachutes/fine_c9.py                    # 0.2 s of flight
+    nice python3 bench/parachutes/fine_c9.py --integrator central_difference --t-end 0.5
     python3 bench/parachutes/fine_c9.py --t-end 0.05 --element-size 0.5
 
 An interrupted run (SIGINT to chute) still writes summary.json (status "interrupted"): its
@@ -30,6 +31,10 @@ def main():
     ap.add_argument("--t-end", type=float, default=0.2)
     ap.add_argument("--element-size", type=float, default=0.25)
     ap.add_argument("--work", default=os.path.join(ROOT, "out", "c9_full_fine"))
+    ap.add_argument("--integrator", default="bossak",
+                    help="the generated case's (bossak) or central_difference")
+    ap.add_argument("--safety", type=float, default=0.9,
+                    help="central_difference's solver.safety_factor")
     a = ap.parse_args()
     os.makedirs(a.work, exist_ok=True)
     msh, case = os.path.join(a.work, "c9_full_fine.msh"), os.path.join(a.work, "c9_full_fine.toml")
@@ -42,15 +47,22 @@ def main():
     triangles = int(re.search(r"(\d+) canopy triangles", m.stdout).group(1))
     out = os.path.join(a.work, "out")
     t0 = time.time()
-    r = subprocess.run(["/usr/bin/time", "-v", a.chute, "run", case, "--out", out, "--set",
-                        f"solver.t_end={a.t_end}"], capture_output=True, text=True)
+    sets = ["--set", f"solver.t_end={a.t_end}"]
+    if a.integrator != "bossak":
+        sets += ["--set", f'solver.integrator="{a.integrator}"',
+                 "--set", f"solver.safety_factor={a.safety}"]
+    r = subprocess.run(["/usr/bin/time", "-v", a.chute, "run", case, "--out", out] + sets,
+                       capture_output=True, text=True)
     wall = time.time() - t0
     rss = int(re.search(r"Maximum resident set size \(kbytes\): (\d+)", r.stderr).group(1))
     cpu = sum(float(x) for x in re.findall(r"(?:User|System) time \(seconds\): ([\d.]+)",
                                             r.stderr))
     s = json.load(open(os.path.join(out, "summary.json")))
     T = max(s["final_time"], 1e-12)
+    probes = list(csv.DictReader(open(os.path.join(out, "probes.csv"))))
     row = {"element_size": a.element_size, "triangles": triangles,
+           "integrator": a.integrator,
+           "safety": a.safety if a.integrator != "bossak" else "",
            "equations": s["system"]["equations"], "non_zeros": s["system"]["nonzeros"],
            "linear_solver": s["system"]["linear_solver"], "status": s["status"],
            "final_time": s["final_time"], "steps": s["steps"], "rejected": s["rejected_steps"],
@@ -58,18 +70,19 @@ def main():
            "wall_s": round(wall, 1), "cpu_s": round(cpu, 1),
            "wall_per_sim_s": round(s["wall_time"]["total"] / T, 1),
            "cpu_per_sim_s": round(cpu / T, 1), "peak_MiB": round(rss / 1024, 1),
+           "skirt_mean_end": round(float(probes[-1]["skirt.mean"]), 4) if probes else "",
            "factorisation_share": round(s["wall_time"]["factorisation"] /
                                         s["wall_time"]["total"], 3),
            "assembly_share": round(s["wall_time"]["assembly"] / s["wall_time"]["total"], 3),
            "load_average": os.getloadavg()[0]}
     print(json.dumps(row))
     path = os.path.join(HERE, "fine_c9.csv")
-    new = not os.path.exists(path)
-    with open(path, "a", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(row))
-        if new:
-            w.writeheader()
-        w.writerow(row)
+    rows = list(csv.DictReader(open(path))) if os.path.exists(path) else []
+    fields = list(row) + [k for r in rows for k in r if k not in row]
+    with open(path, "w", newline="") as f:  # rewritten: earlier rows keep their columns
+        w = csv.DictWriter(f, fieldnames=list(dict.fromkeys(fields)), restval="")
+        w.writeheader()
+        w.writerows(rows + [row])
     return 0 if s["status"] == "completed" else 1
 
 

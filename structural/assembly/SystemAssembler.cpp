@@ -2,11 +2,19 @@
 
 namespace chute {
 
-void SystemAssembler::buildPattern(const std::vector<std::vector<int>>& nodeCliques) {
+void SystemAssembler::buildPattern(std::vector<std::vector<int>> nodeCliques) {
+  cliques_ = std::move(nodeCliques);
+  patternBuilt_ = false;
+  matrix_ = SparseMatrix();
+  residual_.setZero(dofs_->numEquations());
+}
+
+void SystemAssembler::ensurePattern() {
+  if (patternBuilt_) return;
   const int n = dofs_->numEquations();
   std::vector<Eigen::Triplet<double, int>> trip;
   for (int e = 0; e < n; ++e) trip.emplace_back(e, e, 0.0);  // diagonal always present
-  for (const auto& clique : nodeCliques)
+  for (const auto& clique : cliques_)
     for (int a : clique)
       for (int b : clique)
         for (int i = 0; i < 3; ++i)
@@ -17,10 +25,18 @@ void SystemAssembler::buildPattern(const std::vector<std::vector<int>>& nodeCliq
   matrix_.resize(n, n);
   matrix_.setFromTriplets(trip.begin(), trip.end());
   matrix_.makeCompressed();
-  residual_.setZero(n);
+  cliques_ = {};
+  patternBuilt_ = true;
+}
+
+void SystemAssembler::sharePatternOf(const SystemAssembler& other) {
+  matrix_ = other.matrix_;
+  cliques_ = {};
+  patternBuilt_ = other.patternBuilt_;
 }
 
 void SystemAssembler::begin(bool wantMatrix) {
+  if (wantMatrix) ensurePattern();
   wantMatrix_ = wantMatrix;
   residual_.setZero();
   if (wantMatrix) std::fill(matrix_.valuePtr(), matrix_.valuePtr() + matrix_.nonZeros(), 0.0);

@@ -21,8 +21,13 @@ class SystemAssembler {
  public:
   explicit SystemAssembler(const DofMap& dofs) : dofs_(&dofs) {}
 
-  // Node cliques: every pair of nodes inside one clique may couple.
-  void buildPattern(const std::vector<std::vector<int>>& nodeCliques);
+  // Node cliques: every pair of nodes inside one clique may couple. The pattern is built when
+  // a matrix is first asked for (begin(true)): residual-only runs (the explicit path) never
+  // build it.
+  void buildPattern(std::vector<std::vector<int>> nodeCliques);
+  // The pattern of another assembler, built (the second part of a split assembly).
+  void sharePatternOf(const SystemAssembler& other);
+  bool hasPattern() const { return patternBuilt_; }
 
   void begin(bool wantMatrix);
   // Adds what another assembler with the same pattern gathered since its begin() (the second
@@ -79,7 +84,7 @@ class SystemAssembler {
   void captureAllDofs(Eigen::VectorXd* full) { full_ = full; }
 
   const Eigen::VectorXd& residual() const { return residual_; }
-  const SparseMatrix& matrix() const { return matrix_; }
+  const SparseMatrix& matrix() const { return matrix_; }  // empty before the first begin(true)
   bool wantMatrix() const { return wantMatrix_; }
   long nonZeros() const { return matrix_.nonZeros(); }
   // Terms count their kernel evaluations here.
@@ -87,7 +92,11 @@ class SystemAssembler {
   const WorkCounters& work() const { return work_; }
 
  private:
+  void ensurePattern();
+
   const DofMap* dofs_;
+  std::vector<std::vector<int>> cliques_;  // until the pattern is built
+  bool patternBuilt_ = false;
   SparseMatrix matrix_;
   Eigen::VectorXd residual_;
   bool wantMatrix_ = true;

@@ -45,7 +45,10 @@ std::vector<std::string> partOfNode(const Model& m) {
 
 CentralDifference::CentralDifference(StructuralSystem& sys, ExplicitSettings settings,
                                      const Eigen::VectorXd& x0)
-    : sys_(&sys), settings_(settings), massAssembler_(sys.dofs()) {
+    : sys_(&sys),
+      settings_(settings),
+      massAssembler_(sys.dofs()),
+      membraneBound_(membraneBoundData(sys.model())) {
   massAssembler_.buildPattern({});
   for (const auto& t : sys.terms()) {
     const bool sliding = dynamic_cast<const SlidingGroupTerm*>(t.get()) != nullptr;
@@ -60,8 +63,8 @@ CentralDifference::CentralDifference(StructuralSystem& sys, ExplicitSettings set
   if (settings_.targetStep > 0.0) {
     // EX8: the least nodal mass for which the node's bound S_i / m_i allows the target step
     // with the safety factor, m_i >= S_i (target / (2 safety))^2, from the start positions.
-    const Eigen::VectorXd massEq = lumpedMass(x0, 0.0);
-    const auto S = nodalStiffnessBound(m, groupStates(), x0, 0.0);
+    const Eigen::VectorXd massEq = lumpedMass(x0, 0.0, false);  // before the added mass
+    const auto S = nodalStiffnessBound(m, membraneBound_, groupStates(), x0, 0.0);
     const auto mass = nodalMass(massEq);
     const double r = settings_.targetStep / (2.0 * settings_.safety);
     const auto part = partOfNode(m);
@@ -77,7 +80,7 @@ CentralDifference::CentralDifference(StructuralSystem& sys, ExplicitSettings set
     addedByPart_.assign(byPart.begin(), byPart.end());
     cachedX_.resize(0);  // the mass evaluated above is without the added mass
   }
-  if (sys.numEquations() > 0) refuseMassless(lumpedMass(x0, 0.0));
+  if (sys.numEquations() > 0) lumpedMass(x0, 0.0);  // refuses massless nodes at the start
 }
 
 double CentralDifference::totalAddedMass() const {
@@ -107,7 +110,8 @@ Eigen::VectorXd CentralDifference::massOf(const std::vector<Term*>& terms, const
   return residualWith(ones) - residualWith(zero);
 }
 
-Eigen::VectorXd CentralDifference::lumpedMass(const Eigen::VectorXd& x, double t) {
+const Eigen::VectorXd& CentralDifference::lumpedMass(const Eigen::VectorXd& x, double t,
+                                                     bool check) {
   const Model& m = sys_->model();
   const int cuts = static_cast<int>(std::count_if(m.lineSets.begin(), m.lineSets.end(),
                                                   [t](const LineSet& s) { return s.cutBy(t); }));
@@ -135,6 +139,7 @@ Eigen::VectorXd CentralDifference::lumpedMass(const Eigen::VectorXd& x, double t
     }
     cachedX_ = x;
     cachedT_ = t;
+    if (check) refuseMassless(cachedMass_);
   }
   return cachedMass_;
 }
@@ -178,8 +183,7 @@ void CentralDifference::computeAcceleration(StructuralState& s) {
   sys_->updateState(s.x);
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(s.x.size());
   sys_->assemble(EvalPoint{s.x, s.v, zero, s.t, 0.0, 0.0, 0.0, true, 1.0, 0.0}, false);
-  const Eigen::VectorXd massEq = lumpedMass(s.x, s.t);
-  refuseMassless(massEq);
+  const Eigen::VectorXd& massEq = lumpedMass(s.x, s.t);
   const Eigen::VectorXd& r = sys_->residual();
   for (int d = 0; d < sys_->dofs().numDofs(); ++d)
     if (const int e = sys_->dofs().eqOfDof(d); e >= 0) s.a[d] = -r[e] / massEq[e];
@@ -187,9 +191,8 @@ void CentralDifference::computeAcceleration(StructuralState& s) {
 
 double CentralDifference::chooseStep(double lastStep, double maxStep, const Eigen::VectorXd& x,
                                      double t) {
-  const Eigen::VectorXd massEq = lumpedMass(x, t);
-  refuseMassless(massEq);
-  const auto S = nodalStiffnessBound(sys_->model(), groupStates(), x, t);
+  const Eigen::VectorXd& massEq = lumpedMass(x, t);
+  const auto S = nodalStiffnessBound(sys_->model(), membraneBound_, groupStates(), x, t);
   const auto est = chute::stableStep(S, nodalMass(massEq), freeNode_);
   const double stable = settings_.safety * dampedStableStep(est.dt, settings_.stiffnessDamping);
   // EX5: the step changes only when the stable step leaves [step, 1.25 step], and then to 0.9
@@ -250,8 +253,7 @@ NewtonReport CentralDifference::step(StructuralState& s, double dt) {
       damped ? Eigen::VectorXd(n.x + settings_.stiffnessDamping * vStar) : Eigen::VectorXd();
   sys_->assemble(EvalPoint{damped ? xEval : n.x, vStar, zero, n.t, 0.0, 0.0, 0.0, true, 1.0, dt},
                  false);
-  const Eigen::VectorXd massEq = lumpedMass(n.x, n.t);
-  refuseMassless(massEq);
+  const Eigen::VectorXd& massEq = lumpedMass(n.x, n.t);
   const Eigen::VectorXd& r = sys_->residual();
   for (int d = 0; d < nd; ++d) {
     const int e = dofs.eqOfDof(d);

@@ -13,6 +13,7 @@
 
 #include "assembly/SystemAssembler.hpp"
 #include "solver/Newton.hpp"
+#include "solver/StableStep.hpp"
 #include "solver/StructuralState.hpp"
 #include "solver/StructuralSystem.hpp"
 
@@ -71,7 +72,8 @@ class CentralDifference {
 
  private:
   // Lumped (row-sum) mass per equation at x, t (EX2): the terms' inertia r(a = 1) - r(a = 0).
-  Eigen::VectorXd lumpedMass(const Eigen::VectorXd& x, double t);
+  // With check, refuses massless free nodes (MasslessNodesError) when it evaluates a new mass.
+  const Eigen::VectorXd& lumpedMass(const Eigen::VectorXd& x, double t, bool check = true);
   Eigen::VectorXd massOf(const std::vector<Term*>& terms, const Eigen::VectorXd& x, double t);
   std::vector<double> nodalMass(const Eigen::VectorXd& massEq) const;
   void refuseMassless(const Eigen::VectorXd& massEq) const;
@@ -87,6 +89,7 @@ class CentralDifference {
   Eigen::VectorXd addedEq_;    // mass scaling, per equation
   std::vector<std::pair<std::string, double>> addedByPart_;
   std::vector<char> freeNode_;
+  MembraneBoundData membraneBound_;  // the reference part of the stable-step bound (EX6m)
   Record record_;
   // The last lumped mass and where it was evaluated (the active elements are those at x).
   Eigen::VectorXd cachedMass_, cachedX_;

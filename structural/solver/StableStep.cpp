@@ -33,6 +33,41 @@ double lineStiffness(const kernels::LineMaterial& mat, double L, double /*l*/) {
 std::vector<double> nodalStiffnessBound(const Model& m,
                                         const std::vector<const SlidingGroupState*>& groups,
                                         const Eigen::VectorXd& x, double t) {
+  return nodalStiffnessBound(m, membraneBoundData(m), groups, x, t);
+}
+
+MembraneBoundData membraneBoundData(const Model& m) {
+  MembraneBoundData d;
+  d.perNode.reserve(m.membranes.size());
+  d.l0.reserve(m.membranes.size());
+  for (const auto& e : m.membranes) {
+    const auto& mat = m.membraneMaterials[e.material];
+    const double shrink = 1.0 / (1.0 + m.membraneSets[e.set].prestrain);
+    const int nn = e.numNodes;
+    auto X = [&](int i) { return Vec3(shrink * m.X[e.nodes[i]]); };
+    // Reference area and smallest reference altitude (a quad: its four corner triangles).
+    double area0 = 0.0, h0 = std::numeric_limits<double>::infinity();
+    if (nn == 3) {
+      area0 = 0.5 * (X(1) - X(0)).cross(X(2) - X(0)).norm();
+      h0 = smallestAltitude(X(0), X(1), X(2));
+    } else {
+      area0 = 0.5 * (X(2) - X(0)).cross(X(3) - X(1)).norm();
+      for (int i = 0; i < 4; ++i)
+        h0 = std::min(h0, smallestAltitude(X(i), X((i + 1) % 4), X((i + 2) % 4)));
+    }
+    d.perNode.push_back(h0 > 0.0 ? 4.0 * mat.E * mat.thickness * area0 /
+                                       (nn * (1.0 - mat.nu * mat.nu) * h0 * h0)
+                                 : 0.0);
+    std::array<double, 4> l0{};
+    for (int i = 0; i < nn; ++i) l0[i] = (X((i + 1) % nn) - X(i)).norm();
+    d.l0.push_back(l0);
+  }
+  return d;
+}
+
+std::vector<double> nodalStiffnessBound(const Model& m, const MembraneBoundData& membranes,
+                                        const std::vector<const SlidingGroupState*>& groups,
+                                        const Eigen::VectorXd& x, double t) {
   const int n = m.numNodes();
   std::vector<double> S(n, 0.0);
   std::vector<char> free(n, 0);
@@ -88,32 +123,20 @@ std::vector<double> nodalStiffnessBound(const Model& m,
       S[n3] += kk * gs * sum;
     }
   }
-  for (const auto& e : m.membranes) {
-    const auto& mat = m.membraneMaterials[e.material];
-    const double shrink = 1.0 / (1.0 + m.membraneSets[e.set].prestrain);
-    const int nn = e.numNodes;
-    auto X = [&](int i) { return Vec3(shrink * m.X[e.nodes[i]]); };
-    // Reference area and smallest reference altitude (a quad: its four corner triangles).
-    double area0 = 0.0, h0 = std::numeric_limits<double>::infinity();
-    if (nn == 3) {
-      area0 = 0.5 * (X(1) - X(0)).cross(X(2) - X(0)).norm();
-      h0 = smallestAltitude(X(0), X(1), X(2));
-    } else {
-      area0 = 0.5 * (X(2) - X(0)).cross(X(3) - X(1)).norm();
-      for (int i = 0; i < 4; ++i)
-        h0 = std::min(h0, smallestAltitude(X(i), X((i + 1) % 4), X((i + 2) % 4)));
-    }
-    if (!(h0 > 0.0)) continue;
+  for (size_t k = 0; k < m.membranes.size(); ++k) {
+    const auto& e = m.membranes[k];
+    const double base = membranes.perNode[k];
+    if (!(base > 0.0)) continue;
     // Total-Lagrangian St. Venant-Kirchhoff: the stiffness grows with the square of the largest
     // stretch; compressed (folded, wrinkled) fabric is bounded by its reference stiffness.
+    const int nn = e.numNodes;
     double stretch = 1.0;
     for (int i = 0; i < nn; ++i) {
-      const int a = e.nodes[i], b = e.nodes[(i + 1) % nn];
-      const double l0 = (X((i + 1) % nn) - X(i)).norm();
-      if (l0 > 0.0) stretch = std::max(stretch, (at(x, b) - at(x, a)).norm() / l0);
+      const double l0 = membranes.l0[k][i];
+      if (l0 > 0.0)
+        stretch = std::max(stretch, (at(x, e.nodes[(i + 1) % nn]) - at(x, e.nodes[i])).norm() / l0);
     }
-    const double perNode = 4.0 * mat.E * mat.thickness * area0 * stretch * stretch /
-                           (nn * (1.0 - mat.nu * mat.nu) * h0 * h0);
+    const double perNode = base * stretch * stretch;
     for (int i = 0; i < nn; ++i) S[e.nodes[i]] += perNode;
   }
   return S;

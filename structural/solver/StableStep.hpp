@@ -3,6 +3,7 @@
 // speeds (docs/formulation.md EX4-EX6). A pure function of the model, the sliding groups' active
 // elements, the positions and the lumped nodal masses.
 #include <Eigen/Core>
+#include <array>
 #include <vector>
 
 #include "model/Model.hpp"
@@ -17,6 +18,20 @@ namespace chute {
 // current altitude (plane-stress dilatational wave, EX5). Nodes whose dofs are all prescribed
 // are left out of the sums (they are not part of the free system).
 std::vector<double> nodalStiffnessBound(const Model& m,
+                                        const std::vector<const SlidingGroupState*>& groups,
+                                        const Eigen::VectorXd& x, double t);
+
+// What the membranes' part of the bound takes from the reference geometry alone, computed once
+// per model: per element the bound at unit stretch, 4 E t A0 / (n (1 - nu^2) h0^2) (EX6m), and
+// its reference edge lengths.
+struct MembraneBoundData {
+  std::vector<double> perNode;            // per element
+  std::vector<std::array<double, 4>> l0;  // per element, edge i from node i to node i + 1
+};
+MembraneBoundData membraneBoundData(const Model& m);
+// The same bound with the membranes' reference part given (the explicit path's every-4-steps
+// evaluation).
+std::vector<double> nodalStiffnessBound(const Model& m, const MembraneBoundData& membranes,
                                         const std::vector<const SlidingGroupState*>& groups,
                                         const Eigen::VectorXd& x, double t);
 

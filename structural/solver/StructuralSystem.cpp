@@ -59,14 +59,14 @@ int membranesInSet(const Model& m, int set) {
 }  // namespace
 
 // Terms that read only the model and their own state (membranes, pressure, face drag, cables, a
-// coupled flow's surface loads) may be assembled on the second thread; sliding groups stay on the first, with line drag,
-// which reads their states, point masses and terms from outside the model. The costs are per
-// element relative to a membrane triangle, from a per-step profile of the explicit C-9 scene
-// (residual only): quad membrane 3, pressure face 0.35, face-drag face 0.55, line element
-// (cable or sliding chain) 0.55, line-drag segment 0.4. Largest first, each to the lighter part;
-// the order of terms within a part is the constructor's. The explicit step's own work between
-// assemblies also runs on the first thread; giving that thread less assembly to make up for it
-// was measured slower on the C-9 (the second thread then waits).
+// coupled flow's surface loads) may be assembled on the second thread; sliding groups stay on the
+// first, with line drag, which reads their states, point masses and terms from outside the model.
+// The costs are per element relative to a membrane triangle, from a per-step profile of the
+// explicit C-9 scene (residual only): quad membrane 3, pressure face 0.35, face-drag face 0.55,
+// line element (cable or sliding chain) 0.55, line-drag segment 0.4. Largest first, each to the
+// lighter part; the order of terms within a part is the constructor's. The explicit step's own work
+// between assemblies also runs on the first thread; giving that thread less assembly to make up for
+// it was measured slower on the C-9 (the second thread then waits).
 void StructuralSystem::splitAssembly() {
   const Model& m = *model_;
   double tri = 0.0, quad = 0.0;
@@ -117,7 +117,7 @@ void StructuralSystem::splitAssembly() {
     (moved ? secondPart_ : firstPart_).push_back(t.get());
   }
   if (secondPart_.empty()) return;
-  secondAssembler_ = assembler_;  // the same pattern
+  secondAssembler_.buildPattern({});  // assemble() gives it the first's pattern when built
   runner_ = std::make_unique<TwoPartRunner>();
 }
 
@@ -146,6 +146,7 @@ void StructuralSystem::assemble(const EvalPoint& p, bool wantMatrix) {
     for (const auto& t : terms_) t->assemble(p, assembler_);
     return;
   }
+  if (wantMatrix && !secondAssembler_.hasPattern()) secondAssembler_.sharePatternOf(assembler_);
   secondAssembler_.begin(wantMatrix);
   runner_->run(
       [&] {
