@@ -321,7 +321,8 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
   r.work = sys.work();
   r.work.vtuSeries = spec.output.vtu.write && write ? 1 : 0;
   r.work.vtuFrames = r.vtuFrames;
-  r.linearSolver = integrator.linearSolver().kindName();
+  // Central differences solve no linear system.
+  r.linearSolver = explicitCd ? "none" : integrator.linearSolver().kindName();
   r.symbolicAnalyses = integrator.linearSolver().analyses();
   r.equations = sys.numEquations();
   r.nonZeros = sys.matrix().nonZeros();

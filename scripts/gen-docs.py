@@ -143,11 +143,35 @@ def verification(build):
 
 # --- performance ----------------------------------------------------------------------------
 
+TWO_THREADS = """
+## Two threads
+
+Assembly runs in two parts at once (`StructuralSystem::splitAssembly`,
+`assembly/TwoPartRunner`): membranes, pressure, face drag, cables and a coupled flow's surface
+loads may go to a second thread; sliding groups, line drag (which reads the sliding groups'
+states) and point masses stay on the first. The split is made once per scene from costs per
+element estimated on the C-9 (a membrane triangle 1, quad 3, pressure face 0.35, face-drag face
+0.55, line element 0.55, line-drag segment 0.4; largest first, each to the lighter part), never
+from timings or the thread count, and the second part's residual and matrix are added to the
+first's in a fixed order: a run gives the same bits on one thread or two
+(`TwoPartAssembly.OneThreadAndTwoGiveTheSameBits`). `CHUTE_THREADS=1` runs both parts one after
+the other on one thread. Against the single-pass sum before it, results differ by round-off only
+(the 19 shipped cases' probes: at most 1e-12 of the column's scale, except the folded-start
+C-9 runs, whose dynamics multiply round-off by about e every 5 ms: 7.7e-7 of c9_no_slider's
+strain energy at 0.3 s). The worker polls for 0.3 ms after each part before it sleeps (the gap
+between two explicit steps' assemblies is under 0.1 ms on the C-9; an implicit iteration costs
+the second core up to 0.3 ms of polling per assembly); OpenMP was tried first and left out: libgomp's spin, fixed at
+program start, doubled the CPU time of implicit runs. Measured on the C-9 slider case, 1 s,
+medians of 3 paired runs (bench/results/two_threads.md).
+"""
+
+
 def performance():
     out = [header("Performance", "performance", False),
            "\nThe benchmark results in `bench/results/` (`bench/run_all` regenerates them; "
            "[bench/README.md](../bench/README.md) explains each benchmark). Wall times depend on "
-           "the machine and its load; the machine notes are in `bench/results/machine.txt`.\n"]
+           "the machine and its load; the machine notes are in `bench/results/machine.txt`.\n",
+           TWO_THREADS]
     sys.path.insert(0, os.path.join(ROOT, "bench"))
     try:
         import summarize

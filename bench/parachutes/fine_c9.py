@@ -78,6 +78,8 @@ def main():
     print(json.dumps(row))
     path = os.path.join(HERE, "fine_c9.csv")
     rows = list(csv.DictReader(open(path))) if os.path.exists(path) else []
+    for r in rows:  # rows from before --integrator were the generated case's Bossak runs
+        r["integrator"] = r.get("integrator") or "bossak"
     fields = list(row) + [k for r in rows for k in r if k not in row]
     with open(path, "w", newline="") as f:  # rewritten: earlier rows keep their columns
         w = csv.DictWriter(f, fieldnames=list(dict.fromkeys(fields)), restval="")

@@ -8,10 +8,11 @@ namespace chute {
 
 namespace {
 
-// How long a waiting thread polls before it sleeps: longer than an explicit step (0.1-0.3 ms),
-// so that explicit runs never wait for a wake-up; an implicit iteration (a factorisation between
-// assemblies) costs the worker 1 ms of polling.
-constexpr auto kSpin = std::chrono::microseconds(1000);
+// How long a waiting thread polls before it sleeps: longer than the gap between two explicit
+// steps' assemblies (under 0.1 ms on the C-9), so that explicit runs never wait for a wake-up;
+// an implicit iteration (a factorisation between assemblies) costs the worker 0.3 ms of polling.
+// Measured on the C-9: 1 ms cost implicit runs 8 % more CPU and explicit runs no wall time.
+constexpr auto kSpin = std::chrono::microseconds(300);
 
 template <class Ready>
 bool spinUntil(Ready ready) {
