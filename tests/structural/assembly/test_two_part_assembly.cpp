@@ -53,9 +53,9 @@ TEST(TwoPartRunner, HandsBackWhatEitherPartThrew) {
   }
   EXPECT_TRUE(secondDone.load());
   // And it goes on working.
-  int both = 0;
+  std::atomic<int> both{0};
   runner.run([&] { ++both; }, [&] { ++both; });
-  EXPECT_EQ(both, 2);
+  EXPECT_EQ(both.load(), 2);
 }
 
 TEST(TwoPartAssembly, OneThreadAndTwoGiveTheSameBits) {
