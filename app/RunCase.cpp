@@ -326,6 +326,8 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
   r.symbolicAnalyses = integrator.linearSolver().analyses();
   r.equations = sys.numEquations();
   r.nonZeros = sys.matrix().nonZeros();
+  r.concurrentAssemblies = sys.concurrentAssemblies();
+  r.serialAssemblies = sys.serialAssemblies();
   for (const auto* g : sys.slidingGroups()) r.handovers.push_back(g->state().committedHandovers());
   r.wallTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   {
@@ -382,8 +384,11 @@ void writeSummary(const std::string& path, const CaseSpec& spec, const RunResult
                {"scene_frames", w.sceneFrames},
                {"vtu_series", w.vtuSeries},
                {"vtu_frames", w.vtuFrames}};
-  j["system"] = {
-      {"equations", r.equations}, {"nonzeros", r.nonZeros}, {"linear_solver", r.linearSolver}};
+  j["system"] = {{"equations", r.equations},
+                 {"nonzeros", r.nonZeros},
+                 {"linear_solver", r.linearSolver},
+                 {"assemblies_on_two_threads", r.concurrentAssemblies},
+                 {"assemblies_split_on_one_thread", r.serialAssemblies}};
   j["solver"] = {
       {"type", spec.solver.type},
       {"dt", spec.solver.dt},

@@ -55,7 +55,8 @@ struct RunResult {
   std::string linearSolver;
   int equations = 0;
   long nonZeros = 0, symbolicAnalyses = 0;
-  std::vector<long> handovers;  // per sliding group
+  long concurrentAssemblies = 0, serialAssemblies = 0;  // two-part assembly (docs/performance.md)
+  std::vector<long> handovers;                          // per sliding group
   int vtuFrames = 0;
   long checkpoints = 0;
   double energyInitial = 0.0, energyMaxDrift = 0.0, kineticMax = 0.0;

@@ -163,7 +163,19 @@ the folded-start C-9 runs, whose dynamics amplify round-off (c9_slider 6.8e-10, 
 radius moves by 1e-3 at 0.3 s, round-off growing about e-fold every 5 ms). The worker polls for 0.3 ms after each part before it sleeps (the gap
 between two explicit steps' assemblies is under 0.1 ms on the C-9; an implicit iteration costs
 the second core up to 0.3 ms of polling per assembly); OpenMP was tried first and left out: libgomp's spin, fixed at
-program start, doubled the CPU time of implicit runs. Measured on the C-9 slider case, 1 s,
+program start, doubled the CPU time of implicit runs.
+
+Two threads pay only while the machine has a core free for the second. On a loaded machine the
+first thread waits for a worker that waits for a core: with the CPU taken by a build or by two
+busy loops, the explicit C-9 (0.5 s) took 4.4-5.5 s on two threads against 3.3-3.8 s on one.
+So the runner times windows of 16 assemblies in each mode and keeps the faster, timing the
+other again every 32 windows (`summary.json`: `system.assemblies_on_two_threads` and
+`system.assemblies_split_on_one_thread`); since the parts' results do not depend on the mode,
+this changes no bit. Measured in one sitting, 3 runs each: with the machine free 2.22-2.53 s
+(two threads always: 2.25-2.35, one thread: 2.59-3.34); with two busy loops 3.70-5.20 s (two
+threads always 4.44-5.49, one thread 3.34-3.79). Yielding the core while polling was tried
+instead and made loaded runs far slower (7-9 s: a yielded thread waits for a whole time slice).
+Measured on the C-9 slider case, 1 s,
 medians of 3 paired runs (bench/results/two_threads.md).
 """
 

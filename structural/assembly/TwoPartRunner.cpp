@@ -26,6 +26,11 @@ bool spinUntil(Ready ready) {
   }
 }
 
+// Mode choice (TwoPartRunner::choose): calls per timed window, and every how many windows the
+// mode not in use is timed again.
+constexpr int kWindow = 16;
+constexpr int kProbeEvery = 32;
+
 bool twoThreadsAllowed() {
   const char* env = std::getenv("CHUTE_THREADS");
   if (env && std::strcmp(env, "1") == 0) return false;
@@ -70,12 +75,47 @@ void TwoPartRunner::work() {
   }
 }
 
+bool TwoPartRunner::choose() {
+  if (windowCalls_ < kWindow) return mode_;
+  mean_[mode_ ? 1 : 0] = windowSeconds_ / windowCalls_;
+  windowCalls_ = 0;
+  windowSeconds_ = 0.0;
+  const bool other = !mode_;
+  if (mean_[other ? 1 : 0] < 0.0 || ++windowsSinceProbe_ >= kProbeEvery) {
+    windowsSinceProbe_ = 0;
+    mode_ = other;  // (re)measure the other mode
+  } else {
+    mode_ = mean_[1] <= mean_[0];
+  }
+  return mode_;
+}
+
+void TwoPartRunner::record(bool concurrentCall, double seconds) {
+  ++runs_[concurrentCall ? 1 : 0];
+  ++windowCalls_;
+  windowSeconds_ += seconds;
+}
+
 void TwoPartRunner::run(const std::function<void()>& first, const std::function<void()>& second) {
   if (!worker_.joinable()) {
     first();
     second();
     return;
   }
+  const bool concurrentCall = choose();
+  const auto start = std::chrono::steady_clock::now();
+  if (concurrentCall) {
+    runConcurrently(first, second);
+  } else {
+    first();
+    second();
+  }
+  record(concurrentCall,
+         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+}
+
+void TwoPartRunner::runConcurrently(const std::function<void()>& first,
+                                    const std::function<void()>& second) {
   failure_ = nullptr;
   job_ = &second;
   unsigned ticket = 0;

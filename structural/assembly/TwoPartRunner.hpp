@@ -25,12 +25,22 @@ class TwoPartRunner {
   // either threw (the first's exception first). Without a worker: one after the other.
   void run(const std::function<void()>& first, const std::function<void()>& second);
 
-  // Whether parts run on two threads: a machine with at least two hardware threads and
+  // Whether parts can run on two threads: a machine with at least two hardware threads and
   // CHUTE_THREADS not set to 1.
   bool concurrent() const { return worker_.joinable(); }
+  // Calls run on two threads and one after the other so far (see choose()).
+  long concurrentRuns() const { return runs_[1]; }
+  long serialRuns() const { return runs_[0]; }
 
  private:
   void work();
+  void runConcurrently(const std::function<void()>& first, const std::function<void()>& second);
+  // Two threads only pay while the machine has a core free for the second: on a loaded
+  // machine the caller waits for a worker that waits for a core. The runner times windows of
+  // calls in each mode and keeps the faster, trying the other again every few windows. The
+  // parts' results do not depend on the mode.
+  bool choose();
+  void record(bool concurrentCall, double seconds);
 
   std::thread worker_;
   std::mutex mutex_;
@@ -39,6 +49,12 @@ class TwoPartRunner {
   std::exception_ptr failure_;
   std::atomic<unsigned> posted_{0}, finished_{0};
   std::atomic<bool> quit_{false};
+  // Mode choice: the mode of the current window, its calls and time, the last mean of each.
+  bool mode_ = true;
+  int windowCalls_ = 0, windowsSinceProbe_ = 0;
+  double windowSeconds_ = 0.0;
+  double mean_[2] = {-1.0, -1.0};  // serial, concurrent; < 0: not measured yet
+  long runs_[2] = {0, 0};
 };
 
 }  // namespace chute

@@ -41,6 +41,10 @@ class StructuralSystem {
   void assemble(const EvalPoint& p, bool wantMatrix);
   // Whether assemble() splits the terms into two parts (docs/performance.md, "Two threads").
   bool assemblesInTwoParts() const { return !secondPart_.empty(); }
+  // Assemblies whose two parts ran on two threads, and one after the other (0, 0 without a
+  // split or without a second hardware thread).
+  long concurrentAssemblies() const { return runner_ ? runner_->concurrentRuns() : 0; }
+  long serialAssemblies() const { return runner_ ? runner_->serialRuns() : 0; }
   const Eigen::VectorXd& residual() const { return assembler_.residual(); }
   const SparseMatrix& matrix() const { return assembler_.matrix(); }
   bool symmetric() const;

@@ -37,6 +37,12 @@ TEST(TwoPartRunner, RunsBothPartsEveryTime) {
   for (int k = 0; k < 20000; ++k) runner.run([&] { ++first; }, [&] { ++second; });
   EXPECT_EQ(first.load(), 20000);
   EXPECT_EQ(second.load(), 20000);
+  // Both modes are timed (the one not chosen every few windows), and every call is counted.
+  EXPECT_EQ(runner.concurrentRuns() + runner.serialRuns(), runner.concurrent() ? 20000 : 0);
+  if (runner.concurrent()) {
+    EXPECT_GT(runner.concurrentRuns(), 0);
+    EXPECT_GT(runner.serialRuns(), 0);
+  }
 }
 
 TEST(TwoPartRunner, HandsBackWhatEitherPartThrew) {
