@@ -84,17 +84,14 @@ void MembraneTerm::assembleElement(int k, const kernels::MembraneReference<N>& r
       G += ref.weight[g] * ref.dN[g] * ref.dN[g].transpose();
     J += p.cx * kernels::kMembraneSlackTangent * mat.E * expand<N>(G);
   }
-  if (mat.density > 0.0 && (p.inertia || m_->hasGravity())) {
-    Eigen::Matrix<double, 3 * N, 1> a;
-    if (p.inertia)
-      for (int i = 0; i < N; ++i) a.template segment<3>(3 * i) = p.a.segment<3>(3 * e.nodes[i]);
-    // A residual-only evaluation at zero acceleration without mass damping (the explicit step,
-    // EX2) has M a = 0: skipped, and without gravity so is the mass.
-    const bool withInertia = p.inertia && (wantJ || m_->massDamping > 0.0 || !a.isZero(0.0));
-    if (!withInertia && !m_->hasGravity()) {
-      out.add<N>(nodeIds<N>(e), r, wantJ ? &J : nullptr);
-      return;
-    }
+  Eigen::Matrix<double, 3 * N, 1> a = Eigen::Matrix<double, 3 * N, 1>::Zero();
+  if (p.inertia)
+    for (int i = 0; i < N; ++i) a.template segment<3>(3 * i) = p.a.segment<3>(3 * e.nodes[i]);
+  // A residual-only evaluation at zero acceleration without mass damping (the explicit step,
+  // EX2) has M a = 0: skipped, and without gravity so is the mass.
+  const bool withInertia =
+      mat.density > 0.0 && p.inertia && (wantJ || m_->massDamping > 0.0 || !a.isZero(0.0));
+  if (withInertia || (mat.density > 0.0 && m_->hasGravity())) {
     const auto Ms =
         kernels::membraneMass<N>(ref, mat.density, m_->massKind == kernels::MassKind::Lumped);
     if (withInertia) {
