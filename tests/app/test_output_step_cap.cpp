@@ -2,6 +2,7 @@
 // times); the run says so (RunResult::notes, summary.json solver.dt_capped_by_output) instead of
 // shrinking dt silently. An interval of at least dt leaves the steps alone and says nothing.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <fstream>
@@ -15,7 +16,9 @@ using namespace chute;
 namespace {
 
 std::string writeCase(double dt, double interval) {
-  const std::string path = ::testing::TempDir() + "output_step_cap.toml";
+  // One file per process: ctest runs the two tests of this program at once.
+  const std::string path =
+      ::testing::TempDir() + "output_step_cap_" + std::to_string(getpid()) + ".toml";
   std::ofstream f(path);
   f << "name = \"output_step_cap\"\n"
     << "[nodes]\nanchor = [0.0, 0.0, 0.0]\nmass = [1.0, 0.0, 0.0]\n"
