@@ -63,7 +63,7 @@ def main():
             f"{started}, load average {os.getloadavg()[0]:.1f} at the end; CHUTE_THREADS="
             f"{os.environ.get('CHUTE_THREADS', 'unset')}). Whole process, start included; runs "
             "interleaved before/after; medians, and the median of the paired after/before "
-            "ratios.", ""]
+            f"ratios. Before: `{a.before}`; after: `{a.after}`.", ""]
     text = "\n".join(head + lines) + "\n"
     os.makedirs(RESULTS, exist_ok=True)
     open(os.path.join(RESULTS, "two_threads.md"), "w").write(text)
