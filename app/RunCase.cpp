@@ -374,6 +374,7 @@ void writeSummary(const std::string& path, const CaseSpec& spec, const RunResult
   j["work"] = {{"line_elastic_kernels", w.lineElastic},
                {"sliding_kernels", w.sliding},
                {"line_mass_kernels", w.lineMass},
+               {"whirl_damping_kernels", w.whirlDamping},
                {"point_mass_kernels", w.pointMass},
                {"membrane_kernels", w.membrane},
                {"pressure_kernels", w.pressure},

@@ -31,6 +31,9 @@ struct EvalPoint {
   // path's lumped mass of sliding elements, M(x) 1 (EX2). Honoured by the sliding group term,
   // the only term whose mass moves with x; the others are never asked.
   bool inertiaOnly = false;
+  // > 0: an explicit step of this length evaluates the forces (velocity-dependent forces too
+  // stiff for it cap themselves, RG8); 0 in implicit steps and statics.
+  double explicitStep = 0.0;
 };
 
 // A converged step, as its terms commit it: the end positions, the end time, the step length

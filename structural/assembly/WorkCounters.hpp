@@ -9,6 +9,7 @@ struct WorkCounters {
   long lineElastic = 0;   // two-node line kernel (cables, inactive sliding elements)
   long sliding = 0;       // three-node sliding kernel (active sliding elements)
   long lineMass = 0;      // inertia / weight of line elements with density
+  long whirlDamping = 0;  // RG8: active sliding elements with a line node near the slider
   long pointMass = 0;     // inertia / weight of point masses
   long membrane = 0;      // membrane kernel (force, tangent, mass, weight of one element)
   long pressure = 0;      // follower-pressure kernel (one element)
@@ -23,7 +24,7 @@ struct WorkCounters {
   WorkCounters& operator+=(const WorkCounters& o) {
     lineElastic += o.lineElastic, sliding += o.sliding, lineMass += o.lineMass;
     pointMass += o.pointMass, membrane += o.membrane, pressure += o.pressure, drag += o.drag;
-    faceDrag += o.faceDrag;
+    faceDrag += o.faceDrag, whirlDamping += o.whirlDamping;
     sliderSearch += o.sliderSearch, energy += o.energy, sceneFrames += o.sceneFrames;
     vtuSeries += o.vtuSeries, vtuFrames += o.vtuFrames;
     return *this;

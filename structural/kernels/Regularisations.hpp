@@ -1,5 +1,5 @@
 #pragma once
-// One named constant per regularisation of docs/formulation.md section 9 (RG1-RG7): what keeps
+// One named constant per regularisation of docs/formulation.md section 9 (RG1-RG8): what keeps
 // Newton's matrix regular and the energy smooth where the exact model is singular or kinked.
 // Each is small against the physics it touches; the page quotes these names and values.
 
@@ -47,5 +47,14 @@ inline constexpr double kWrapApexAngle = 1e-6;
 // from there. Far below a step's slip (v dt), which absorbs the hand-over's shift of the material
 // coordinate.
 inline constexpr double kFrictionArrivalFraction = 1e-6;
+
+// RG8 (kernels/SliderWhirlDamping.hpp): a line node within kWhirlDampingFraction L of a slider
+// has its motion about the slider, transverse to the part between them, critically damped; the
+// damping coefficient stops growing below kWhirlFloorFraction L. The whirl it removes is a mode of
+// the discrete line (a node with mass beside the slider's kink) that a continuous line does not
+// have; measured on the C-9 (docs/applications/c9.md): 0.05 / 0.1 / 0.2 move the skirt radius at
+// 1 s by 1.5 % / - / 0.2 %.
+inline constexpr double kWhirlDampingFraction = 0.1;
+inline constexpr double kWhirlFloorFraction = 1e-3;
 
 }  // namespace chute::kernels

@@ -251,8 +251,9 @@ NewtonReport CentralDifference::step(StructuralState& s, double dt) {
   const bool damped = settings_.stiffnessDamping > 0.0;
   const Eigen::VectorXd xEval =
       damped ? Eigen::VectorXd(n.x + settings_.stiffnessDamping * vStar) : Eigen::VectorXd();
-  sys_->assemble(EvalPoint{damped ? xEval : n.x, vStar, zero, n.t, 0.0, 0.0, 0.0, true, 1.0, dt},
-                 false);
+  EvalPoint pt{damped ? xEval : n.x, vStar, zero, n.t, 0.0, 0.0, 0.0, true, 1.0, dt};
+  pt.explicitStep = dt;
+  sys_->assemble(pt, false);
   const Eigen::VectorXd& massEq = lumpedMass(n.x, n.t);
   const Eigen::VectorXd& r = sys_->residual();
   for (int d = 0; d < nd; ++d) {

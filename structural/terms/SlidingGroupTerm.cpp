@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "kernels/SliderFriction.hpp"
+#include "kernels/SliderWhirlDamping.hpp"
 #include "kernels/SlidingCableKernel.hpp"
 #include "kernels/SlidingDiscreteGradient.hpp"
 #include "terms/LineElementAssembly.hpp"
@@ -218,6 +219,24 @@ void SlidingGroupTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
       r = res.force;
       J = p.cx * res.stiffness;
       if (wantJ) addSlackTangent<3>(res, mat, L, {0, 2, 1}, p.cx, J);  // path 1 -> slider -> 2
+    }
+    if (mat.density > 0.0 && p.inertia && !g.frictionOf(s) && !p.xStart) {
+      // RG8: the whirl of an end node about the slider, damped within kWhirlDampingFraction L.
+      kernels::WhirlDampingParams par;
+      const double perLength = 0.5 * mat.density * mat.area;
+      par.endMass[0] = k > 0 ? perLength * g.refLength[k - 1] : 0.0;
+      par.endMass[1] = k + 1 < g.numElements() ? perLength * g.refLength[k + 1] : 0.0;
+      par.sliderMass = perLength * L;
+      par.explicitStep = p.explicitStep;
+      Vec9 xe, ve;
+      xe << x1, x2, x3;
+      ve = gather3(p.v, n1, n2, n3);
+      const auto wd = kernels::sliderWhirlDamping(xe, ve, L, mat, par, wantJ);
+      if (wd.active) {
+        ++out.work().whirlDamping;
+        r += wd.force;
+        if (wantJ) J += p.cx * wd.dPosition + p.cv * wd.dVelocity;
+      }
     }
     if (mat.density > 0.0) {
       ++out.work().lineMass;
