@@ -118,7 +118,7 @@ std::vector<double> ProbeSet::evaluate(const StructuralSystem& sys, const Struct
         const int k = st.activeElement(p.slider);
         auto at = [&](int n) { return Vec3(eq.x.segment<3>(3 * n)); };
         out.push_back(kernels::wrapAngle(at(def.chain[k]), at(def.chain[k + 1]),
-                                         at(def.sliders[p.slider]), def.refLength[k])
+                                         at(def.sliders[p.slider]), st.refLength(k))
                           .beta);
       }
       out.push_back(parts.N1);

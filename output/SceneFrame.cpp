@@ -131,7 +131,7 @@ SceneFrame buildFrame(StructuralSystem& sys, const StructuralState& s, const Equ
       const int a = def.chain[k], b = def.chain[k + 1];
       const int sl = st.sliderOfElement(k);
       if (sl < 0) {
-        const auto r = kernels::cableForce(atEq(a), atEq(b), def.refLength[k], mat, false);
+        const auto r = kernels::cableForce(atEq(a), atEq(b), st.refLength(k), mat, false);
         addCell(f, CellShape::Line, {a, b});
         c.add(CellKind::SlidingInactive, def.set, r.axialForce, r.strain, kNaN2, kNaN2, -1, kNaN,
               static_cast<int>(g), kNaN);

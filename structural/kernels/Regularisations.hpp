@@ -1,5 +1,5 @@
 #pragma once
-// One named constant per regularisation of docs/formulation.md section 9 (RG1-RG8): what keeps
+// One named constant per regularisation of docs/formulation.md section 9 (RG1-RG9): what keeps
 // Newton's matrix regular and the energy smooth where the exact model is singular or kinked.
 // Each is small against the physics it touches; the page quotes these names and values.
 
@@ -56,5 +56,15 @@ inline constexpr double kFrictionArrivalFraction = 1e-6;
 // 1 s by 1.5 % / - / 0.2 %.
 inline constexpr double kWhirlDampingFraction = 0.1;
 inline constexpr double kWhirlFloorFraction = 1e-3;
+
+// RG9 (F12b): a line node passing beside a slider, not through it (the part between them never
+// turns round within one explicit step), is looked for within this fraction of the element's
+// reference length; farther out a sharply folded line has l_after - l_before ~ 0 of either sign
+// with nothing passing.
+inline constexpr double kPassageCapture = 0.1;
+// RG9: ... and only where the line's two parts leave the slider at more than 60 degrees to each
+// other (the cosine below): a line folded back on itself (a rope over a pulley) has
+// l_after - l_before ~ 0 on both sides, and its nodes pass the slider head on.
+inline constexpr double kPassageFoldCosine = 0.5;
 
 }  // namespace chute::kernels

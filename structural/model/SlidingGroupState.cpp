@@ -20,23 +20,31 @@ SlidingGroupState::SlidingGroupState(const SlidingGroupDef& def)
       trial_(def.initialActive),
       committed_(def.initialActive),
       pendingHandover_(def.sliders.size(), 0),
+      pendingTransfer_(def.sliders.size(), 0.0),
       handoverAtCommit_(def.sliders.size(), 0),
       driven_(def.sliders.size(), 0),
       splitStart_(def.sliders.size(), 0.0),
       frTrial_(def.sliders.size()),
       frCommitted_(def.sliders.size()) {
-  cumulativeRef_.assign(def.chain.size(), 0.0);
   // Sized from the start (set by every commit) so that the history record has one shape.
   for (auto& d : committedDistance_) d.assign(def.sliders.size(), 0.0);
-  for (int k = 0; k < def.numElements(); ++k)
-    cumulativeRef_[k + 1] = cumulativeRef_[k] + def.refLength[k];
+  for (auto& d : committedGain_) d.assign(def.sliders.size(), 0.0);
+  transferAtCommit_.assign(def.sliders.size(), 0.0);
+  setRefLengths(def.refLength);
+  refCommitted_ = ref_;
+}
+
+void SlidingGroupState::setRefLengths(const std::vector<double>& ref) {
+  ref_ = ref;
+  cumulativeRef_.assign(def_->chain.size(), 0.0);
+  for (int k = 0; k < def_->numElements(); ++k) cumulativeRef_[k + 1] = cumulativeRef_[k] + ref_[k];
 }
 
 double SlidingGroupState::lengthMismatch(int slider, int element, const Eigen::VectorXd& x) const {
   const Vec3 xs = nodePos(x, def_->sliders[slider]);
   const double l = (xs - nodePos(x, def_->chain[element])).norm() +
                    (xs - nodePos(x, def_->chain[element + 1])).norm();
-  return std::abs(l - def_->refLength[element]);
+  return std::abs(l - ref_[element]);
 }
 
 bool SlidingGroupState::isActive(int element) const {
@@ -70,8 +78,19 @@ int SlidingGroupState::search(const Eigen::VectorXd& x, SliderSearch kind) {
     if (pendingHandover_[s] != 0) {
       const int k = best + pendingHandover_[s];
       // At a chain end, or against another slider, the slider stays where it is.
-      if (k >= 0 && k < nEl && !takenByOther(k)) best = k;
+      if (k >= 0 && k < nEl && !takenByOther(k)) {
+        // F12b: the material between node and slider where they passed goes with the slider.
+        const double m = std::min(pendingTransfer_[s], 0.5 * ref_[best]);
+        if (m > 0.0) {
+          std::vector<double> ref = ref_;
+          ref[best] -= m;
+          ref[k] += m;
+          setRefLengths(ref);
+        }
+        best = k;
+      }
     }
+    pendingTransfer_[s] = 0.0;
     if (kind == SliderSearch::NearestLength) {
       // F12, with ties kept by the current element: at a node both neighbours fit to within
       // round-off of the strains, and only a clear improvement (kArrivalFraction L) is a reason
@@ -82,7 +101,7 @@ int SlidingGroupState::search(const Eigen::VectorXd& x, SliderSearch kind) {
       // there both fit to within the strains' difference, and F12 alone could hand a slider
       // just handed over across the node (arriveAtNodes) straight back.
       const Vec3 xs = nodePos(x, def_->sliders[s]);
-      const double radius = kernels::kArrivalFraction * def_->refLength[current];
+      const double radius = kernels::kArrivalFraction * ref_[current];
       auto atSharedNode = [&](int k) {
         return std::abs(k - current) == 1 &&
                (xs - nodePos(x, def_->chain[std::max(k, current)])).norm() <= radius;
@@ -124,7 +143,7 @@ double SlidingGroupState::passageFraction(const Eigen::VectorXd& x, const Eigen:
       const double dDelta = d.dot(delta);
       // A slider with friction (FR16): the event is its entry into the arrival zone of the node,
       // the step ending where it would be half the zone's radius from the node.
-      const double zone = kernels::kFrictionArrivalFraction * def_->refLength[k];
+      const double zone = kernels::kFrictionArrivalFraction * ref_[k];
       if (hasFriction(static_cast<int>(s)) && d.norm() > zone) {
         const double aim = 0.5 * zone, dd = delta.squaredNorm();
         const double disc = dDelta * dDelta - dd * (d.squaredNorm() - aim * aim);
@@ -136,15 +155,53 @@ double SlidingGroupState::passageFraction(const Eigen::VectorXd& x, const Eigen:
       }
       // The part flips direction, (d + delta) . d < 0: the update passes the node, closest at
       // the fraction -d.delta / |delta|^2.
-      if (d.squaredNorm() + dDelta < 0.0)
+      if (d.squaredNorm() + dDelta < 0.0) {
         fraction = std::min(fraction, std::clamp(-dDelta / delta.squaredNorm(), 0.0, 1.0));
+        continue;
+      }
+      // F12b: the update carries the node past the slider beside it: handoverGain from above the
+      // arrival band to below zero, near the node; the update is cut where it is (linearly) at
+      // half the band.
+      if (hasFriction(static_cast<int>(s))) continue;
+      const double capture = kernels::kPassageCapture * ref_[k];
+      if (!(d.norm() < capture || (d + delta).norm() < capture)) continue;
+      if (!foldOpen(static_cast<int>(s), end, x)) continue;
+      const double band = kernels::kArrivalFraction * ref_[k];
+      const double g0 = handoverGain(static_cast<int>(s), end, x);
+      if (!(g0 > band)) continue;
+      const double g1 = handoverGain(static_cast<int>(s), end, x + dx);
+      if (g1 < 0.0)
+        fraction = std::min(fraction, std::clamp((g0 - 0.5 * band) / (g0 - g1), 0.0, 1.0));
     }
   }
   return fraction;
 }
 
+double SlidingGroupState::handoverGain(int slider, int end, const Eigen::VectorXd& x) const {
+  const int k = trial_[slider];
+  const int next = k + (end == 0 ? -1 : +1);
+  if (next < 0 || next >= def_->numElements()) return std::numeric_limits<double>::quiet_NaN();
+  const Vec3 xs = nodePos(x, def_->sliders[slider]);
+  const Vec3 xi = nodePos(x, def_->chain[k + end]);                   // the node passed
+  const Vec3 xa = nodePos(x, def_->chain[k + 1 - end]);               // the element's other end
+  const Vec3 xc = nodePos(x, def_->chain[end == 0 ? k - 1 : k + 2]);  // the neighbour's far node
+  return (xa - xi).norm() + (xs - xc).norm() - (xa - xs).norm() - (xi - xc).norm();
+}
+
+bool SlidingGroupState::foldOpen(int slider, int end, const Eigen::VectorXd& x) const {
+  const int k = trial_[slider];
+  const int next = k + (end == 0 ? -1 : +1);
+  if (next < 0 || next >= def_->numElements()) return false;
+  const Vec3 xs = nodePos(x, def_->sliders[slider]);
+  const Vec3 ta = nodePos(x, def_->chain[k + 1 - end]) - xs;
+  const Vec3 tc = nodePos(x, def_->chain[end == 0 ? k - 1 : k + 2]) - xs;
+  const double na = ta.norm(), nc = tc.norm();
+  return na > 0.0 && nc > 0.0 && ta.dot(tc) < kernels::kPassageFoldCosine * na * nc;
+}
+
 int SlidingGroupState::notePassages(const Eigen::VectorXd& x, const Eigen::VectorXd& dx) {
   int passed = 0;
+  const Eigen::VectorXd x1 = x + dx;
   for (size_t s = 0; s < trial_.size(); ++s) {
     if (driven_[s] || pendingHandover_[s] != 0) continue;
     const int k = trial_[s];
@@ -153,13 +210,55 @@ int SlidingGroupState::notePassages(const Eigen::VectorXd& x, const Eigen::Vecto
       const int ni = def_->chain[k + end];
       const Vec3 d = nodePos(x, n3) - nodePos(x, ni);
       const Vec3 delta = nodePos(dx, n3) - nodePos(dx, ni);
-      if (d.dot(d + delta) >= 0.0) continue;
+      double transfer = 0.0;
+      if (d.dot(d + delta) >= 0.0) {
+        // Not head on: beside the node? Delta from >= 0 to < 0, near the node (far from it a
+        // sharply folded line has Delta ~ 0 of either sign, and nothing is passing).
+        const double capture = kernels::kPassageCapture * ref_[k];
+        const double g0 = handoverGain(static_cast<int>(s), end, x);
+        if (!(g0 >= 0.0) || !(d.norm() < capture || (d + delta).norm() < capture)) continue;
+        if (!foldOpen(static_cast<int>(s), end, x)) continue;
+        const double g1 = handoverGain(static_cast<int>(s), end, x1);
+        if (!(g1 < 0.0)) continue;
+        // Where Delta = 0 (positions linear over the step).
+        const double f = g0 / (g0 - g1);
+        transfer = handoverTransfer(static_cast<int>(s), end, x + f * dx);
+      }
       pendingHandover_[s] = end == 0 ? -1 : +1;
+      pendingTransfer_[s] = transfer;
       ++passed;
       break;
     }
   }
   return passed;
+}
+
+bool SlidingGroupState::passedBeside(int slider, int end, const Eigen::VectorXd& x,
+                                     double& transfer) const {
+  if (hasFriction(slider) || driven_[slider]) return false;
+  const int k = trial_[slider];
+  const double band = kernels::kArrivalFraction * ref_[k];
+  // From clearly on the node's side at the step's start (a folded line with Delta ~ 0 throughout
+  // never qualifies) ...
+  if (!(committedGain_[end][slider] > band)) return false;
+  if (!foldOpen(slider, end, x)) return false;
+  const Vec3 xs = nodePos(x, def_->sliders[slider]);
+  const double li = (xs - nodePos(x, def_->chain[k + end])).norm();
+  if (!(li < kernels::kPassageCapture * ref_[k])) return false;
+  // ... to within the band or beyond it now.
+  if (!(handoverGain(slider, end, x) <= band)) return false;
+  transfer = handoverTransfer(slider, end, x);
+  return true;
+}
+
+double SlidingGroupState::handoverTransfer(int slider, int end, const Eigen::VectorXd& x) const {
+  const int k = trial_[slider];
+  const Vec3 xs = nodePos(x, def_->sliders[slider]);
+  const Vec3 xi = nodePos(x, def_->chain[k + end]), xa = nodePos(x, def_->chain[k + 1 - end]);
+  // The element's length now (a -> slider -> i) and as the cable a -> i it becomes: the
+  // reference length that keeps its strain, L (l_now - l_then) / l_now (uniform strain).
+  const double now = (xa - xs).norm() + (xs - xi).norm(), then = (xa - xi).norm();
+  return now > 0.0 ? std::max(0.0, ref_[k] * (now - then) / now) : 0.0;
 }
 
 bool SlidingGroupState::arriveAtNodes(const Model& model, Eigen::VectorXd& x, double radiusFraction,
@@ -168,7 +267,7 @@ bool SlidingGroupState::arriveAtNodes(const Model& model, Eigen::VectorXd& x, do
   for (size_t s = 0; s < trial_.size(); ++s) {
     const int k = trial_[s];
     // One hand-over per step: not after a free one at the step's start.
-    if (!immediate && (k != committed_[s] || pendingHandover_[s] != 0)) continue;
+    if (pendingHandover_[s] != 0 || (!immediate && k != committed_[s])) continue;
     handoverAtCommit_[s] = 0;
     const int n3 = def_->sliders[s];
     for (int end = 0; end < 2; ++end) {
@@ -177,14 +276,26 @@ bool SlidingGroupState::arriveAtNodes(const Model& model, Eigen::VectorXd& x, do
       const double dist = (nodePos(x, n3) - nodePos(x, ni)).norm();
       const double radius =
           hasFriction(static_cast<int>(s)) ? kernels::kFrictionArrivalFraction : radiusFraction;
-      if (dist > radius * def_->refLength[k]) continue;
-      if (dist >= committedDistance_[end][s]) continue;       // not approaching this node
       if (next < 0 || next >= def_->numElements()) continue;  // the chain ends here
+      if (dist > radius * ref_[k] || dist >= committedDistance_[end][s]) {
+        // Not at the node (or not approaching it): passed beside it?
+        double transfer = 0.0;
+        if (!passedBeside(static_cast<int>(s), end, x, transfer)) continue;
+        if (immediate) {
+          pendingHandover_[s] = end == 0 ? -1 : +1;
+          pendingTransfer_[s] = transfer;
+        } else {
+          handoverAtCommit_[s] = end == 0 ? -1 : +1;
+          transferAtCommit_[s] = transfer;
+        }
+        changed = true;
+        break;
+      }
       // Node and slider are placed a hair apart, the node on the side of the element being
       // left, at kSeparation (outside the apex radius): the new element's short part then starts
       // with its true direction along the cable instead of an apex where any direction goes.
       const int far = def_->chain[k + 1 - end];
-      const double sep = separationFraction * def_->refLength[k];
+      const double sep = separationFraction * ref_[k];
       const Vec3 back = (nodePos(x, far) - nodePos(x, n3)).normalized();
       bool nodeFree = true;
       for (int c = 0; c < 3; ++c) nodeFree &= !model.constraint[ni].fixed[c];
@@ -240,8 +351,8 @@ int SlidingGroupState::crossDriven(const Model& model, const Eigen::VectorXd& fr
         bool nodeFree = true;
         for (int c = 0; c < 3; ++c) nodeFree &= !model.constraint[ni].fixed[c];
         if (nodeFree) {
-          const double dist = std::min(std::max(d1.norm(), separationFraction * def_->refLength[k]),
-                                       0.5 * lastDistance);
+          const double dist =
+              std::min(std::max(d1.norm(), separationFraction * ref_[k]), 0.5 * lastDistance);
           const Vec3 back = (nodePos(to, far) - nodePos(to, n3)).normalized();
           to.segment<3>(3 * ni) = nodePos(to, n3) + dist * back;
           lastDistance = dist;
@@ -263,12 +374,21 @@ void SlidingGroupState::commit(const Eigen::VectorXd& x) {
     const int k = trial_[s] + handoverAtCommit_[s];
     if (hasFriction(static_cast<int>(s))) splitStart_[s] = frTrial_[s].s;
     if (handoverAtCommit_[s] != 0 && k >= 0 && k < def_->numElements()) {
+      const double m = std::min(transferAtCommit_[s], 0.5 * ref_[trial_[s]]);
+      if (m > 0.0) {  // F12b
+        std::vector<double> ref = ref_;
+        ref[trial_[s]] -= m;
+        ref[k] += m;
+        setRefLengths(ref);
+      }
       trial_[s] = k;
       splitStart_[s] = frTrial_[s].s = uniformSplit(static_cast<int>(s), k, x);
     }
     handoverAtCommit_[s] = 0;
+    transferAtCommit_[s] = 0.0;
   }
   frCommitted_ = frTrial_;
+  refCommitted_ = ref_;
   // Nodes passed by the committed step (not the trial changes a Newton solve made and undid).
   for (size_t s = 0; s < trial_.size(); ++s) handovers_ += std::abs(trial_[s] - committed_[s]);
   committed_ = trial_;
@@ -277,16 +397,23 @@ void SlidingGroupState::commit(const Eigen::VectorXd& x) {
     for (size_t s = 0; s < trial_.size(); ++s)
       committedDistance_[end][s] =
           (nodePos(x, def_->sliders[s]) - nodePos(x, def_->chain[trial_[s] + end])).norm();
+    committedGain_[end].resize(trial_.size());
+    for (size_t s = 0; s < trial_.size(); ++s)
+      committedGain_[end][s] = handoverGain(static_cast<int>(s), end, x);
   }
   std::fill(pendingHandover_.begin(), pendingHandover_.end(), 0);
+  std::fill(pendingTransfer_.begin(), pendingTransfer_.end(), 0.0);
 }
 
 void SlidingGroupState::revert() {
   trial_ = committed_;
+  if (ref_ != refCommitted_) setRefLengths(refCommitted_);
+  std::fill(pendingTransfer_.begin(), pendingTransfer_.end(), 0.0);
   frTrial_ = frCommitted_;
   for (size_t s = 0; s < trial_.size(); ++s) splitStart_[s] = frCommitted_[s].s;
   std::fill(pendingHandover_.begin(), pendingHandover_.end(), 0);
   std::fill(handoverAtCommit_.begin(), handoverAtCommit_.end(), 0);
+  std::fill(transferAtCommit_.begin(), transferAtCommit_.end(), 0.0);
 }
 
 double SlidingGroupState::materialCoordinate(int slider, const Eigen::VectorXd& x) const {
@@ -294,14 +421,14 @@ double SlidingGroupState::materialCoordinate(int slider, const Eigen::VectorXd& 
   if (hasFriction(slider)) return cumulativeRef_[k] + splitStart_[slider];
   const double offset =
       kernels::sliderReferenceOffset(nodePos(x, def_->chain[k]), nodePos(x, def_->chain[k + 1]),
-                                     nodePos(x, def_->sliders[slider]), def_->refLength[k]);
+                                     nodePos(x, def_->sliders[slider]), ref_[k]);
   return cumulativeRef_[k] + offset;
 }
 
 double SlidingGroupState::uniformSplit(int slider, int element, const Eigen::VectorXd& x) const {
-  return kernels::sliderReferenceOffset(
-      nodePos(x, def_->chain[element]), nodePos(x, def_->chain[element + 1]),
-      nodePos(x, def_->sliders[slider]), def_->refLength[element]);
+  return kernels::sliderReferenceOffset(nodePos(x, def_->chain[element]),
+                                        nodePos(x, def_->chain[element + 1]),
+                                        nodePos(x, def_->sliders[slider]), ref_[element]);
 }
 
 void SlidingGroupState::initSplits(const Eigen::VectorXd& x) {
@@ -322,6 +449,11 @@ void SlidingGroupState::save(History& h) const {
   h.put(static_cast<std::int64_t>(handovers_));
   h.put(splitsInitialised_);
   h.put(splitStart_);
+  h.put(pendingTransfer_);
+  h.put(transferAtCommit_);
+  for (const auto& d : committedGain_) h.put(d);
+  h.put(ref_);
+  h.put(refCommitted_);
   for (const auto* fr : {&frTrial_, &frCommitted_})
     for (const auto& f : *fr) {
       h.put(f.s), h.put(f.slipRate), h.put(f.N1), h.put(f.N2), h.put(f.wrapAngle);
@@ -340,6 +472,30 @@ void SlidingGroupState::load(HistoryReader& h) {
   handovers_ = static_cast<long>(h.integer(0, std::numeric_limits<std::int64_t>::max()));
   splitsInitialised_ = h.flag();
   splitStart_ = h.reals(n);
+  pendingTransfer_ = h.reals(n);
+  transferAtCommit_ = h.reals(n);
+  for (auto& d : committedGain_) d = h.reals(n);
+  for (double m : transferAtCommit_)
+    if (!(m >= 0.0) || !std::isfinite(m)) h.fail("transfer at commit not a length");
+  const size_t nEl = def_->refLength.size();
+  std::vector<double> ref = h.reals(nEl), committed = h.reals(nEl);
+  // Each positive, and together the chain's length: material moves between elements, never in or
+  // out (F12b).
+  double total = 0.0;
+  for (double L : def_->refLength) total += L;
+  for (const auto* r : {&ref, &committed}) {
+    double sum = 0.0;
+    for (double L : *r) {
+      if (!(L > 0.0) || !std::isfinite(L)) h.fail("element reference length not positive");
+      sum += L;
+    }
+    if (!(std::abs(sum - total) <= 1e-9 * total))
+      h.fail("element reference lengths changed the chain");
+  }
+  for (double m : pendingTransfer_)
+    if (!(m >= 0.0) || !std::isfinite(m)) h.fail("pending transfer not a length");
+  setRefLengths(ref);
+  refCommitted_ = committed;
   for (auto* fr : {&frTrial_, &frCommitted_})
     for (auto& f : *fr) {
       f.s = h.finiteReal(), f.slipRate = h.finiteReal(), f.N1 = h.finiteReal();
@@ -347,8 +503,7 @@ void SlidingGroupState::load(HistoryReader& h) {
       f.state = static_cast<kernels::SliderStick>(h.integer(-1, 1));
     }
   for (size_t s = 0; s < n; ++s)
-    if (splitStart_[s] < 0.0 || splitStart_[s] > def_->refLength[trial_[s]] ||
-        !std::isfinite(splitStart_[s]))
+    if (splitStart_[s] < 0.0 || splitStart_[s] > ref_[trial_[s]] || !std::isfinite(splitStart_[s]))
       h.fail("slider split outside its element");
 }
 

@@ -32,7 +32,10 @@ class SlidingGroupState {
   // radiusFraction of its reference length) while approaching it during the step is handed over
   // to the neighbour there when the step is committed, and node and slider are placed
   // separationFraction of the reference length apart along the cable, the slider just inside
-  // its new element (the node moves, or the slider if the node is fixed). Not earlier:
+  // its new element (the node moves, or the slider if the node is fixed). A slider that has
+  // passed the node beside it (F12b: handoverGain from above the arrival band at the step's start
+  // to within it or below) is handed over without moving anything, the part's material going
+  // with it. Not earlier:
   // generalized-alpha evaluates this step's forces between its start and end, where the slider is
   // still inside its element. Returns whether x was moved.
   // immediate: hand over at the next search() instead of at commit, any number of times in a
@@ -40,12 +43,21 @@ class SlidingGroupState {
   bool arriveAtNodes(const Model& model, Eigen::VectorXd& x, double radiusFraction,
                      double separationFraction, bool immediate = false);
 
-  // Explicit integration (docs/formulation.md EX3), which has no iterations that would land a
-  // slider on a node: a free slider whose part to an end node of its element turns round over
-  // the motion dx from x, (d + delta) . d < 0 with d = x3 - xi, has passed that node and is
-  // handed over to the neighbour there at the next search() (at a chain end, or against another
-  // slider, it stays). Returns how many sliders passed a node.
+  // Explicit integration (docs/formulation.md EX3, F12b), which has no iterations that would
+  // land a slider on a node: a free slider has passed an end node of its element over the motion
+  // dx from x when its part to that node turns round, (d + delta) . d < 0 with d = x3 - xi (head
+  // on), or when the path through the node on the far side of the slider becomes the shorter,
+  // Delta = l_after - l_before turning negative within kPassageCapture L of the node (a node
+  // passing beside the slider). It is handed over to the neighbour there at the next search()
+  // (at a chain end, or against another slider, it stays), and the material of the part between
+  // node and slider where Delta = 0 goes with it to the neighbour (F12b). Returns how many
+  // sliders passed a node.
   int notePassages(const Eigen::VectorXd& x, const Eigen::VectorXd& dx);
+  // F12b: l_after - l_before of handing slider s over across end `end` (0, 1) of its active
+  // element at positions x: |x_a - x_i| + |x_s - x_c| - |x_a - x_s| - |x_i - x_c| with x_a the
+  // element's other end and x_c the neighbour's far node. Positive while node i is on the
+  // neighbour's side of the slider, to first order (x_i - x_s) . (t_c - t_a); NaN at a chain end.
+  double handoverGain(int slider, int end, const Eigen::VectorXd& x) const;
 
   // Driven sliders: all three dofs follow a moving prescribed path. Where such a slider is at
   // any time is given, so its node passages need no locating in time: passageFraction() leaves
@@ -69,6 +81,9 @@ class SlidingGroupState {
   void load(HistoryReader& h);
 
   const SlidingGroupDef& def() const { return *def_; }
+  // Reference length of chain element k: the definition's, changed only by the material a
+  // hand-over beside a node carries across it (F12b; the chain's total never changes).
+  double refLength(int k) const { return ref_[k]; }
   int activeElement(int slider) const { return trial_[slider]; }
   int committedActiveElement(int slider) const { return committed_[slider]; }
   void setActiveElement(int slider, int element);  // tests: put a slider in an element
@@ -108,11 +123,27 @@ class SlidingGroupState {
   const SlidingGroupDef* def_;
   std::vector<int> trial_, committed_;
   std::vector<double> committedDistance_[2];  // slider to end node 1 / 2 at the step start
-  std::vector<int> pendingHandover_;   // per slider: -1 across end 1, +1 across end 2, 0 none
-  std::vector<int> handoverAtCommit_;  // same, applied when the step is committed
-  std::vector<double> cumulativeRef_;  // reference arc length at each chain node
-  std::vector<char> driven_;           // per slider: follows a moving prescribed path
-  long handovers_ = 0;                 // nodes passed by committed steps
+  std::vector<double> committedGain_[2];      // handoverGain across end 1 / 2 at the step start
+  std::vector<double> transferAtCommit_;      // reference length carried by handoverAtCommit_
+  // F12b: whether slider s has passed end `end` beside the node at x (Delta <= the arrival band
+  // within kPassageCapture L), and the reference length that goes with it; false for sliders with
+  // friction (their split is history, FR16) and driven ones.
+  bool passedBeside(int slider, int end, const Eigen::VectorXd& x, double& transfer) const;
+  // Whether the line's two parts leave slider s at x at more than RG9's fold angle across end
+  // `end` (a line folded back on itself, such as a rope over a pulley, has no side to pass on).
+  bool foldOpen(int slider, int end, const Eigen::VectorXd& x) const;
+  // F12b: the reference length handed across with slider s over end `end` at x: what keeps the
+  // strain of the element it leaves (a -> slider -> i becomes the cable a -> i); where Delta = 0
+  // the element it joins gains the same length, and keeps its strain too.
+  double handoverTransfer(int slider, int end, const Eigen::VectorXd& x) const;
+  std::vector<int> pendingHandover_;        // per slider: -1 across end 1, +1 across end 2, 0 none
+  std::vector<double> pendingTransfer_;     // per slider: reference length carried across (F12b)
+  std::vector<double> ref_, refCommitted_;  // per element: reference length (trial, committed)
+  void setRefLengths(const std::vector<double>& ref);  // and the cumulative table
+  std::vector<int> handoverAtCommit_;                  // same, applied when the step is committed
+  std::vector<double> cumulativeRef_;                  // reference arc length at each chain node
+  std::vector<char> driven_;  // per slider: follows a moving prescribed path
+  long handovers_ = 0;        // nodes passed by committed steps
   // Friction history: the split the step starts from, per slider (reset to the uniform split
   // when the slider changes element), and the committed / converged-trial friction state.
   double uniformSplit(int slider, int element, const Eigen::VectorXd& x) const;

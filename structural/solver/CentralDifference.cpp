@@ -14,7 +14,7 @@ namespace chute {
 namespace {
 
 // Arrival radius of explicit hand-overs, a fraction of the element's reference length (EX3).
-constexpr double kExplicitArrival = 1e-3;
+constexpr double kExplicitArrival = 1e-6;
 
 std::string nodeLabel(const Model& m, int n) {
   return m.nodeName[n].empty() ? "node " + std::to_string(n + 1) : m.nodeName[n];

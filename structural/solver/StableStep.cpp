@@ -92,7 +92,7 @@ std::vector<double> nodalStiffnessBound(const Model& m, const MembraneBoundData&
     const auto& mat = m.materials[g.material];
     for (int k = 0; k < g.numElements(); ++k) {
       const int n1 = g.chain[k], n2 = g.chain[k + 1];
-      const double L = g.refLength[k];
+      const double L = st->refLength(k);
       const int s = st->sliderOfElement(k);
       if (s < 0) {
         addLine(n1, n2, lineStiffness(mat, L, (at(x, n2) - at(x, n1)).norm()));

@@ -60,7 +60,7 @@ kernels::FrictionSlidingResult frictionElement(
   const int k = st.activeElement(s);
   const auto* law = g.frictionOf(s);
   return kernels::frictionSlidingForce(pos(x, g.chain[k]), pos(x, g.chain[k + 1]),
-                                       pos(x, g.sliders[s]), g.refLength[k], st.splitStart(s),
+                                       pos(x, g.sliders[s]), st.refLength(k), st.splitStart(s),
                                        m.materials[g.material], *law, dt, t >= law->lockAt,
                                        withTangent, startSlip);
 }
@@ -149,11 +149,11 @@ SlidingGroupTerm::ActiveParts SlidingGroupTerm::activeParts(int element,
   const auto& mat = m_->materials[g.material];
   const Vec3 x1 = pos(x, g.chain[element]), x2 = pos(x, g.chain[element + 1]);
   if (s < 0) {
-    const auto c = kernels::cableForce(x1, x2, g.refLength[element], mat, false);
+    const auto c = kernels::cableForce(x1, x2, state_.refLength(element), mat, false);
     return {c.axialForce, c.strain, c.axialForce, c.strain};
   }
   const auto r =
-      kernels::slidingForce(x1, x2, pos(x, g.sliders[s]), g.refLength[element], mat, false);
+      kernels::slidingForce(x1, x2, pos(x, g.sliders[s]), state_.refLength(element), mat, false);
   return {r.axialForce, r.strain, r.axialForce, r.strain};
 }
 
@@ -166,11 +166,11 @@ void SlidingGroupTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
     const int n1 = g.chain[k], n2 = g.chain[k + 1];
     const int s = state_.sliderOfElement(k);
     if (s < 0) {  // inactive: a plain two-node cable (docs/formulation.md section 3)
-      assembleCable(*m_, n1, n2, g.refLength[k], g.material, p, out);
+      assembleCable(*m_, n1, n2, state_.refLength(k), g.material, p, out);
       continue;
     }
     const int n3 = g.sliders[s];
-    const double L = g.refLength[k];
+    const double L = state_.refLength(k);
     const Vec3 x1 = pos(p.x, n1), x2 = pos(p.x, n2), x3 = pos(p.x, n3);
     if (p.inertiaOnly) {
       if (mat.density > 0.0) {
@@ -224,8 +224,8 @@ void SlidingGroupTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
       // RG8: the whirl of an end node about the slider, damped within kWhirlDampingFraction L.
       kernels::WhirlDampingParams par;
       const double perLength = 0.5 * mat.density * mat.area;
-      par.endMass[0] = k > 0 ? perLength * g.refLength[k - 1] : 0.0;
-      par.endMass[1] = k + 1 < g.numElements() ? perLength * g.refLength[k + 1] : 0.0;
+      par.endMass[0] = k > 0 ? perLength * state_.refLength(k - 1) : 0.0;
+      par.endMass[1] = k + 1 < g.numElements() ? perLength * state_.refLength(k + 1) : 0.0;
       par.sliderMass = perLength * L;
       par.explicitStep = p.explicitStep;
       Vec9 xe, ve;
@@ -270,11 +270,11 @@ void SlidingGroupTerm::addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd
     const int n1 = g.chain[k], n2 = g.chain[k + 1];
     const int s = state_.sliderOfElement(k);
     if (s < 0) {
-      cableEnergy(*m_, n1, n2, g.refLength[k], g.material, x, v, e);
+      cableEnergy(*m_, n1, n2, state_.refLength(k), g.material, x, v, e);
       continue;
     }
     const int n3 = g.sliders[s];
-    const double L = g.refLength[k];
+    const double L = state_.refLength(k);
     const Vec3 x1 = pos(x, n1), x2 = pos(x, n2), x3 = pos(x, n3);
     e.strain += g.frictionOf(s) ? frictionElement(*m_, state_, s, x, committedT_, 0.0, false).energy
                                 : kernels::slidingForce(x1, x2, x3, L, mat, false).energy;

@@ -4,6 +4,11 @@
 // assembled residual.
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+
+#include "kernels/CableKernel.hpp"
+#include "kernels/SlidingCableKernel.hpp"
+#include "model/History.hpp"
 #include "model/SlidingGroupState.hpp"
 #include "solver/StructuralSystem.hpp"
 #include "support/FiniteDifference.hpp"
@@ -132,6 +137,160 @@ TEST(SlidingGroupSearch, TrackerLocatesEveryNodeCrossingInBothDirections) {
               path.size(), events, handovers);
   EXPECT_EQ(handovers, 2 * (n - 1));
   EXPECT_EQ(events, 2 * (n - 1));
+}
+
+namespace {
+// A line folded at a slider: end node a = (0, 0, 2), slider at the origin, the line leaving it
+// along t_c = (sin 60, 0, -cos 60); node i, the slider's element's lower end, a hair from the
+// slider. Chain a - i - c with the slider in element 0 (a, i); element 1 runs from i to c.
+struct Fold {
+  Model model;
+  Vec3 a{0, 0, 2}, s{0, 0, 0}, tc{std::sin(M_PI / 3), 0, -std::cos(M_PI / 3)};
+  Fold() {
+    model.materials.push_back({1e5, 1e-2, 0.5, true, 0.0});
+    SlidingGroupDef g;
+    g.material = 0;
+    g.chain = {model.addNode(a), model.addNode(Vec3::Zero()), model.addNode(Vec3::Zero())};
+    g.sliders.push_back(model.addNode(s));
+    // Both elements stretched by 1e-3 with node i near the slider.
+    g.refLength = {2.002 / 1.001, 1.5 / 1.001};
+    g.initialActive.push_back(0);
+    model.groups.push_back(g);
+  }
+  // Node i at distance r from the slider, at angle phi from t_c towards t_a (phi = 0: on the
+  // lower line; the bisector of the kink at phi = 60 deg); c stays on the lower line.
+  Eigen::VectorXd at(double r, double phi) const {
+    Eigen::VectorXd x(3 * model.numNodes());
+    const Vec3 ta = (a - s).normalized();
+    const Vec3 n = tc.cross(ta).normalized();  // the plane of the fold's normal
+    const Vec3 dir = Eigen::AngleAxisd(phi, n) * tc;
+    x << a, s + r * dir, s + 1.5 * tc, s;
+    return x;
+  }
+};
+
+// Strains of the group's two elements at x, in whatever topology st has.
+std::array<double, 2> strains(const SlidingGroupState& st, const Eigen::VectorXd& x,
+                              const kernels::LineMaterial& mat) {
+  const auto& g = st.def();
+  auto p = [&](int n) { return Vec3(x.segment<3>(3 * n)); };
+  std::array<double, 2> out{};
+  for (int k = 0; k < 2; ++k) {
+    const int sl = st.sliderOfElement(k);
+    out[k] =
+        sl < 0 ? kernels::cableForce(p(g.chain[k]), p(g.chain[k + 1]), st.refLength(k), mat, false)
+                     .strain
+               : kernels::slidingForce(p(g.chain[k]), p(g.chain[k + 1]), p(g.sliders[sl]),
+                                       st.refLength(k), mat, false)
+                     .strain;
+  }
+  return out;
+}
+}  // namespace
+
+TEST(SlidingGroupHandover, ANodePassingBesideTheSliderTakesItsPartsMaterialAcross) {
+  // F12b: node i swings round the slider at 2e-3 (of 2 and 1.5 long elements) from just below
+  // the kink's bisector (phi = 55 deg) to just above it (65 deg) in one motion: the part between
+  // them never turns round, the old rule never handed over.
+  Fold f;
+  const auto& mat = f.model.materials[0];
+  SlidingGroupState st(f.model.groups[0]);
+  const double r = 2e-3;
+  const Eigen::VectorXd x0 = f.at(r, 55 * M_PI / 180), x1 = f.at(r, 65 * M_PI / 180);
+  st.commit(x0);
+  EXPECT_GT(st.handoverGain(0, 1, x0), 0.0);
+  EXPECT_LT(st.handoverGain(0, 1, x1), 0.0);
+  const Eigen::VectorXd xb = f.at(r, 60 * M_PI / 180);  // on the bisector: Delta = 0
+  std::printf("Delta at 55 / 60 / 65 deg: %.3e / %.3e / %.3e\n", st.handoverGain(0, 1, x0),
+              st.handoverGain(0, 1, xb), st.handoverGain(0, 1, x1));
+  EXPECT_NEAR(st.handoverGain(0, 1, xb), 0.0, r * r);  // the bisector is Delta = 0 to first order
+  const auto before = strains(st, xb, mat);
+  // Explicit: the step's motion passes Delta = 0 (positions linear over it: close to, not on,
+  // the circle; the transfer is the part's material where Delta = 0).
+  const Eigen::VectorXd dx = x1 - x0;
+  EXPECT_EQ(st.notePassages(x0, dx), 1);
+  st.search(x1, SliderSearch::MaterialCoordinate);
+  EXPECT_EQ(st.activeElement(0), 1);
+  const double moved = 2.0 - st.refLength(0);
+  EXPECT_NEAR(st.refLength(0) + st.refLength(1), 3.502 / 1.001, 1e-15);
+  // On the bisector the element leaving loses 3r/2 of length (the part r, and a -> i is r/2
+  // shorter than a -> slider): 3r/2 / (1 + strain) of material, r cos 5 deg where the chord of
+  // the motion meets the bisector.
+  EXPECT_NEAR(moved, 1.5 * r * std::cos(5 * M_PI / 180) / 1.001, 1e-3 * r);
+  // Both strains across the hand-over, at the bisector: changed by far less than the part's
+  // length over the element (r / L = 1e-3) would have.
+  const auto after = strains(st, xb, mat);
+  std::printf("strains at the bisector before %.6e %.6e, after %.6e %.6e; material moved %.6e\n",
+              before[0], before[1], after[0], after[1], moved);
+  EXPECT_NEAR(after[0], before[0], 1e-5);
+  EXPECT_NEAR(after[1], before[1], 1e-5);
+  // Committed, saved and loaded: the lengths come back; a forged set that changes the chain's
+  // total is refused.
+  st.commit(x1);
+  History h;
+  st.save(h);
+  SlidingGroupState back(f.model.groups[0]);
+  HistoryReader rd(h, "rope");
+  back.load(rd);
+  EXPECT_EQ(back.refLength(0), st.refLength(0));
+  EXPECT_EQ(back.refLength(1), st.refLength(1));
+  auto reals = h.reals();
+  bool forged = false;
+  for (auto& v : reals)
+    if (v == st.refLength(1)) v *= 1.01, forged = true;
+  ASSERT_TRUE(forged);
+  const History bad = History::fromRecords(reals, h.ints());
+  SlidingGroupState refused(f.model.groups[0]);
+  HistoryReader rb(bad, "rope");
+  EXPECT_THROW(refused.load(rb), HistoryError);
+}
+
+TEST(SlidingGroupHandover, ImplicitUpdatesAreCutWhereTheNodePassesBeside) {
+  // The same passage as a Newton update: cut where Delta is half the arrival band, and there the
+  // slider is handed over (at once, or at commit), with the same material.
+  Fold f;
+  SlidingGroupState st(f.model.groups[0]);
+  const double r = 2e-3;
+  const Eigen::VectorXd x0 = f.at(r, 50 * M_PI / 180), x1 = f.at(r, 70 * M_PI / 180);
+  st.commit(x0);
+  const double frac = st.passageFraction(x0, x1 - x0);
+  ASSERT_LT(frac, 1.0);
+  Eigen::VectorXd x = x0 + frac * (x1 - x0);
+  const double band = kernels::kArrivalFraction * 2.0;
+  std::printf("cut at %.4f of the update: Delta %.3e (band %.1e)\n", frac, st.handoverGain(0, 1, x),
+              band);
+  EXPECT_LE(std::abs(st.handoverGain(0, 1, x)), band);
+  const Eigen::VectorXd xAtCut = x;
+  EXPECT_TRUE(
+      st.arriveAtNodes(f.model, x, kernels::kArrivalFraction, kernels::kSeparationFraction));
+  EXPECT_EQ(x, xAtCut);  // nothing moved: no node placed, no slider moved
+  st.commit(x);
+  EXPECT_EQ(st.activeElement(0), 1);
+  EXPECT_NEAR(2.002 / 1.001 - st.refLength(0), 1.5 * r * std::cos(10 * M_PI / 180) / 1.001,
+              1e-3 * r);
+}
+
+TEST(SlidingGroupHandover, AFoldedLineHasNoPassageBesideItsNodes) {
+  // A line folded back on itself at the slider (a rope over a pulley, t_a = t_c): Delta is ~0
+  // wherever the node is; without a change of sign from clearly positive nothing is handed over.
+  Model model;
+  model.materials.push_back({1e5, 1e-2, 0.5, true, 0.0});
+  SlidingGroupDef g;
+  g.material = 0;
+  g.chain = {model.addNode(Vec3(0.01, 0, -2)), model.addNode(Vec3::Zero()),
+             model.addNode(Vec3(-0.01, 0, -2))};
+  g.sliders.push_back(model.addNode(Vec3::Zero()));
+  g.refLength = {2.0, 2.0};
+  g.initialActive.push_back(0);
+  model.groups.push_back(g);
+  SlidingGroupState st(model.groups[0]);
+  Eigen::VectorXd x(12);
+  x << 0.01, 0, -2, -0.005, 0, -0.05, -0.01, 0, -2, 0, 0, 0;  // node i 0.05 below, on c's side
+  st.commit(x);
+  Eigen::VectorXd dx = Eigen::VectorXd::Zero(12);
+  dx[3] = 0.01;  // node i moves across to a's side, 0.05 below the slider
+  EXPECT_EQ(st.notePassages(x, dx), 0);
+  EXPECT_EQ(st.passageFraction(x, dx), 1.0);
 }
 
 TEST(SlidingGroupSearch, RevertRestoresTheCommittedActiveElement) {
