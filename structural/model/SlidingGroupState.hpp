@@ -87,8 +87,11 @@ class SlidingGroupState {
   int activeElement(int slider) const { return trial_[slider]; }
   int committedActiveElement(int slider) const { return committed_[slider]; }
   void setActiveElement(int slider, int element);  // tests: put a slider in an element
-  bool isActive(int element) const;                // active for some slider (trial state)
-  int sliderOfElement(int element) const;          // -1 if inactive
+  // The trial active element of a slider, set where it is known to be (EM12's condensed chain);
+  // commit() counts the nodes it passed.
+  void moveTo(int slider, int element) { trial_[slider] = element; }
+  bool isActive(int element) const;        // active for some slider (trial state)
+  int sliderOfElement(int element) const;  // -1 if inactive
 
   // Reference arc length from the chain's first node to the slider (uniform strain in the
   // active element: the slider splits its reference length as l1 : l2).

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "solver/EnergyMomentumStep.hpp"
+#include "terms/SlidingGroupTerm.hpp"
 
 namespace chute {
 
@@ -32,6 +33,8 @@ GeneralizedAlpha::GeneralizedAlpha(StructuralSystem& sys, double rhoInf, AlphaSc
       emDissipation_(emDissipation) {
   // The discrete gradient's tangent is not symmetric (EM5): LU from the start.
   if (scheme == AlphaScheme::EnergyMomentum) newton_.linearSolver().useLU();
+  // EM12: massless chains are condensed to one polyline each (terms/SlidingGroupTerm.hpp).
+  for (auto* g : sys.slidingGroups()) g->condenseChain(scheme == AlphaScheme::EnergyMomentum);
   eq_.atEnd = p_.alphaF == 0.0;
 }
 

@@ -4,7 +4,9 @@
 #include <cmath>
 #include <initializer_list>
 #include <limits>
+#include <stdexcept>
 
+#include "kernels/PolylineDiscreteGradient.hpp"
 #include "kernels/SliderFriction.hpp"
 #include "kernels/SliderWhirlDamping.hpp"
 #include "kernels/SlidingCableKernel.hpp"
@@ -31,6 +33,33 @@ SlidingGroupTerm::SlidingGroupTerm(const Model& m, int group, SliderSearch searc
         c.velocity.squaredNorm() > 0.0 || (c.amplitude.squaredNorm() > 0.0 && c.frequency > 0.0);
     state_.setDriven(static_cast<int>(s), c.fixed[0] && c.fixed[1] && c.fixed[2] && moves);
   }
+  // EM12's conditions: massless, frictionless, more than one element, and inner chain nodes that
+  // are free, without mass and in no other element or load.
+  const auto& g = m.groups[group];
+  condensable_ = m.materials[g.material].density == 0.0 && g.numElements() > 1;
+  for (size_t s = 0; s < g.sliders.size(); ++s)
+    condensable_ = condensable_ && !g.frictionOf(static_cast<int>(s));
+  if (condensable_) {
+    std::vector<int> uses(m.numNodes(), 0);
+    for (const auto& c : m.cables) ++uses[c.a], ++uses[c.b];
+    for (const auto& e : m.membranes)
+      for (int i = 0; i < e.numNodes; ++i) ++uses[e.nodes[i]];
+    for (const auto& other : m.groups) {
+      for (int n : other.chain) ++uses[n];
+      for (int n : other.sliders) ++uses[n];
+    }
+    for (const auto& d : m.drags)
+      if (d.lineSet == g.set)
+        condensable_ = false;
+      else
+        for (const auto& e : d.edges) ++uses[e[0]], ++uses[e[1]];
+    for (int k = 1; k < g.numElements() && condensable_; ++k) {
+      const int n = g.chain[k];
+      const auto& c = m.constraint[n];
+      condensable_ =
+          uses[n] == 1 && !(m.pointMass[n] > 0.0) && !c.fixed[0] && !c.fixed[1] && !c.fixed[2];
+    }
+  }
 }
 
 void SlidingGroupTerm::addCouplings(std::vector<std::vector<int>>& cliques) const {
@@ -40,6 +69,136 @@ void SlidingGroupTerm::addCouplings(std::vector<std::vector<int>>& cliques) cons
   for (int k = 0; k < g.numElements(); ++k) cliques.push_back({g.chain[k], g.chain[k + 1]});
   for (int s : g.sliders)
     for (int k = 0; k < g.numElements(); ++k) cliques.push_back({g.chain[k], g.chain[k + 1], s});
+  if (condensable_) {
+    // EM12: the ends and the sliders all couple, and every inner node to them.
+    std::vector<int> path = {g.chain.front(), g.chain.back()};
+    path.insert(path.end(), g.sliders.begin(), g.sliders.end());
+    cliques.push_back(path);
+    for (int k = 1; k < g.numElements(); ++k) {
+      auto with = path;
+      with.push_back(g.chain[k]);
+      cliques.push_back(with);
+    }
+  }
+}
+
+std::vector<int> SlidingGroupTerm::chainPath(const Eigen::VectorXd& x) const {
+  const auto& g = state_.def();
+  std::vector<std::pair<double, int>> order;
+  for (size_t s = 0; s < g.sliders.size(); ++s)
+    order.emplace_back(state_.materialCoordinate(static_cast<int>(s), x), g.sliders[s]);
+  std::stable_sort(order.begin(), order.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<int> path = {g.chain.front()};
+  for (const auto& o : order) path.push_back(o.second);
+  path.push_back(g.chain.back());
+  return path;
+}
+
+double SlidingGroupTerm::chainLength() const {
+  double L = 0.0;
+  for (int k = 0; k < state_.def().numElements(); ++k) L += state_.refLength(k);
+  return L;
+}
+
+namespace {
+// Scatter of a condensed chain's rows: nodes `ids`, residual r and matrix J (3 per node), through
+// the one assembly path with a fixed size.
+template <int N>
+void addFixed(SystemAssembler& out, const std::vector<int>& ids, const Eigen::VectorXd& r,
+              const Eigen::MatrixXd* J) {
+  std::array<int, N> a;
+  std::copy(ids.begin(), ids.end(), a.begin());
+  const Eigen::Matrix<double, 3 * N, 1> rf = r;
+  if (!J) return out.add<N>(a, rf, nullptr);
+  const Eigen::Matrix<double, 3 * N, 3 * N> Jf = *J;
+  out.add<N>(a, rf, &Jf);
+}
+void addChainRows(SystemAssembler& out, const std::vector<int>& ids, const Eigen::VectorXd& r,
+                  const Eigen::MatrixXd* J) {
+  switch (ids.size()) {
+    case 2:
+      return addFixed<2>(out, ids, r, J);
+    case 3:
+      return addFixed<3>(out, ids, r, J);
+    case 4:
+      return addFixed<4>(out, ids, r, J);
+    case 5:
+      return addFixed<5>(out, ids, r, J);
+    case 6:
+      return addFixed<6>(out, ids, r, J);
+    case 7:
+      return addFixed<7>(out, ids, r, J);
+    case 8:
+      return addFixed<8>(out, ids, r, J);
+    default:
+      throw std::logic_error(
+          "condensed chain with more than 5 sliders (the case reader refuses it)");
+  }
+}
+}  // namespace
+
+void SlidingGroupTerm::assembleCondensed(const EvalPoint& p, SystemAssembler& out) {
+  // EM12: the chain is one uniform-strain polyline from end to end through its sliders in their
+  // order at the step's start; its discrete gradient between x_n and x_{n+1} = 2 x_mid - x_n.
+  const auto& g = state_.def();
+  const auto& mat = m_->materials[g.material];
+  const bool wantJ = out.wantMatrix();
+  const Eigen::VectorXd& x0 = *p.xStart;
+  const std::vector<int> path = chainPath(x0);
+  const int n = static_cast<int>(path.size());
+  std::vector<Vec3> P0(n), P1(n);
+  for (int i = 0; i < n; ++i) {
+    P0[i] = pos(x0, path[i]);
+    P1[i] = 2.0 * pos(p.x, path[i]) - P0[i];
+  }
+  const double L = chainLength();
+  ++out.work().sliding;
+  const auto dg = kernels::polylineDiscreteGradient(P0, P1, L, mat, p.emDissipation, wantJ);
+  Eigen::MatrixXd J;
+  if (wantJ) J = (2.0 * p.cx) * dg.dForce;  // d x_{n+1} / d x_mid = 2
+  addChainRows(out, path, dg.force, wantJ ? &J : nullptr);
+  // Inner nodes on the path at x_{n+1}, at their material coordinates: r = k (x - X(P)), a
+  // stiffness k = E A / L to scale the rows like the chain's own.
+  const double k = mat.E * mat.area / L;
+  double S = 0.0;
+  for (int j = 1; j < g.numElements(); ++j) {
+    S += state_.refLength(j - 1);
+    Eigen::MatrixXd dX;
+    const Vec3 X = kernels::polylinePoint(P1, S / L, wantJ ? &dX : nullptr);
+    std::vector<int> ids = path;
+    ids.push_back(g.chain[j]);
+    Eigen::VectorXd r = Eigen::VectorXd::Zero(3 * (n + 1));
+    r.segment<3>(3 * n) = k * (2.0 * pos(p.x, g.chain[j]) - pos(x0, g.chain[j]) - X);
+    Eigen::MatrixXd Jj;
+    if (wantJ) {
+      Jj = Eigen::MatrixXd::Zero(3 * (n + 1), 3 * (n + 1));
+      Jj.block<3, 3>(3 * n, 3 * n) = k * (2.0 * p.cx) * Eigen::Matrix3d::Identity();
+      Jj.block(3 * n, 0, 3, 3 * n) = -k * (2.0 * p.cx) * dX;
+    }
+    addChainRows(out, ids, r, wantJ ? &Jj : nullptr);
+  }
+}
+
+void SlidingGroupTerm::placeSlidersOnChain(const Eigen::VectorXd& x) {
+  // The sliders' material coordinates on the condensed chain (uniform strain: arc length along
+  // the path over its length, times L) give their active elements.
+  const auto& g = state_.def();
+  const std::vector<int> path = chainPath(x);
+  double total = 0.0;
+  std::vector<double> arc = {0.0};
+  for (size_t i = 0; i + 1 < path.size(); ++i)
+    arc.push_back(total += (pos(x, path[i + 1]) - pos(x, path[i])).norm());
+  const double L = chainLength();
+  for (size_t i = 1; i + 1 < path.size(); ++i) {
+    const int s = static_cast<int>(std::find(g.sliders.begin(), g.sliders.end(), path[i]) -
+                                   g.sliders.begin());
+    const double S = total > 0.0 ? L * arc[i] / total : 0.0;
+    int k = 0;
+    double at = state_.refLength(0);
+    while (k + 1 < g.numElements() && at <= S) at += state_.refLength(++k);
+    state_.moveTo(s, k);
+  }
 }
 
 bool SlidingGroupTerm::symmetricJacobian() const {
@@ -101,6 +260,7 @@ void addSlackPartTangents(const kernels::FrictionSlidingResult& res,
 void SlidingGroupTerm::commit(const CommitPoint& c) {
   const Eigen::VectorXd& x = c.x;
   state_.ensureSplits(x);
+  if (condensed_) placeSlidersOnChain(x);  // EM12: no hand-over events, the path says where
   const auto& g = state_.def();
   for (size_t s = 0; s < g.sliders.size(); ++s) {
     const int si = static_cast<int>(s);
@@ -162,6 +322,7 @@ void SlidingGroupTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
   const auto& mat = m_->materials[g.material];
   const bool wantJ = out.wantMatrix();
   floor_ = 0.0;
+  if (condensed_ && p.xStart) return assembleCondensed(p, out);
   for (int k = 0; k < g.numElements(); ++k) {
     const int n1 = g.chain[k], n2 = g.chain[k + 1];
     const int s = state_.sliderOfElement(k);
@@ -220,7 +381,7 @@ void SlidingGroupTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
       J = p.cx * res.stiffness;
       if (wantJ) addSlackTangent<3>(res, mat, L, {0, 2, 1}, p.cx, J);  // path 1 -> slider -> 2
     }
-    if (mat.density > 0.0 && p.inertia && !g.frictionOf(s) && !p.xStart) {
+    if (mat.density > 0.0 && p.inertia && !g.frictionOf(s)) {
       // RG8: the whirl of an end node about the slider, damped within kWhirlDampingFraction L.
       kernels::WhirlDampingParams par;
       const double perLength = 0.5 * mat.density * mat.area;

@@ -25,18 +25,19 @@ class SlidingGroupTerm final : public Term, public EventSource {
   // cuts the step to end where they meet (passageFraction); at the end of that step the slider is
   // placed on the node and handed over to the neighbouring element (onConverged).
   double passageFraction(const Eigen::VectorXd& x, const Eigen::VectorXd& dx) override {
-    return state_.passageFraction(x, dx);
+    return condensed_ ? 1.0 : state_.passageFraction(x, dx);
   }
   bool onConverged(Eigen::VectorXd& x) override {
-    return state_.arriveAtNodes(*m_, x, kernels::kArrivalFraction, kernels::kSeparationFraction);
+    return !condensed_ &&
+           state_.arriveAtNodes(*m_, x, kernels::kArrivalFraction, kernels::kSeparationFraction);
   }
   bool drivesKinks() const override { return state_.hasDriven(); }
   int crossDriven(const Eigen::VectorXd& from, Eigen::VectorXd& to) override {
     return state_.crossDriven(*m_, from, to, kernels::kSeparationFraction);
   }
   bool crossNow(Eigen::VectorXd& x) override {
-    return state_.arriveAtNodes(*m_, x, kernels::kArrivalFraction, kernels::kSeparationFraction,
-                                true);
+    return !condensed_ && state_.arriveAtNodes(*m_, x, kernels::kArrivalFraction,
+                                               kernels::kSeparationFraction, true);
   }
   double displacementFloor() const override { return floor_; }
   EventSource* events() override { return this; }
@@ -46,6 +47,14 @@ class SlidingGroupTerm final : public Term, public EventSource {
   void revert() override { state_.revert(); }
   void save(History& h) const override;
   void load(HistoryReader& h) override;
+  // EM12: a chain of more than one element without mass or friction whose inner nodes nothing
+  // else touches (no other element, point mass, drag or support) is, for the energy-momentum
+  // integrator, one uniform-strain polyline through its sliders (a massless frictionless line
+  // has one tension); its inner nodes are placed along it at their material coordinates, and
+  // sliders change elements without hand-over events.
+  bool condensable() const { return condensable_; }
+  void condenseChain(bool on) { condensed_ = on && condensable_; }
+  bool condensed() const { return condensed_; }
   const SlidingGroupState& state() const { return state_; }
   SlidingGroupState& state() { return state_; }
 
@@ -65,6 +74,12 @@ class SlidingGroupTerm final : public Term, public EventSource {
   double committedT_ = 0.0;
   Eigen::VectorXd committedX_;
   double floor_ = 0.0;  // round-off floor of the last assembly (FR16)
+  bool condensable_ = false, condensed_ = false;
+  // EM12: the path (end, sliders in order along the chain at x, end) and its reference length.
+  std::vector<int> chainPath(const Eigen::VectorXd& x) const;
+  double chainLength() const;
+  void assembleCondensed(const EvalPoint& p, SystemAssembler& out);
+  void placeSlidersOnChain(const Eigen::VectorXd& x);  // active elements from the path at x
 };
 
 }  // namespace chute

@@ -3,6 +3,7 @@
 
 #include "case/sections/SectionLookup.hpp"
 #include "case/sections/Sections.hpp"
+#include "terms/SlidingGroupTerm.hpp"
 
 namespace chute::caseio {
 
@@ -18,16 +19,20 @@ constexpr double kLeastRelativeStep = 1e-15;
 // neither energy nor, for stiff parts, stability. Refused rather than run silently otherwise.
 void checkEnergyMomentumModel(const Model& m, TomlTable& s) {
   std::string what;
-  for (const auto& g : m.groups) {
-    if (m.materials[g.material].density > 0.0)
-      what = "sliding group '" + g.name + "' with mass (configuration-dependent mass, F10)";
-    else if (g.numElements() > 1)
-      what = "sliding group '" + g.name +
-             "' of more than one element (a slider's hand-over at a node: its step fails)";
+  for (size_t gi = 0; gi < m.groups.size() && what.empty(); ++gi) {
+    const auto& g = m.groups[gi];
     for (size_t k = 0; k < g.sliders.size() && what.empty(); ++k)
       if (g.frictionOf(static_cast<int>(k)))
         what = "friction, lock or one-way flow at the sliders of sliding group '" + g.name + "'";
-    if (!what.empty()) break;
+    // A massless chain of several elements is condensed to one polyline (EM12): its inner nodes
+    // must be the chain's alone; with mass the hand-overs are located as events (EM13).
+    if (what.empty() && m.materials[g.material].density == 0.0 && g.numElements() > 1 &&
+        !SlidingGroupTerm(m, static_cast<int>(gi), SliderSearch::MaterialCoordinate).condensable())
+      what = "a massless sliding group '" + g.name +
+             "' of several elements whose inner nodes carry something else (a point mass, "
+             "another element, drag or a support: EM12 needs them to be the line's alone)";
+    if (what.empty() && g.sliders.size() > 5)
+      what = "more than 5 sliders on sliding group '" + g.name + "'";
   }
   if (!what.empty())
     s.fail("integrator",
