@@ -54,8 +54,10 @@ std::map<std::string, std::string> settingsOfEveryScheme(const SolverSpec& sv, c
 // energy_momentum's dissipation joins them (absent from other runs' checkpoints).
 std::map<std::string, std::string> solverSettings(const SolverSpec& sv, const Model& m) {
   auto out = settingsOfEveryScheme(sv, m);
-  if (sv.integrator == "energy_momentum")
+  if (sv.integrator == "energy_momentum") {
     out["solver.em_dissipation"] = fmt::format("{}", sv.emDissipation);
+    if (sv.emOrder != 2) out["solver.em_order"] = fmt::format("{}", sv.emOrder);
+  }
   return out;
 }
 
@@ -150,7 +152,7 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
   StructuralSystem sys(m, sv.search);
   NewtonSettings ns = newtonSettings(sv, m);
   ns.verbose = options.verboseNewton;
-  GeneralizedAlpha integrator(sys, sv.rhoInf, alphaScheme(sv), ns, sv.emDissipation);
+  GeneralizedAlpha integrator(sys, sv.rhoInf, alphaScheme(sv), ns, sv.emDissipation, sv.emOrder);
   TimeStepper stepper(sys, integrator, sv.dt, sv.dtMin);
   const bool dynamic = sv.type != "static";
   std::optional<CentralDifference> explicitCd;

@@ -49,6 +49,7 @@ struct SolverSpec {
   // or "generalized_alpha" (Chung-Hulbert), "energy_momentum", "central_difference"
   std::string integrator = "bossak";
   double emDissipation = 0.0;  // energy_momentum's energy-decaying parameter chi (EM8)
+  int emOrder = 2;             // energy_momentum: 2, or 4 by a symmetric composition (EM14)
   // central_difference only: fraction of the stable step taken, mass scaling to a target step
   // (0: off), stiffness-proportional damping beta (0: off).
   double safetyFactor = 0.9, targetDt = 0.0, stiffnessDamping = 0.0;

@@ -53,8 +53,8 @@ CouplingInterface::CouplingInterface(CaseSpec spec, const std::vector<std::strin
   loads_ = loads.get();
   extra.push_back(std::move(loads));
   sys_ = std::make_unique<StructuralSystem>(m, sv.search, std::move(extra));
-  integrator_ = std::make_unique<GeneralizedAlpha>(*sys_, sv.rhoInf, alphaScheme(sv),
-                                                   newtonSettings(sv, m), sv.emDissipation);
+  integrator_ = std::make_unique<GeneralizedAlpha>(
+      *sys_, sv.rhoInf, alphaScheme(sv), newtonSettings(sv, m), sv.emDissipation, sv.emOrder);
   stepper_ = std::make_unique<TimeStepper>(*sys_, *integrator_, sv.dt, sv.dtMin);
   // preCICE initialize(): the initial state at rest (or moving as the case prescribes), its
   // consistent acceleration under the loads known now (none from the flow yet).

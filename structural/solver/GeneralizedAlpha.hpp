@@ -31,9 +31,10 @@ struct GeneralizedAlphaParams {
 
 class GeneralizedAlpha {
  public:
-  // emDissipation: the energy-decaying parameter chi of EnergyMomentum (EM8; 0: conserving).
+  // emDissipation: the energy-decaying parameter chi of EnergyMomentum (EM8; 0: conserving);
+  // emOrder: 2, or 4 by the symmetric composition of three EnergyMomentum steps (EM14).
   GeneralizedAlpha(StructuralSystem& sys, double rhoInf, AlphaScheme scheme, NewtonSettings newton,
-                   double emDissipation = 0.0);
+                   double emDissipation = 0.0, int emOrder = 2);
 
   // Initial state at rest or moving: positions from the model, prescribed velocities.
   StructuralState initialState() const;
@@ -58,6 +59,7 @@ class GeneralizedAlpha {
   GeneralizedAlphaParams p_;
   Newton newton_;
   AlphaScheme scheme_;
+  int emOrder_ = 2;
   double emDissipation_;
   KeptEquilibrium eq_;
 };
