@@ -1,8 +1,8 @@
-// The half-scale C-9 with its slider (cases/c9_slider.toml) through its first hand-overs: the
-// first second of the 5 s run. Grommets pass line nodes inside the Newton solve
-// (slider_events = false), so no step is cut; the slider reefs the canopy, and the canopy keeps
-// opening while the slider comes down the lines. With located crossings it collapsed in bursts
-// from 0.8 s (docs/applications/c9.md).
+// The half-scale C-9 with its slider (cases/c9_slider.toml, central differences as shipped)
+// through its first hand-overs: the first second of the 5 s run. Grommets pass line nodes
+// (head on or beside them, F12b) in the step where they do, so no step is cut; the slider reefs
+// the canopy, and the canopy keeps opening while the slider comes down the lines
+// (docs/applications/c9.md).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -57,8 +57,8 @@ TEST(C9Slider, ReefsAndComesDownTheLinesWithoutCuttingSteps) {
       slider.wallTime, r75, open75, r100, least, at(slider, "slider_0.s", 1.0));
   EXPECT_EQ(slider.eventRetries, 0);
   EXPECT_GE(handovers, 56);                       // past the first two line nodes on every line
-  EXPECT_LT(r75, 0.8 * open75);                   // reefed: 2.62 against 3.86 ft when shipped
-  EXPECT_GT(r100, r75 + 0.4);                     // still opening: 3.20 ft at 1.0 s when shipped
+  EXPECT_LT(r75, 0.8 * open75);                   // reefed: 2.54 against 3.78 ft when shipped
+  EXPECT_GT(r100, r75 + 0.4);                     // still opening: 3.21 ft at 1.0 s when shipped
   EXPECT_GE(least, r75 - 1e-3);                   // and never closing again on the way
   EXPECT_GT(at(slider, "slider_0.s", 1.0), 3.0);  // the grommet came down the line
 }
