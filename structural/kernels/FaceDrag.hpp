@@ -30,4 +30,13 @@ FaceDrag<NumNodes> faceDrag(const std::array<Eigen::Vector3d, NumNodes>& x,
                             const Eigen::Vector3d& wind, double coefficient /* (1/2) rho_air Cd */,
                             bool steadySubtracted, bool withTangent);
 
+// Residual-only faceDrag: the residual r = -f / N that every node of the face gets (FD1), the same
+// operations as faceDrag's residual and so bit for bit each of its node segments, without its
+// two tangent matrices (the explicit path evaluates it every step on every canopy face).
+template <int NumNodes>
+Eigen::Vector3d faceDragNodeResidual(const std::array<Eigen::Vector3d, NumNodes>& x,
+                                     const std::array<Eigen::Vector3d, NumNodes>& v,
+                                     const Eigen::Vector3d& wind, double coefficient,
+                                     bool steadySubtracted);
+
 }  // namespace chute::kernels

@@ -3,6 +3,41 @@
 namespace chute::kernels {
 
 // ---- line drag ---------------------------------------------------------------------------------
+namespace {
+// What residual and tangents share (LD1): the element's length l and direction e, the projector
+// P = I - e e^T, the relative velocity v and its normal part u = P v with |u| = s, and the node
+// residual (c l / 2) |u| u. none: a zero-length element or no drag, which carries nothing.
+struct LineFlow {
+  bool none = true;
+  Vec3 e, v, u, r;
+  Mat3 P;
+  double l = 0.0, s = 0.0;
+};
+
+LineFlow lineFlow(const Vec3& xa, const Vec3& xb, const Vec3& va, const Vec3& vb, const Vec3& wind,
+                  double coefficient) {
+  LineFlow f;
+  const Vec3 d = xb - xa;
+  f.l = d.norm();
+  if (f.l == 0.0 || coefficient == 0.0) return f;
+  f.none = false;
+  f.e = d / f.l;
+  f.P = Mat3::Identity() - f.e * f.e.transpose();
+  f.v = 0.5 * (va + vb) - wind;
+  f.u = f.P * f.v;  // normal relative velocity
+  f.s = f.u.norm();
+  // Residual (minus the drag force) on each node: (c l / 2) |u| u.
+  f.r = 0.5 * coefficient * f.l * f.s * f.u;
+  return f;
+}
+}  // namespace
+
+Vec3 lineDragNodeResidual(const Vec3& xa, const Vec3& xb, const Vec3& va, const Vec3& vb,
+                          const Vec3& wind, double coefficient) {
+  const LineFlow f = lineFlow(xa, xb, va, vb, wind, coefficient);
+  return f.none ? Vec3::Zero() : f.r;
+}
+
 LineDrag lineDrag(const Vec3& xa, const Vec3& xb, const Vec3& va, const Vec3& vb, const Vec3& wind,
                   double coefficient, bool withTangent) {
   LineDrag out;
@@ -11,17 +46,12 @@ LineDrag lineDrag(const Vec3& xa, const Vec3& xb, const Vec3& va, const Vec3& vb
     out.dPosition.setZero();
     out.dVelocity.setZero();
   }
-  const Vec3 d = xb - xa;
-  const double l = d.norm();
-  if (l == 0.0 || coefficient == 0.0) return out;
-  const Vec3 e = d / l;
-  const Mat3 P = Mat3::Identity() - e * e.transpose();
-  const Vec3 v = 0.5 * (va + vb) - wind;
-  const Vec3 u = P * v;  // normal relative velocity
-  const double s = u.norm();
-  // Residual (minus the drag force) on each node: (c l / 2) |u| u.
-  const Vec3 r = 0.5 * coefficient * l * s * u;
-  out.residual << r, r;
+  const LineFlow f = lineFlow(xa, xb, va, vb, wind, coefficient);
+  if (f.none) return out;
+  const Vec3 &e = f.e, &v = f.v, &u = f.u;
+  const Mat3& P = f.P;
+  const double l = f.l, s = f.s;
+  out.residual << f.r, f.r;
   if (!withTangent || s == 0.0) return out;
   const Mat3 dQdu = s * Mat3::Identity() + u * u.transpose() / s;  // d(|u| u)/du
   const Mat3 dv = 0.5 * coefficient * l * dQdu * P * 0.5;          // per node velocity

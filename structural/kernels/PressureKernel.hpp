@@ -2,6 +2,7 @@
 // Follower pressure on membrane faces (docs/formulation.md section 6), uniform or interpolated
 // from nodal values, with its non-symmetric load stiffness; and a face's area vector.
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <array>
 
 namespace chute::kernels {
@@ -19,6 +20,15 @@ struct PressureLoad {
 template <int NumNodes>
 PressureLoad<NumNodes> pressureLoad(const std::array<Vec3, NumNodes>& x, double p,
                                     bool withTangent);
+
+// Residual-only pressureLoad<3> (P1): a flat triangle under a uniform pressure p loads each of its
+// three nodes with the same force w N_i (x_,xi x x_,eta), the one-point rule's w = p / 2 and
+// N_i = 1/3: p A / 3 with A the area vector. The same operations as pressureLoad<3>, so bit for bit
+// each of its three force segments, without its generic quadrature loop and 9 x 9 tangent (the
+// explicit path evaluates it every step on every canopy face).
+inline Vec3 trianglePressureForce(const std::array<Vec3, 3>& x, double p) {
+  return ((0.5 * p) * (1.0 / 3.0)) * (x[1] - x[0]).cross(x[2] - x[0]);
+}
 
 // Follower pressure interpolated from nodal values p_j: f_i = int N_i (sum_j N_j p_j)
 // (x_,1 x x_,2) dxi, integrated exactly (triangle: edge-midpoint rule; quad: 2x2 Gauss), and its

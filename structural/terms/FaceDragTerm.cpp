@@ -32,12 +32,16 @@ void FaceDragTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
           x[i] = p.x.segment<3>(3 * ids[i]);
           v[i] = p.v.segment<3>(3 * ids[i]);
         }
-        const auto d = kernels::faceDrag<N>(x, v, load.wind, coef, load.steadySubtracted, wantJ);
         ++out.work().faceDrag;
-        if (!wantJ) {
-          out.add<N>(ids, d.residual, nullptr);
+        if (!wantJ) {  // residual only: the same residual on each node (FD1)
+          const Vec3 r =
+              kernels::faceDragNodeResidual<N>(x, v, load.wind, coef, load.steadySubtracted);
+          Eigen::Matrix<double, 3 * N, 1> rs;
+          for (int i = 0; i < N; ++i) rs.template segment<3>(3 * i) = r;
+          out.add<N>(ids, rs, nullptr);
           return;
         }
+        const auto d = kernels::faceDrag<N>(x, v, load.wind, coef, load.steadySubtracted, wantJ);
         const Eigen::Matrix<double, 3 * N, 3 * N> J = p.cx * d.dPosition + p.cv * d.dVelocity;
         out.add<N>(ids, d.residual, &J);
       };

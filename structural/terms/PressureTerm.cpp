@@ -8,6 +8,7 @@
 
 namespace chute {
 
+using kernels::Vec3;
 using membrane_assembly::gatherNodes;
 using membrane_assembly::nodeIds;
 
@@ -32,8 +33,17 @@ void PressureTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
       ++inSet;
       auto one = [&](auto nodesTag) {
         constexpr int N = decltype(nodesTag)::value;
-        const auto pl = kernels::pressureLoad<N>(gatherNodes<N>(p.x, e), pr, wantJ);
         ++out.work().pressure;
+        if constexpr (N == 3) {
+          if (!wantJ) {  // residual only: the same force on each node (P1)
+            const Vec3 f = kernels::trianglePressureForce(gatherNodes<3>(p.x, e), pr);
+            Eigen::Matrix<double, 9, 1> r;
+            r << -f, -f, -f;
+            out.add<3>(nodeIds<3>(e), r, nullptr);
+            return;
+          }
+        }
+        const auto pl = kernels::pressureLoad<N>(gatherNodes<N>(p.x, e), pr, wantJ);
         const Eigen::Matrix<double, 3 * N, 1> r = -pl.force;
         if (!wantJ) {
           out.add<N>(nodeIds<N>(e), r, nullptr);
