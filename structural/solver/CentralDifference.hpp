@@ -94,6 +94,10 @@ class CentralDifference {
   // The last lumped mass and where it was evaluated (the active elements are those at x).
   Eigen::VectorXd cachedMass_, cachedX_;
   double cachedT_ = 0.0;
+  // Kept from step to step rather than allocated at each: zero and unit vectors over all dofs
+  // (the step's zero acceleration, the sliding mass's M(x) 1) and the state being built.
+  Eigen::VectorXd zeroDofs_, onesDofs_;
+  StructuralState next_;
 };
 
 }  // namespace chute

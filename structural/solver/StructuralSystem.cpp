@@ -43,6 +43,9 @@ StructuralSystem::StructuralSystem(const Model& model, SliderSearch search,
   for (const auto& t : terms_)
     if (auto* e = t->events()) events_.push_back(e);
 
+  for (int d = 0; d < dofs_.numDofs(); ++d)
+    if (dofs_.eqOfDof(d) < 0) constrainedDofs_.push_back(d);
+
   std::vector<std::vector<int>> cliques;
   for (const auto& t : terms_) t->addCouplings(cliques);
   assembler_.buildPattern(cliques);
@@ -274,8 +277,7 @@ SystemSnapshot StructuralSystem::saveState(const StructuralState& s) const {
 
 void StructuralSystem::prescribeMotion(StructuralState& s) const {
   const Model& m = *model_;
-  for (int d = 0; d < dofs_.numDofs(); ++d) {
-    if (dofs_.eqOfDof(d) >= 0) continue;
+  for (int d : constrainedDofs_) {
     const auto& c = m.constraint[d / 3];
     s.x[d] = c.position(m.X[d / 3][d % 3] + m.u0[d / 3][d % 3], d % 3, s.t);
     s.v[d] = c.speed(d % 3, s.t);

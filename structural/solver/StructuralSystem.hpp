@@ -34,6 +34,8 @@ class StructuralSystem {
   // Constrained dofs of s on their prescribed motion at s.t (fixed ones where they started):
   // positions, velocities and accelerations. Free dofs are left alone.
   void prescribeMotion(StructuralState& s) const;
+  // The dofs without an equation (fixed or prescribed), in order.
+  const std::vector<int>& constrainedDofs() const { return constrainedDofs_; }
   int numEquations() const { return dofs_.numEquations(); }
 
   // Discrete state updates (sliding search) for trial positions; returns the number of changes.
@@ -109,6 +111,7 @@ class StructuralSystem {
  private:
   const Model* model_;
   DofMap dofs_;
+  std::vector<int> constrainedDofs_;  // the dofs without an equation, in order (prescribeMotion)
   std::vector<std::unique_ptr<Term>> terms_;
   std::vector<EventSource*> events_;
   std::vector<SlidingGroupTerm*> groups_;

@@ -13,7 +13,7 @@ void assembleCable(const Model& m, int a, int b, double L, int material, const E
   if (p.inertiaOnly) {  // EX2's lumped mass of an inactive sliding element: M a only
     if (mat.density > 0.0) {
       ++out.work().lineMass;
-      const Vec6 r = kernels::cableMass(L, mat, m.massKind) * gather2(p.a, a, b);
+      const Vec6 r = kernels::cableMassTimes(L, mat, m.massKind, gather2(p.a, a, b));
       out.add<2>({a, b}, r, nullptr);
     }
     return;
@@ -69,7 +69,7 @@ void cableEnergy(const Model& m, int a, int b, double L, int material, const Eig
   e.strain += kernels::cableForce(pos(x, a), pos(x, b), L, mat, false).energy;
   if (mat.density > 0.0) {
     const Vec6 vv = gather2(v, a, b);
-    e.kinetic += 0.5 * vv.dot(kernels::cableMass(L, mat, m.massKind) * vv);
+    e.kinetic += 0.5 * vv.dot(kernels::cableMassTimes(L, mat, m.massKind, vv));
     e.gravity -= kernels::cableGravity(L, mat, m.gravity).dot(gather2(x, a, b));
   }
 }
