@@ -5,7 +5,7 @@
 namespace chute::kernels {
 
 // ---- material: relaxed plane-stress St Venant-Kirchhoff -------------------------------------
-PlaneStress planeStressSVK(const Vec3& e, double E, double nu, bool wrinkling) {
+PlaneStress planeStressSVK(const Vec3& e, double E, double nu, bool wrinkling, bool withTangent) {
   PlaneStress out;
   const double c = E / (1.0 - nu * nu);
   Mat3 D;
@@ -17,13 +17,13 @@ PlaneStress planeStressSVK(const Vec3& e, double E, double nu, bool wrinkling) {
     out.state = WrinkleState::Taut;
     out.stress = D * e;
     out.energy = 0.5 * e.dot(out.stress);
-    out.tangent = D;
+    if (withTangent) out.tangent = D;
     return out;
   }
   if (l1 <= 0.0) {
     out.state = WrinkleState::Slack;
     out.stress.setZero();
-    out.tangent.setZero();
+    if (withTangent) out.tangent.setZero();
     out.energy = 0.0;
     return out;
   }
@@ -31,13 +31,14 @@ PlaneStress planeStressSVK(const Vec3& e, double E, double nu, bool wrinkling) {
   // because l2 <= -nu l1 < l1.
   out.state = WrinkleState::Wrinkled;
   const Vec3 g(0.5 + 0.5 * u / R, 0.5 - 0.5 * u / R, 0.5 * w / R);  // d l1 / de
+  out.energy = 0.5 * E * l1 * l1;
+  out.stress = E * l1 * g;
+  if (!withTangent) return out;
   Eigen::Matrix<double, 2, 3> J;
   J << 0.5, -0.5, 0.0, 0.0, 0.0, 0.5;  // d(u, w)/de
   Eigen::Matrix2d H;                   // d2 R / d(u, w)^2
   H << w * w, -u * w, -u * w, u * u;
   H /= R * R * R;
-  out.energy = 0.5 * E * l1 * l1;
-  out.stress = E * l1 * g;
   out.tangent = E * (g * g.transpose() + l1 * J.transpose() * H * J);
   return out;
 }

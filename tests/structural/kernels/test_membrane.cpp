@@ -148,3 +148,32 @@ TEST(MembraneKernel, LumpedMassIsRowSumOfConsistentAndTotalsTheElementMass) {
                 .norm(),
             1e-15);
 }
+
+// membraneEnergy (the energy balance's and the probes' strain energy) is membraneForce's energy
+// bit for bit, with and without the tangent, in every state, for triangles and quads.
+template <int N>
+void checkEnergyOnly() {
+  std::mt19937 rng(29 + N);
+  const auto X = referenceNodes<N>();
+  const auto ref = reference<N>(X);
+  for (const auto& c : kStates)
+    for (int trial = 0; trial < 50; ++trial) {
+      const auto x = deformed<N>(X, c.lx, c.ly, c.shear, rng, 1e-3);
+      for (bool wrinkling : {true, false}) {
+        const double W = membraneEnergy<N>(x, ref, kFabric, wrinkling);
+        const auto res = membraneForce<N>(x, ref, kFabric, wrinkling, false, false);
+        const auto full = membraneForce<N>(x, ref, kFabric, wrinkling, true, true);
+        if (wrinkling) {
+          EXPECT_EQ(full.state, c.expected) << c.name;
+        }
+        EXPECT_EQ(W, res.energy) << c.name;
+        EXPECT_EQ(W, full.energy) << c.name;
+        EXPECT_EQ(res.state, full.state) << c.name;
+      }
+    }
+}
+
+TEST(MembraneKernel, EnergyOnlyIsTheKernelsEnergyBitForBitInEveryState) {
+  checkEnergyOnly<3>();
+  checkEnergyOnly<4>();
+}
