@@ -31,6 +31,9 @@ struct EvalPoint {
   // path's lumped mass of sliding elements, M(x) 1 (EX2). Honoured by the sliding group term,
   // the only term whose mass moves with x; the others are never asked.
   bool inertiaOnly = false;
+  // a is zero at every dof (the explicit step evaluates its forces at a = 0, EX2): the terms skip
+  // the inertia M a without gathering a at every element. Set only by the caller that made a.
+  bool zeroAcceleration = false;
 };
 
 // A converged step, as its terms commit it: the end positions, the end time, the step length

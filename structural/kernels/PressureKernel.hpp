@@ -41,7 +41,13 @@ PressureLoad<NumNodes> pressureLoadNodal(const std::array<Vec3, NumNodes>& x,
 // Area vector of a face, int (x_,1 x x_,2) dxi = |A| n (exact for flat triangles and bilinear
 // quads: (1/2) (x1 - x0) x (x2 - x0), (1/2) (x2 - x0) x (x3 - x1)), and its derivative dA/dx.
 template <int NumNodes>
-Vec3 areaVector(const std::array<Vec3, NumNodes>& x);
+Vec3 areaVector(const std::array<Vec3, NumNodes>& x) {
+  if constexpr (NumNodes == 3) {
+    return 0.5 * (x[1] - x[0]).cross(x[2] - x[0]);
+  } else {
+    return 0.5 * (x[2] - x[0]).cross(x[3] - x[1]);
+  }
+}
 template <int NumNodes>
 Eigen::Matrix<double, 3, 3 * NumNodes> areaVectorJacobian(const std::array<Vec3, NumNodes>& x);
 

@@ -166,7 +166,7 @@ std::vector<double> CentralDifference::nodalMass(const Eigen::VectorXd& massEq) 
 void CentralDifference::refuseMassless(const Eigen::VectorXd& massEq) const {
   // Every equation is a free dof of a node: all positive is the common case, checked at every
   // step in one pass; the nodes are named only when it fails.
-  if ((massEq.array() > 0.0).all()) return;
+  if (massEq.size() == 0 || massEq.minCoeff<Eigen::PropagateNaN>() > 0.0) return;
   const Model& m = sys_->model();
   std::vector<int> massless;
   for (int n = 0; n < m.numNodes(); ++n)
@@ -192,7 +192,9 @@ void CentralDifference::computeAcceleration(StructuralState& s) {
   if (sys_->numEquations() == 0) return;
   sys_->updateState(s.x);
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(s.x.size());
-  sys_->assemble(EvalPoint{s.x, s.v, zero, s.t, 0.0, 0.0, 0.0, true, 1.0, 0.0}, false);
+  EvalPoint p{s.x, s.v, zero, s.t, 0.0, 0.0, 0.0, true, 1.0, 0.0};
+  p.zeroAcceleration = true;  // EX2: the forces at a = 0
+  sys_->assemble(p, false);
   const Eigen::VectorXd& massEq = lumpedMass(s.x, s.t);
   const Eigen::VectorXd& r = sys_->residual();
   for (int d = 0; d < sys_->dofs().numDofs(); ++d)
@@ -260,8 +262,9 @@ NewtonReport CentralDifference::step(StructuralState& s, double dt) {
   const bool damped = settings_.stiffnessDamping > 0.0;
   const Eigen::VectorXd xEval =
       damped ? Eigen::VectorXd(n.x + settings_.stiffnessDamping * vStar) : Eigen::VectorXd();
-  sys_->assemble(
-      EvalPoint{damped ? xEval : n.x, vStar, zeroDofs_, n.t, 0.0, 0.0, 0.0, true, 1.0, dt}, false);
+  EvalPoint p{damped ? xEval : n.x, vStar, zeroDofs_, n.t, 0.0, 0.0, 0.0, true, 1.0, dt};
+  p.zeroAcceleration = true;  // EX2: the forces at a = 0
+  sys_->assemble(p, false);
   const Eigen::VectorXd& massEq = lumpedMass(n.x, n.t);
   const Eigen::VectorXd& r = sys_->residual();
   for (int d = 0; d < nd; ++d) {

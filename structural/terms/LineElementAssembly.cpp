@@ -46,10 +46,11 @@ void assembleCable(const Model& m, int a, int b, double L, int material, const E
   }
   if (mat.density > 0.0) {
     ++out.work().lineMass;
-    const Vec6 acc = p.inertia ? gather2(p.a, a, b) : Vec6::Zero();
+    const bool gathered = p.inertia && !p.zeroAcceleration;
+    const Vec6 acc = gathered ? gather2(p.a, a, b) : Vec6::Zero();
     // A residual-only evaluation at zero acceleration without mass damping (the explicit step,
     // EX2) has M a = 0: skipped.
-    if (p.inertia && (wantJ || m.massDamping > 0.0 || !acc.isZero(0.0))) {
+    if (p.inertia && (wantJ || m.massDamping > 0.0 || (gathered && !acc.isZero(0.0)))) {
       const Mat6 M = kernels::cableMass(L, mat, m.massKind);
       r += M * acc;
       if (wantJ) J += p.ca * M;

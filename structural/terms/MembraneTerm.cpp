@@ -46,8 +46,7 @@ std::vector<int> MembraneTerm::elementsAt(int node) const {
 
 template <int N>
 void MembraneTerm::assembleElement(int k, const kernels::MembraneReference<N>& ref,
-                                   const EvalPoint& p, bool zeroAcceleration,
-                                   SystemAssembler& out) {
+                                   const EvalPoint& p, SystemAssembler& out) {
   const auto& e = m_->membranes[k];
   const auto& mat = m_->membraneMaterials[e.material];
   const bool wantJ = out.wantMatrix();
@@ -85,13 +84,16 @@ void MembraneTerm::assembleElement(int k, const kernels::MembraneReference<N>& r
       G += ref.weight[g] * ref.dN[g] * ref.dN[g].transpose();
     J += p.cx * kernels::kMembraneSlackTangent * mat.E * expand<N>(G);
   }
-  Eigen::Matrix<double, 3 * N, 1> a = Eigen::Matrix<double, 3 * N, 1>::Zero();
-  if (p.inertia && !zeroAcceleration)
-    for (int i = 0; i < N; ++i) a.template segment<3>(3 * i) = p.a.segment<3>(3 * e.nodes[i]);
   // A residual-only evaluation at zero acceleration without mass damping (the explicit step,
   // EX2) has M a = 0: skipped, and without gravity so is the mass.
-  const bool withInertia =
-      mat.density > 0.0 && p.inertia && (wantJ || m_->massDamping > 0.0 || !a.isZero(0.0));
+  const bool gathered = p.inertia && !p.zeroAcceleration;
+  Eigen::Matrix<double, 3 * N, 1> a;
+  if (gathered)
+    for (int i = 0; i < N; ++i) a.template segment<3>(3 * i) = p.a.segment<3>(3 * e.nodes[i]);
+  else
+    a.setZero();
+  const bool withInertia = mat.density > 0.0 && p.inertia &&
+                           (wantJ || m_->massDamping > 0.0 || (gathered && !a.isZero(0.0)));
   if (withInertia || (mat.density > 0.0 && m_->hasGravity())) {
     const auto Ms =
         kernels::membraneMass<N>(ref, mat.density, m_->massKind == kernels::MassKind::Lumped);
@@ -118,14 +120,12 @@ void MembraneTerm::assembleElement(int k, const kernels::MembraneReference<N>& r
 void MembraneTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
   lastX_ = p.x;
   principalsStale_ = true;
-  // The explicit step evaluates at zero acceleration (EX2): found once here rather than by a
-  // gather at every element.
-  const bool zeroAcceleration = p.inertia && p.a.isZero(0.0);
+
   for (size_t k = 0; k < m_->membranes.size(); ++k) {
     if (m_->membranes[k].numNodes == 3)
-      assembleElement<3>(static_cast<int>(k), refs3_[slot_[k]], p, zeroAcceleration, out);
+      assembleElement<3>(static_cast<int>(k), refs3_[slot_[k]], p, out);
     else
-      assembleElement<4>(static_cast<int>(k), refs4_[slot_[k]], p, zeroAcceleration, out);
+      assembleElement<4>(static_cast<int>(k), refs4_[slot_[k]], p, out);
   }
 }
 

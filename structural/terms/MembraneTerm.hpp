@@ -37,9 +37,8 @@ class MembraneTerm final : public Term {
 
  private:
   template <int N>
-  // zeroAcceleration: p.a is zero at every dof (the element's acceleration is not gathered).
   void assembleElement(int e, const kernels::MembraneReference<N>& ref, const EvalPoint& p,
-                       bool zeroAcceleration, SystemAssembler& out);
+                       SystemAssembler& out);
   const Model* m_;
   std::vector<int> slot_;  // per element: index into refs3_ or refs4_
   std::vector<kernels::MembraneReference<3>> refs3_;

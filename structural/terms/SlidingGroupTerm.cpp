@@ -222,10 +222,11 @@ void SlidingGroupTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
     }
     if (mat.density > 0.0) {
       ++out.work().lineMass;
-      const Vec9 acc = p.inertia ? gather3(p.a, n1, n2, n3) : Vec9::Zero();
+      const bool gathered = p.inertia && !p.zeroAcceleration;
+      const Vec9 acc = gathered ? gather3(p.a, n1, n2, n3) : Vec9::Zero();
       // A residual-only evaluation at zero acceleration without mass damping (the explicit step,
       // EX2) has M(x) a = 0: skipped, as for the cables and membranes.
-      if (p.inertia && (wantJ || m_->massDamping > 0.0 || !acc.isZero(0.0))) {
+      if (p.inertia && (wantJ || m_->massDamping > 0.0 || (gathered && !acc.isZero(0.0)))) {
         const auto in = kernels::slidingInertia(x1, x2, x3, acc, L, mat, m_->massKind);
         r += in.force;
         if (wantJ) J += p.ca * in.mass + p.cx * in.dForce;
