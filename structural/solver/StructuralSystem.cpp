@@ -161,6 +161,16 @@ void StructuralSystem::assemble(const EvalPoint& p, bool wantMatrix) {
   assembler_.accumulate(secondAssembler_);
 }
 
+void StructuralSystem::runTwo(const std::function<void()>& first,
+                              const std::function<void()>& second) {
+  if (runner_) {
+    runner_->runOther(first, second);
+  } else {
+    first();
+    second();
+  }
+}
+
 StructuralSystem::NodalForces StructuralSystem::nodalForces(const Eigen::VectorXd& x,
                                                             const Eigen::VectorXd& v,
                                                             const Eigen::VectorXd& a, double t,

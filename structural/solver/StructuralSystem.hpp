@@ -1,6 +1,7 @@
 #pragma once
 // The discrete system of one scene: its dof map, the terms the scene needs (and only those),
 // the sparsity pattern built once, and timing of assembly and search.
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -47,6 +48,11 @@ class StructuralSystem {
   // split or without a second hardware thread).
   long concurrentAssemblies() const { return runner_ ? runner_->concurrentRuns() : 0; }
   long serialAssemblies() const { return runner_ ? runner_->serialRuns() : 0; }
+  // first() here and second() on the assembly's second thread when it has one (and the
+  // assemblies run on two threads now), else one after the other: for evaluations that do not
+  // touch each other's data (the energy balance's load residual and energy), whose results are
+  // the same bits either way.
+  void runTwo(const std::function<void()>& first, const std::function<void()>& second);
   const Eigen::VectorXd& residual() const { return assembler_.residual(); }
   const SparseMatrix& matrix() const { return assembler_.matrix(); }
   bool symmetric() const;
