@@ -19,9 +19,17 @@ void assembleCable(const Model& m, int a, int b, double L, int material, const E
     return;
   }
   const bool wantJ = out.wantMatrix();
+  ++out.work().lineElastic;
+  if (!wantJ && !p.xStart && (!p.inertia || p.zeroAcceleration) && m.massDamping == 0.0 &&
+      !m.hasGravity()) {
+    // The explicit step's evaluation (EX2): the internal force alone, what the general path
+    // below gives then (no Jacobian, M a = 0, no damping, no gravity).
+    if (mat.density > 0.0) ++out.work().lineMass;
+    out.add<2>({a, b}, kernels::cableForce(pos(p.x, a), pos(p.x, b), L, mat, false).force, nullptr);
+    return;
+  }
   Vec6 r;
   Mat6 J;
-  ++out.work().lineElastic;
   if (p.xStart) {
     // Energy-momentum step: the discrete gradient between x_n and x_{n+1} (EM5).
     const Eigen::VectorXd& x0 = *p.xStart;

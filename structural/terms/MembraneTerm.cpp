@@ -117,10 +117,33 @@ void MembraneTerm::assembleElement(int k, const kernels::MembraneReference<N>& r
   out.add<N>(nodeIds<N>(e), r, wantJ ? &J : nullptr);
 }
 
+template <int N>
+void MembraneTerm::assembleInternalForce(int k, const kernels::MembraneReference<N>& ref,
+                                         const EvalPoint& p, SystemAssembler& out) {
+  const auto& e = m_->membranes[k];
+  ++out.work().membrane;
+  const auto res =
+      kernels::membraneForce<N>(gatherNodes<N>(p.x, e), ref, m_->membraneMaterials[e.material],
+                                m_->membraneSets[e.set].wrinkling, false, false);
+  states_[k].state = res.state;
+  out.add<N>(nodeIds<N>(e), res.force, nullptr);
+}
+
 void MembraneTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
   lastX_ = p.x;
   principalsStale_ = true;
-
+  // The explicit step's evaluation (EX2): no Jacobian, a = 0 and no mass damping, no gravity, so
+  // only the internal force f(x) (what assembleElement gives then, without its other branches).
+  if (!out.wantMatrix() && !p.xStart && (!p.inertia || p.zeroAcceleration) &&
+      m_->massDamping == 0.0 && !m_->hasGravity()) {
+    for (size_t k = 0; k < m_->membranes.size(); ++k) {
+      if (m_->membranes[k].numNodes == 3)
+        assembleInternalForce<3>(static_cast<int>(k), refs3_[slot_[k]], p, out);
+      else
+        assembleInternalForce<4>(static_cast<int>(k), refs4_[slot_[k]], p, out);
+    }
+    return;
+  }
   for (size_t k = 0; k < m_->membranes.size(); ++k) {
     if (m_->membranes[k].numNodes == 3)
       assembleElement<3>(static_cast<int>(k), refs3_[slot_[k]], p, out);
