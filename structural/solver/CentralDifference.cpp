@@ -117,11 +117,15 @@ Eigen::VectorXd CentralDifference::massOf(const std::vector<Term*>& terms, const
   return residualWith(ones) - residualWith(zero);
 }
 
+int CentralDifference::cutSets(double t) const {
+  const Model& m = sys_->model();
+  return static_cast<int>(std::count_if(m.lineSets.begin(), m.lineSets.end(),
+                                        [t](const LineSet& s) { return s.cutBy(t); }));
+}
+
 const Eigen::VectorXd& CentralDifference::lumpedMass(const Eigen::VectorXd& x, double t,
                                                      bool check) {
-  const Model& m = sys_->model();
-  const int cuts = static_cast<int>(std::count_if(m.lineSets.begin(), m.lineSets.end(),
-                                                  [t](const LineSet& s) { return s.cutBy(t); }));
+  const int cuts = cutSets(t);
   if (cuts != fixedMassCuts_) {
     // Cables, membranes and point masses: a mass that does not move with the positions. It is
     // evaluated at the start positions (not at x) so that it is the same bits in a run and in
@@ -264,8 +268,15 @@ NewtonReport CentralDifference::step(StructuralState& s, double dt) {
       damped ? Eigen::VectorXd(n.x + settings_.stiffnessDamping * vStar) : Eigen::VectorXd();
   EvalPoint p{damped ? xEval : n.x, vStar, zeroDofs_, n.t, 0.0, 0.0, 0.0, true, 1.0, dt};
   p.zeroAcceleration = true;  // EX2: the forces at a = 0
-  sys_->assemble(p, false);
-  const Eigen::VectorXd& massEq = lumpedMass(n.x, n.t);
+  if (cutSets(n.t) == fixedMassCuts_) {
+    // The sliding elements' mass M(x) 1 at x_{n+1} (all lumpedMass has to evaluate while no cut
+    // changes the fixed mass) on the assembly's second thread, alongside its second part: it
+    // reads the positions and the sliding states, as the assembly does, and writes only its own.
+    sys_->assemble(p, false, [&] { lumpedMass(n.x, n.t); });
+  } else {
+    sys_->assemble(p, false);
+  }
+  const Eigen::VectorXd& massEq = lumpedMass(n.x, n.t);  // evaluated alongside: the cached one
   const Eigen::VectorXd& r = sys_->residual();
   for (int d = 0; d < nd; ++d) {
     const int e = dofs.eqOfDof(d);

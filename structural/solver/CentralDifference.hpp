@@ -75,6 +75,7 @@ class CentralDifference {
   // With check, refuses massless free nodes (MasslessNodesError) when it evaluates a new mass.
   const Eigen::VectorXd& lumpedMass(const Eigen::VectorXd& x, double t, bool check = true);
   Eigen::VectorXd massOf(const std::vector<Term*>& terms, const Eigen::VectorXd& x, double t);
+  int cutSets(double t) const;  // line sets cut by time t
   std::vector<double> nodalMass(const Eigen::VectorXd& massEq) const;
   void refuseMassless(const Eigen::VectorXd& massEq) const;
   std::vector<const SlidingGroupState*> groupStates() const;

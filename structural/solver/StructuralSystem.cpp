@@ -142,11 +142,17 @@ int StructuralSystem::updateState(const Eigen::VectorXd& x) {
 }
 
 void StructuralSystem::assemble(const EvalPoint& p, bool wantMatrix) {
+  assemble(p, wantMatrix, nullptr);
+}
+
+void StructuralSystem::assemble(const EvalPoint& p, bool wantMatrix,
+                                const std::function<void()>& alongside) {
   ScopedTimer timer(timings_.assembly);
   ++timings_.assemblies;
   assembler_.begin(wantMatrix);
   if (secondPart_.empty()) {
     for (const auto& t : terms_) t->assemble(p, assembler_);
+    if (alongside) alongside();
     return;
   }
   if (wantMatrix && !secondAssembler_.hasPattern()) secondAssembler_.sharePatternOf(assembler_);
@@ -157,6 +163,7 @@ void StructuralSystem::assemble(const EvalPoint& p, bool wantMatrix) {
       },
       [&] {
         for (auto* t : secondPart_) t->assemble(p, secondAssembler_);
+        if (alongside) alongside();
       });
   assembler_.accumulate(secondAssembler_);
 }

@@ -156,7 +156,31 @@ SlidingGroupTerm::ActiveParts SlidingGroupTerm::activeParts(int element,
   return {r.axialForce, r.strain, r.axialForce, r.strain};
 }
 
+void SlidingGroupTerm::assembleInertia(const EvalPoint& p, SystemAssembler& out) const {
+  const auto& g = state_.def();
+  const auto& mat = m_->materials[g.material];
+  for (int k = 0; k < g.numElements(); ++k) {
+    const int n1 = g.chain[k], n2 = g.chain[k + 1];
+    const int s = state_.sliderOfElement(k);
+    if (s < 0) {  // inactive: a plain two-node cable's M a
+      assembleCable(*m_, n1, n2, g.refLength[k], g.material, p, out);
+      continue;
+    }
+    if (mat.density <= 0.0) continue;
+    const int n3 = g.sliders[s];
+    ++out.work().lineMass;
+    const Vec9 r =
+        kernels::slidingInertiaForce(pos(p.x, n1), pos(p.x, n2), pos(p.x, n3),
+                                     gather3(p.a, n1, n2, n3), g.refLength[k], mat, m_->massKind);
+    out.add<3>({n1, n2, n3}, r, nullptr);
+  }
+}
+
 void SlidingGroupTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
+  if (p.inertiaOnly) {  // reads only (no floor_): may run alongside the assembly (EX2)
+    assembleInertia(p, out);
+    return;
+  }
   const auto& g = state_.def();
   const auto& mat = m_->materials[g.material];
   const bool wantJ = out.wantMatrix();
@@ -171,15 +195,6 @@ void SlidingGroupTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
     const int n3 = g.sliders[s];
     const double L = g.refLength[k];
     const Vec3 x1 = pos(p.x, n1), x2 = pos(p.x, n2), x3 = pos(p.x, n3);
-    if (p.inertiaOnly) {
-      if (mat.density > 0.0) {
-        ++out.work().lineMass;
-        const Vec9 r = kernels::slidingInertiaForce(x1, x2, x3, gather3(p.a, n1, n2, n3), L, mat,
-                                                    m_->massKind);
-        out.add<3>({n1, n2, n3}, r, nullptr);
-      }
-      continue;
-    }
     ++out.work().sliding;
     Vec9 r;
     Mat9 J;
