@@ -7,13 +7,15 @@ namespace chute::kernels {
 // ---- material: relaxed plane-stress St Venant-Kirchhoff -------------------------------------
 PlaneStress planeStressSVK(const Vec3& e, double E, double nu, bool wrinkling, bool withTangent) {
   PlaneStress out;
-  const double c = E / (1.0 - nu * nu);
-  Mat3 D;
-  D << c, c * nu, 0, c * nu, c, 0, 0, 0, c * (1.0 - nu) / 2.0;
   const double a = e[0], d = e[1], w = 0.5 * e[2], u = 0.5 * (a - d);
   const double R = std::sqrt(u * u + w * w);
   const double l1 = 0.5 * (a + d) + R, l2 = 0.5 * (a + d) - R;
   if (!wrinkling || l2 + nu * l1 > 0.0) {
+    // The plane-stress matrix only here: its division is a good part of a wrinkled or slack
+    // point's cost otherwise.
+    const double c = E / (1.0 - nu * nu);
+    Mat3 D;
+    D << c, c * nu, 0, c * nu, c, 0, 0, 0, c * (1.0 - nu) / 2.0;
     out.state = WrinkleState::Taut;
     out.stress = D * e;
     out.energy = 0.5 * e.dot(out.stress);
