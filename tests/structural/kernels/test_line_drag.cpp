@@ -57,3 +57,26 @@ TEST(DragKernel, NodeResidualIsTheKernelsResidualBitForBit) {
     EXPECT_EQ(r, Vec3(d.residual.tail<3>())) << trial;
   }
 }
+
+// The kernel writes the projector and the normal velocity out entry by entry (a stall-free form):
+// its residual is bit for bit that of the matrix expressions u = (I - e e^T) v, r = (c l / 2)
+// |u| u.
+TEST(DragKernel, ResidualIsBitForBitThatOfTheMatrixExpressions) {
+  std::mt19937 rng(13);
+  std::normal_distribution<double> n(0, 1);
+  for (int trial = 0; trial < 2000; ++trial) {
+    const Vec3 xa(n(rng), n(rng), n(rng)), xb(n(rng), n(rng), n(rng));
+    const Vec3 va(20 * n(rng), 20 * n(rng), 20 * n(rng)), vb(20 * n(rng), 20 * n(rng), 20 * n(rng));
+    const Vec3 wind(9 * n(rng), 9 * n(rng), 9 * n(rng));
+    const double c = 0.5 * 0.0023769 * 1.2 * 0.03;
+    const Vec3 d = xb - xa;
+    const double l = d.norm();
+    const Vec3 e = d / l;
+    const Mat3 P = Mat3::Identity() - e * e.transpose();
+    const Vec3 v = 0.5 * (va + vb) - wind;
+    const Vec3 u = P * v;
+    const Vec3 r = 0.5 * c * l * u.norm() * u;
+    EXPECT_EQ(lineDragNodeResidual(xa, xb, va, vb, wind, c), r) << trial;
+    EXPECT_EQ(Vec3(lineDrag(xa, xb, va, vb, wind, c, true).residual.head<3>()), r) << trial;
+  }
+}
