@@ -270,8 +270,9 @@ NewtonReport CentralDifference::step(StructuralState& s, double dt) {
   p.zeroAcceleration = true;  // EX2: the forces at a = 0
   if (cutSets(n.t) == fixedMassCuts_) {
     // The sliding elements' mass M(x) 1 at x_{n+1} (all lumpedMass has to evaluate while no cut
-    // changes the fixed mass) on the assembly's second thread, alongside its second part: it
-    // reads the positions and the sliding states, as the assembly does, and writes only its own.
+    // changes the fixed mass) alongside the assembly, on the thread that finishes its part first:
+    // it reads the positions and the sliding states, as the assembly does, and writes only its
+    // own.
     sys_->assemble(p, false, [&] { lumpedMass(n.x, n.t); });
   } else {
     sys_->assemble(p, false);

@@ -1,6 +1,7 @@
 #include "solver/StructuralSystem.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <string>
 
@@ -157,13 +158,19 @@ void StructuralSystem::assemble(const EvalPoint& p, bool wantMatrix,
   }
   if (wantMatrix && !secondAssembler_.hasPattern()) secondAssembler_.sharePatternOf(assembler_);
   secondAssembler_.begin(wantMatrix);
+  // alongside() on whichever thread finishes its part first (the other one's part is the longer).
+  std::atomic<bool> taken{false};
+  auto then = [&] {
+    if (alongside && !taken.exchange(true)) alongside();
+  };
   runner_->run(
       [&] {
         for (auto* t : firstPart_) t->assemble(p, assembler_);
+        then();
       },
       [&] {
         for (auto* t : secondPart_) t->assemble(p, secondAssembler_);
-        if (alongside) alongside();
+        then();
       });
   assembler_.accumulate(secondAssembler_);
 }

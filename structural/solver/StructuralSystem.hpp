@@ -42,10 +42,10 @@ class StructuralSystem {
   // Discrete state updates (sliding search) for trial positions; returns the number of changes.
   int updateState(const Eigen::VectorXd& x);
   void assemble(const EvalPoint& p, bool wantMatrix);
-  // The same, and alongside() after the second part on its thread (after the whole assembly
-  // without a split): work that reads what the assembly reads and writes nothing it touches (the
-  // explicit step's lumped mass of the sliding elements, EX2), so that the same bits come out
-  // with one thread or two.
+  // The same, and alongside() after the part that finishes first, on its thread (after the whole
+  // assembly without a split): work that reads what the assembly reads and writes nothing it
+  // touches (the explicit step's lumped mass of the sliding elements, EX2), so that the same bits
+  // come out on whichever thread it runs.
   void assemble(const EvalPoint& p, bool wantMatrix, const std::function<void()>& alongside);
   // Whether assemble() splits the terms into two parts (docs/performance.md, "Two threads").
   bool assemblesInTwoParts() const { return !secondPart_.empty(); }
