@@ -163,7 +163,12 @@ the folded-start C-9 runs, whose dynamics amplify round-off (c9_slider 6.8e-10, 
 radius moves by 1e-3 at 0.3 s, round-off growing about e-fold every 5 ms). The worker polls for 0.3 ms after each part before it sleeps (the gap
 between two explicit steps' assemblies is under 0.1 ms on the C-9; an implicit iteration costs
 the second core up to 0.3 ms of polling per assembly); OpenMP was tried first and left out: libgomp's spin, fixed at
-program start, doubled the CPU time of implicit runs.
+program start, doubled the CPU time of implicit runs. Two other evaluations of the explicit path
+that do not touch each other's data share the threads the same way: the lumped mass of the
+sliding elements at the step's new positions runs alongside the assembly, on the thread that
+finishes its part first (`StructuralSystem::assemble(p, wantMatrix, alongside)`), and the energy
+balance's load residual and energy run one on each thread (`StructuralSystem::runTwo`); each is
+done by one thread in its own order, so neither changes a bit.
 
 Two threads pay only while the machine has a core free for the second. On a loaded machine the
 first thread waits for a worker that waits for a core: with the CPU taken by a build or by two
@@ -176,7 +181,7 @@ this changes no bit. Measured in one sitting, 3 runs each: with the machine free
 threads always 4.44-5.49, one thread 3.34-3.79). Yielding the core while polling was tried
 instead and made loaded runs far slower (7-9 s: a yielded thread waits for a whole time slice).
 Measured on the C-9 slider case, 1 s,
-medians of 3 paired runs (bench/results/two_threads.md).
+medians of paired runs (bench/results/two_threads.md).
 """
 
 

@@ -40,8 +40,9 @@ class SystemAssembler {
     std::array<int, 3 * N> eq;
     for (int i = 0; i < N; ++i)
       for (int k = 0; k < 3; ++k) eq[3 * i + k] = dofs_->eq(nodes[i], k);
+    double* residual = residual_.data();  // loaded once, not at every entry
     for (int i = 0; i < 3 * N; ++i)
-      if (eq[i] >= 0) residual_[eq[i]] += r[i];
+      if (eq[i] >= 0) residual[eq[i]] += r[i];
     if (full_)
       for (int i = 0; i < N; ++i) full_->segment<3>(3 * nodes[i]) += r.template segment<3>(3 * i);
     if (!J || !wantMatrix_) return;

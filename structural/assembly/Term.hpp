@@ -34,6 +34,9 @@ struct EvalPoint {
   // > 0: an explicit step of this length evaluates the forces (velocity-dependent forces too
   // stiff for it cap themselves, RG8); 0 in implicit steps and statics.
   double explicitStep = 0.0;
+  // a is zero at every dof (the explicit step evaluates its forces at a = 0, EX2): the terms skip
+  // the inertia M a without gathering a at every element. Set only by the caller that made a.
+  bool zeroAcceleration = false;
 };
 
 // A converged step, as its terms commit it: the end positions, the end time, the step length

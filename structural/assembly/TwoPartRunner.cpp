@@ -114,6 +114,16 @@ void TwoPartRunner::run(const std::function<void()>& first, const std::function<
          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
 }
 
+void TwoPartRunner::runOther(const std::function<void()>& first,
+                             const std::function<void()>& second) {
+  if (worker_.joinable() && mode_) {
+    runConcurrently(first, second);
+  } else {
+    first();
+    second();
+  }
+}
+
 void TwoPartRunner::runConcurrently(const std::function<void()>& first,
                                     const std::function<void()>& second) {
   failure_ = nullptr;

@@ -24,6 +24,9 @@ class TwoPartRunner {
   // first() here and second() on the worker; returns when both are done and rethrows what
   // either threw (the first's exception first). Without a worker: one after the other.
   void run(const std::function<void()>& first, const std::function<void()>& second);
+  // The same for occasional jobs other than the assembly (the energy balance's two evaluations):
+  // in the mode the assemblies currently run in, neither timed nor counted with them.
+  void runOther(const std::function<void()>& first, const std::function<void()>& second);
 
   // Whether parts can run on two threads: a machine with at least two hardware threads and
   // CHUTE_THREADS not set to 1.

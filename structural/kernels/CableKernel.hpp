@@ -13,6 +13,11 @@ PolylineResult<2> cableForce(const Vec3& xa, const Vec3& xb, double L, const Lin
                              bool withTangent);
 // F4: constant mass matrix.
 Mat6 cableMass(double L, const LineMaterial& mat, MassKind kind);
+// F4's inertia M a without forming M: lumped, (m / 2) a_i; consistent, (m / 3) a_i + (m / 6) a_j
+// with j the other node's same component. Bit for bit cableMass(L, mat, kind) * a: each row of M
+// has at most two nonzeros, whose sum does not depend on the order of the additions. The explicit
+// path's lumped mass (EX2) asks for it for every line element at every step.
+Vec6 cableMassTimes(double L, const LineMaterial& mat, MassKind kind, const Vec6& a);
 // F5: constant gravity load (rho A0 L / 2) g on each node.
 Vec6 cableGravity(double L, const LineMaterial& mat, const Vec3& g);
 

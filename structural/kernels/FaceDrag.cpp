@@ -16,19 +16,11 @@ FaceDrag<NumNodes> faceDrag(const std::array<Vec3, NumNodes>& x,
     out.dPosition.setZero();
     out.dVelocity.setZero();
   }
-  const Vec3 a = areaVector<NumNodes>(x);
-  const double area = a.norm();
-  if (area == 0.0 || coefficient == 0.0) return out;
-  const Vec3 n = a / area;
-  Vec3 vFace = Vec3::Zero();
-  for (const auto& vi : v) vFace += vi;
-  vFace /= NumNodes;
-  const Vec3 rel = vFace - wind;
-  const double u = rel.dot(n);
-  const double s = steadySubtracted ? 1.0 : 0.0;
-  const double u0 = -wind.dot(n);
-  const double g = std::abs(u) * u - s * std::abs(u0) * u0;  // |u| u - s |u0| u0
-  const double share = coefficient / NumNodes;               // per node
+  const detail::FaceFlow f = detail::faceFlow<NumNodes>(x, v, wind, coefficient, steadySubtracted);
+  if (f.none) return out;
+  const Vec3 &a = f.a, &n = f.n, &rel = f.rel;
+  const double area = f.area, u = f.u, u0 = f.u0, s = f.s, g = f.g;
+  const double share = coefficient / NumNodes;  // per node
   for (int i = 0; i < NumNodes; ++i) out.residual.template segment<3>(3 * i) = share * g * a;
   if (!withTangent) return out;
   // Velocity: du/dv_j = n^T / N, d(|u| u)/du = 2 |u|.

@@ -13,6 +13,9 @@
 // and velocities (the integrator combines them as cx dr/dx + cv dr/dv).
 #include <Eigen/Core>
 #include <array>
+#include <cmath>
+
+#include "kernels/PressureKernel.hpp"
 
 namespace chute::kernels {
 
@@ -29,5 +32,53 @@ FaceDrag<NumNodes> faceDrag(const std::array<Eigen::Vector3d, NumNodes>& x,
                             const std::array<Eigen::Vector3d, NumNodes>& v,
                             const Eigen::Vector3d& wind, double coefficient /* (1/2) rho_air Cd */,
                             bool steadySubtracted, bool withTangent);
+
+namespace detail {
+// What residual and tangents share (FD1): the area vector a = |a| n, the face's velocity relative
+// to the wind rel, u = rel . n, u0 = -w . n and g = |u| u - s |u0| u0. none: a degenerate face or
+// no drag, which carries nothing.
+struct FaceFlow {
+  bool none = true;
+  Eigen::Vector3d a, n, rel;
+  double area = 0.0, u = 0.0, u0 = 0.0, s = 0.0, g = 0.0;
+};
+
+template <int NumNodes>
+FaceFlow faceFlow(const std::array<Eigen::Vector3d, NumNodes>& x,
+                  const std::array<Eigen::Vector3d, NumNodes>& v, const Eigen::Vector3d& wind,
+                  double coefficient, bool steadySubtracted) {
+  FaceFlow f;
+  f.a = areaVector<NumNodes>(x);
+  f.area = f.a.norm();
+  if (f.area == 0.0 || coefficient == 0.0) return f;
+  f.none = false;
+  f.n = f.a / f.area;
+  Eigen::Vector3d vFace = Eigen::Vector3d::Zero();
+  for (const auto& vi : v) vFace += vi;
+  vFace /= NumNodes;
+  f.rel = vFace - wind;
+  f.u = f.rel.dot(f.n);
+  f.s = steadySubtracted ? 1.0 : 0.0;
+  f.u0 = -wind.dot(f.n);
+  f.g = std::abs(f.u) * f.u - f.s * std::abs(f.u0) * f.u0;  // |u| u - s |u0| u0
+  return f;
+}
+}  // namespace detail
+
+// Residual-only faceDrag: the residual r = -f / N that every node of the face gets (FD1), the same
+// operations as faceDrag's residual and so bit for bit each of its node segments, without its
+// two tangent matrices (the explicit path evaluates it every step on every canopy face). Inline:
+// called across files, the face's nodes went through memory and were read back across the
+// stores' boundaries, a stall that cost more than the arithmetic (perf, the explicit C-9).
+template <int NumNodes>
+Eigen::Vector3d faceDragNodeResidual(const std::array<Eigen::Vector3d, NumNodes>& x,
+                                     const std::array<Eigen::Vector3d, NumNodes>& v,
+                                     const Eigen::Vector3d& wind, double coefficient,
+                                     bool steadySubtracted) {
+  const detail::FaceFlow f = detail::faceFlow<NumNodes>(x, v, wind, coefficient, steadySubtracted);
+  if (f.none) return Eigen::Vector3d::Zero();
+  const double share = coefficient / NumNodes;  // per node
+  return share * f.g * f.a;
+}
 
 }  // namespace chute::kernels

@@ -18,5 +18,10 @@ struct LineDrag {
 };
 LineDrag lineDrag(const Vec3& xa, const Vec3& xb, const Vec3& va, const Vec3& vb, const Vec3& wind,
                   double coefficient /* (1/2) rho_air Cd d */, bool withTangent);
+// Residual-only lineDrag: the residual each of the two nodes gets, the same operations as
+// lineDrag's and so bit for bit each of its halves, without its two tangent matrices (the
+// explicit path evaluates it every step on every line element).
+Vec3 lineDragNodeResidual(const Vec3& xa, const Vec3& xb, const Vec3& va, const Vec3& vb,
+                          const Vec3& wind, double coefficient);
 
 }  // namespace chute::kernels

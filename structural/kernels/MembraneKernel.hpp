@@ -52,6 +52,12 @@ MembraneResult<NumNodes> membraneForce(const std::array<Vec3, NumNodes>& x,
                                        const MembraneMaterial& mat, bool wrinkling,
                                        bool withTangent, bool withPrincipals = true);
 
+// The strain energy of membraneForce alone, bit for bit (the same strains and law, without the
+// force): the energy balance and the probes ask for it over the whole canopy.
+template <int NumNodes>
+double membraneEnergy(const std::array<Vec3, NumNodes>& x, const MembraneReference<NumNodes>& ref,
+                      const MembraneMaterial& mat, bool wrinkling);
+
 // Consistent mass rho t0 int N_i N_j dA (scalar per node pair; times I3) and its row sums.
 template <int NumNodes>
 Eigen::Matrix<double, NumNodes, NumNodes> membraneMass(const MembraneReference<NumNodes>& ref,

@@ -20,12 +20,15 @@ using Mat3 = Eigen::Matrix3d;
 enum class WrinkleState : int { Taut = 0, Wrinkled = 1, Slack = 2 };
 
 // Relaxed plane-stress response at a Voigt Green strain e = (E11, E22, 2 E12).
+// withTangent = false leaves the tangent unset (residual-only evaluations, the explicit path):
+// energy, stress and state are bit for bit those with the tangent.
 struct PlaneStress {
   double energy = 0.0;  // psi per unit reference volume
   Vec3 stress;          // S = dpsi/de (S11, S22, S12)
-  Mat3 tangent;         // d2psi/de2
+  Mat3 tangent;         // d2psi/de2, set only withTangent
   WrinkleState state = WrinkleState::Taut;
 };
-PlaneStress planeStressSVK(const Vec3& e, double E, double nu, bool wrinkling);
+PlaneStress planeStressSVK(const Vec3& e, double E, double nu, bool wrinkling,
+                           bool withTangent = true);
 
 }  // namespace chute::kernels

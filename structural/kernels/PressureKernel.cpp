@@ -77,15 +77,6 @@ PressureLoad<NumNodes> pressureLoadNodal(const std::array<Vec3, NumNodes>& x,
 }
 
 template <int NumNodes>
-Vec3 areaVector(const std::array<Vec3, NumNodes>& x) {
-  if constexpr (NumNodes == 3) {
-    return 0.5 * (x[1] - x[0]).cross(x[2] - x[0]);
-  } else {
-    return 0.5 * (x[2] - x[0]).cross(x[3] - x[1]);
-  }
-}
-
-template <int NumNodes>
 Eigen::Matrix<double, 3, 3 * NumNodes> areaVectorJacobian(const std::array<Vec3, NumNodes>& x) {
   // d(u x w) = -[w]x du + [u]x dw.
   Eigen::Matrix<double, 3, 3 * NumNodes> J;
@@ -105,8 +96,6 @@ template PressureLoad<3> pressureLoadNodal<3>(const std::array<Vec3, 3>&,
                                               const Eigen::Matrix<double, 3, 1>&, bool);
 template PressureLoad<4> pressureLoadNodal<4>(const std::array<Vec3, 4>&,
                                               const Eigen::Matrix<double, 4, 1>&, bool);
-template Vec3 areaVector<3>(const std::array<Vec3, 3>&);
-template Vec3 areaVector<4>(const std::array<Vec3, 4>&);
 template Eigen::Matrix<double, 3, 9> areaVectorJacobian<3>(const std::array<Vec3, 3>&);
 template Eigen::Matrix<double, 3, 12> areaVectorJacobian<4>(const std::array<Vec3, 4>&);
 

@@ -15,6 +15,7 @@ PolylineResult<3> slidingForce(const Vec3& x1, const Vec3& x2, const Vec3& x3, d
     const int ei = kPathNode[i];
     r.dLength.segment<3>(3 * ei) = p.dLength.segment<3>(3 * i);
     r.force.segment<3>(3 * ei) = p.force.segment<3>(3 * i);
+    if (!withTangent) continue;  // the stiffness is set only withTangent
     for (int j = 0; j < 3; ++j)
       r.stiffness.block<3, 3>(3 * ei, 3 * kPathNode[j]) = p.stiffness.block<3, 3>(3 * i, 3 * j);
   }
@@ -27,6 +28,15 @@ struct SplitRatios {
   double r1, r2;
   Vec9 dr1, dr2;
 };
+
+// The split ratios alone (the lumped mass needs no gradients): the same values as splitRatios.
+void splitRatioValues(const Vec3& x1, const Vec3& x2, const Vec3& x3, double L, double& r1,
+                      double& r2) {
+  // Reuse the kernel's limit-safe geometry; material is irrelevant for lengths.
+  const auto p = slidingForce(x1, x2, x3, L, LineMaterial{}, false);
+  r1 = p.segmentLength[0] / p.length;
+  r2 = p.segmentLength[1] / p.length;
+}
 
 SplitRatios splitRatios(const Vec3& x1, const Vec3& x2, const Vec3& x3, double L) {
   // Reuse the kernel's limit-safe geometry; material is irrelevant for lengths.
@@ -79,6 +89,19 @@ SlidingInertia slidingInertia(const Vec3& x1, const Vec3& x2, const Vec3& x3, co
     out.dForce = (m / 6.0) * ((B1 * a) * s.dr1.transpose() + (B2 * a) * s.dr2.transpose());
   }
   return out;
+}
+
+Vec9 slidingInertiaForce(const Vec3& x1, const Vec3& x2, const Vec3& x3, const Vec9& a, double L,
+                         const LineMaterial& mat, MassKind kind) {
+  if (kind != MassKind::Lumped) return slidingInertia(x1, x2, x3, a, L, mat, kind).force;
+  double r1 = 0.0, r2 = 0.0;
+  splitRatioValues(x1, x2, x3, L, r1, r2);
+  const double m = mat.density * mat.area * L;
+  // The diagonal of slidingInertia's lumped M(x) (0.5 m r_i I), each row's one nonzero.
+  const double d[3] = {0.5 * m * r1, 0.5 * m * r2, 0.5 * m};
+  Vec9 f;
+  for (int i = 0; i < 9; ++i) f[i] = d[i / 3] * a[i];
+  return f;
 }
 
 SlidingGravity slidingGravity(const Vec3& x1, const Vec3& x2, const Vec3& x3, double L,

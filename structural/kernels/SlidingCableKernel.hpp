@@ -21,6 +21,11 @@ struct SlidingInertia {
 };
 SlidingInertia slidingInertia(const Vec3& x1, const Vec3& x2, const Vec3& x3, const Vec9& a,
                               double L, const LineMaterial& mat, MassKind kind);
+// Its force M(x) a alone, bit for bit: lumped, M(x) is diagonal (m r1 / 2, m r2 / 2, m / 2 per
+// node, F10) and applied without forming M(x), dM/dx or the split ratios' gradients; consistent,
+// slidingInertia's own product. The explicit path's lumped mass (EX2) asks for it at every step.
+Vec9 slidingInertiaForce(const Vec3& x1, const Vec3& x2, const Vec3& x3, const Vec9& a, double L,
+                         const LineMaterial& mat, MassKind kind);
 
 // F11: gravity on the active element and its derivative with respect to x.
 struct SlidingGravity {

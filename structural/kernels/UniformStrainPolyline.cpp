@@ -4,18 +4,18 @@
 
 namespace chute::kernels {
 
-PartLength partLength(const Vec3& d, double r) {
+PartLength partLength(const Vec3& d, double r, bool withHessian) {
   PartLength p;
   const double n = d.norm();
   if (n >= r) {
     const Vec3 e = d / n;
     p.length = n;
     p.gradient = e;
-    p.hessian = (Mat3::Identity() - e * e.transpose()) / n;
+    if (withHessian) p.hessian = (Mat3::Identity() - e * e.transpose()) / n;
   } else {
     p.length = (n * n + r * r) / (2.0 * r);
     p.gradient = d / r;
-    p.hessian = Mat3::Identity() / r;
+    if (withHessian) p.hessian = Mat3::Identity() / r;
   }
   return p;
 }
@@ -31,10 +31,10 @@ PolylineResult<NumNodes> uniformStrainPolyline(const std::array<Vec3, NumNodes>&
   r.length = 0.0;
   r.dLength.setZero();
   for (int k = 0; k < kSeg; ++k) {
-    const PartLength p = partLength(x[k + 1] - x[k], apex);
+    const PartLength p = partLength(x[k + 1] - x[k], apex, withTangent);
     r.segmentLength[k] = p.length;
     r.segmentGradient[k] = p.gradient;
-    hess[k] = p.hessian;
+    if (withTangent) hess[k] = p.hessian;
     r.length += p.length;
     r.dLength.template segment<3>(3 * k) -= p.gradient;
     r.dLength.template segment<3>(3 * (k + 1)) += p.gradient;
@@ -52,8 +52,9 @@ PolylineResult<NumNodes> uniformStrainPolyline(const std::array<Vec3, NumNodes>&
   r.energy = 0.5 * Eeff * mat.area * L * r.strain * r.strain;
   r.force = r.axialForce * r.dLength;  // F2 / F8: f = N D
 
+  if (!withTangent) return r;  // residual only: no Hessians, no stiffness
   r.stiffness.setZero();
-  if (!withTangent || Eeff == 0.0) return r;
+  if (Eeff == 0.0) return r;
   // F3 / F9: K = (E A0/L) [(eps + l^2/L^2) D D^T + eps l G]; G = sum_k h_k [I -I; -I I],
   // h_k = (I - e_k e_k^T) / l_k (I / r at the apex). eps l (E A0 / L) = N: geometric part N G.
   r.stiffness.noalias() =

@@ -38,12 +38,13 @@ struct LineMaterial {
 };
 
 // Length of a part with relative position d, its gradient and Hessian, regularised at the apex.
+// withHessian = false leaves the Hessian unset (residual-only evaluations: it is what costs).
 struct PartLength {
   double length;
   Vec3 gradient;
-  Mat3 hessian;
+  Mat3 hessian;  // set only withHessian
 };
-PartLength partLength(const Vec3& d, double apexRadius);
+PartLength partLength(const Vec3& d, double apexRadius, bool withHessian = true);
 
 template <int NumNodes>
 struct PolylineResult {
@@ -56,7 +57,7 @@ struct PolylineResult {
   std::array<Vec3, NumNodes - 1> segmentGradient{};  // d length_k / d x_{k+1}
   Eigen::Matrix<double, kDofs, 1> dLength;           // D = dl/dx
   Eigen::Matrix<double, kDofs, 1> force;             // internal force f = dW/dx
-  Eigen::Matrix<double, kDofs, kDofs> stiffness;     // K = d^2W/dx^2
+  Eigen::Matrix<double, kDofs, kDofs> stiffness;     // K = d^2W/dx^2, set only withTangent
 };
 
 // x: node coordinates in path order. L: reference length. withTangent: compute stiffness.

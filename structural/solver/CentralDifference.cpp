@@ -41,6 +41,13 @@ std::vector<std::string> partOfNode(const Model& m) {
   return part;
 }
 
+// Whether every entry is finite: x * 0 is 0 for finite x and NaN for an infinity or a NaN, so
+// the sum of x * 0 is 0 exactly when all are finite. One vectorised pass, where allFinite's
+// (x - x == x - x) takes several.
+bool finite(const Eigen::VectorXd& x) {
+  return (x.array() * 0.0).sum() == 0.0;
+}
+
 }  // namespace
 
 CentralDifference::CentralDifference(StructuralSystem& sys, ExplicitSettings settings,
@@ -110,11 +117,15 @@ Eigen::VectorXd CentralDifference::massOf(const std::vector<Term*>& terms, const
   return residualWith(ones) - residualWith(zero);
 }
 
+int CentralDifference::cutSets(double t) const {
+  const Model& m = sys_->model();
+  return static_cast<int>(std::count_if(m.lineSets.begin(), m.lineSets.end(),
+                                        [t](const LineSet& s) { return s.cutBy(t); }));
+}
+
 const Eigen::VectorXd& CentralDifference::lumpedMass(const Eigen::VectorXd& x, double t,
                                                      bool check) {
-  const Model& m = sys_->model();
-  const int cuts = static_cast<int>(std::count_if(m.lineSets.begin(), m.lineSets.end(),
-                                                  [t](const LineSet& s) { return s.cutBy(t); }));
+  const int cuts = cutSets(t);
   if (cuts != fixedMassCuts_) {
     // Cables, membranes and point masses: a mass that does not move with the positions. It is
     // evaluated at the start positions (not at x) so that it is the same bits in a run and in
@@ -129,9 +140,9 @@ const Eigen::VectorXd& CentralDifference::lumpedMass(const Eigen::VectorXd& x, d
     cachedMass_ = fixedMass_ + addedEq_;
     if (!slidingTerms_.empty()) {
       // M(x) 1 directly: the sliding group term evaluates only its inertia when asked.
-      const Eigen::VectorXd zero = Eigen::VectorXd::Zero(x.size());
-      const Eigen::VectorXd ones = Eigen::VectorXd::Ones(x.size());
-      EvalPoint p{x, zero, ones, t, 0.0, 0.0, 0.0, true, 0.0, 0.0};
+      if (zeroDofs_.size() != x.size()) zeroDofs_ = Eigen::VectorXd::Zero(x.size());
+      if (onesDofs_.size() != x.size()) onesDofs_ = Eigen::VectorXd::Ones(x.size());
+      EvalPoint p{x, zeroDofs_, onesDofs_, t, 0.0, 0.0, 0.0, true, 0.0, 0.0};
       p.inertiaOnly = true;
       massAssembler_.begin(false);
       for (auto* term : slidingTerms_) term->assemble(p, massAssembler_);
@@ -157,6 +168,9 @@ std::vector<double> CentralDifference::nodalMass(const Eigen::VectorXd& massEq) 
 }
 
 void CentralDifference::refuseMassless(const Eigen::VectorXd& massEq) const {
+  // Every equation is a free dof of a node: all positive is the common case, checked at every
+  // step in one pass; the nodes are named only when it fails.
+  if (massEq.size() == 0 || massEq.minCoeff<Eigen::PropagateNaN>() > 0.0) return;
   const Model& m = sys_->model();
   std::vector<int> massless;
   for (int n = 0; n < m.numNodes(); ++n)
@@ -182,7 +196,9 @@ void CentralDifference::computeAcceleration(StructuralState& s) {
   if (sys_->numEquations() == 0) return;
   sys_->updateState(s.x);
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(s.x.size());
-  sys_->assemble(EvalPoint{s.x, s.v, zero, s.t, 0.0, 0.0, 0.0, true, 1.0, 0.0}, false);
+  EvalPoint p{s.x, s.v, zero, s.t, 0.0, 0.0, 0.0, true, 1.0, 0.0};
+  p.zeroAcceleration = true;  // EX2: the forces at a = 0
+  sys_->assemble(p, false);
   const Eigen::VectorXd& massEq = lumpedMass(s.x, s.t);
   const Eigen::VectorXd& r = sys_->residual();
   for (int d = 0; d < sys_->dofs().numDofs(); ++d)
@@ -218,12 +234,12 @@ NewtonReport CentralDifference::step(StructuralState& s, double dt) {
   const Model& m = sys_->model();
   const DofMap& dofs = sys_->dofs();
   const int nd = dofs.numDofs();
-  StructuralState n = s;
+  StructuralState& n = next_;  // its buffers are reused from step to step
+  n = s;
   n.t = s.t + dt;
   // EX1: v_{n+1/2} = v_n + dt/2 a_n, x_{n+1} = x_n + dt v_{n+1/2}; prescribed dofs on their path.
   const Eigen::VectorXd vHalf = s.v + 0.5 * dt * s.a;
-  for (int d = 0; d < nd; ++d)
-    if (dofs.eqOfDof(d) >= 0) n.x[d] = s.x[d] + dt * vHalf[d];
+  n.x = s.x + dt * vHalf;  // the constrained dofs' are overwritten next
   sys_->prescribeMotion(n);
   // EX3: hand-over checked every step. A driven slider is handed over where its path passes a
   // node; a free slider whose part to an end node turns round over the step has passed that
@@ -245,16 +261,24 @@ NewtonReport CentralDifference::step(StructuralState& s, double dt) {
   // prediction v_{n+1} ~ v_n + dt a_n (second-order local error), and EX7's stiffness-
   // proportional damping as the internal forces at x + beta v.
   Eigen::VectorXd vStar = s.v + dt * s.a;
-  for (int d = 0; d < nd; ++d)
-    if (dofs.eqOfDof(d) < 0) vStar[d] = n.v[d];
-  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(nd);
+  for (int d : sys_->constrainedDofs()) vStar[d] = n.v[d];
+  if (zeroDofs_.size() != nd) zeroDofs_ = Eigen::VectorXd::Zero(nd);
   const bool damped = settings_.stiffnessDamping > 0.0;
   const Eigen::VectorXd xEval =
       damped ? Eigen::VectorXd(n.x + settings_.stiffnessDamping * vStar) : Eigen::VectorXd();
-  EvalPoint pt{damped ? xEval : n.x, vStar, zero, n.t, 0.0, 0.0, 0.0, true, 1.0, dt};
-  pt.explicitStep = dt;
-  sys_->assemble(pt, false);
-  const Eigen::VectorXd& massEq = lumpedMass(n.x, n.t);
+  EvalPoint p{damped ? xEval : n.x, vStar, zeroDofs_, n.t, 0.0, 0.0, 0.0, true, 1.0, dt};
+  p.zeroAcceleration = true;  // EX2: the forces at a = 0
+  p.explicitStep = dt;        // RG8
+  if (cutSets(n.t) == fixedMassCuts_) {
+    // The sliding elements' mass M(x) 1 at x_{n+1} (all lumpedMass has to evaluate while no cut
+    // changes the fixed mass) alongside the assembly, on the thread that finishes its part first:
+    // it reads the positions and the sliding states, as the assembly does, and writes only its
+    // own.
+    sys_->assemble(p, false, [&] { lumpedMass(n.x, n.t); });
+  } else {
+    sys_->assemble(p, false);
+  }
+  const Eigen::VectorXd& massEq = lumpedMass(n.x, n.t);  // evaluated alongside: the cached one
   const Eigen::VectorXd& r = sys_->residual();
   for (int d = 0; d < nd; ++d) {
     const int e = dofs.eqOfDof(d);
@@ -263,13 +287,13 @@ NewtonReport CentralDifference::step(StructuralState& s, double dt) {
     n.v[d] = vHalf[d] + 0.5 * dt * n.a[d];
   }
   rep.iterations = 0;
-  if (!n.x.allFinite() || !n.v.allFinite() || !n.a.allFinite()) {
+  if (!finite(n.x) || !finite(n.v) || !finite(n.a)) {
     rep.failure = "non-finite state: the explicit step is unstable";
     sys_->revert();
     return rep;
   }
   sys_->commit(CommitPoint{n.x, n.t, dt, n.t});
-  s = n;
+  std::swap(s, n);  // n keeps the old state's buffers for the next step
   rep.converged = true;
   return rep;
 }

@@ -75,6 +75,7 @@ class CentralDifference {
   // With check, refuses massless free nodes (MasslessNodesError) when it evaluates a new mass.
   const Eigen::VectorXd& lumpedMass(const Eigen::VectorXd& x, double t, bool check = true);
   Eigen::VectorXd massOf(const std::vector<Term*>& terms, const Eigen::VectorXd& x, double t);
+  int cutSets(double t) const;  // line sets cut by time t
   std::vector<double> nodalMass(const Eigen::VectorXd& massEq) const;
   void refuseMassless(const Eigen::VectorXd& massEq) const;
   std::vector<const SlidingGroupState*> groupStates() const;
@@ -94,6 +95,10 @@ class CentralDifference {
   // The last lumped mass and where it was evaluated (the active elements are those at x).
   Eigen::VectorXd cachedMass_, cachedX_;
   double cachedT_ = 0.0;
+  // Kept from step to step rather than allocated at each: zero and unit vectors over all dofs
+  // (the step's zero acceleration, the sliding mass's M(x) 1) and the state being built.
+  Eigen::VectorXd zeroDofs_, onesDofs_;
+  StructuralState next_;
 };
 
 }  // namespace chute

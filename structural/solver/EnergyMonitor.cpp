@@ -55,15 +55,21 @@ bool EnergyMonitor::afterStep(const StructuralState& before, const StructuralSta
   double w = 0.0;
   EvalPoint p{eq.x, eq.v, eq.a, eq.t};
   p.dt = dt;
-  if (loads_) w -= sys_->residualOverAllDofs(p, false).dot(dx);  // f_loads = -residual
-  if (supportsMove_) {
-    const Eigen::VectorXd r = sys_->residualOverAllDofs(p, true);
-    for (int d = 0; d < sys_->dofs().numDofs(); ++d)
-      if (sys_->dofs().eqOfDof(d) < 0) w += r[d] * dx[d];  // R = r at constrained dofs
-  }
+  EnergyBreakdown e;
+  // The work and the energy are independent evaluations: on the assembly's two threads when it
+  // has them (each on one thread, in its own order: the same bits as one after the other).
+  sys_->runTwo(
+      [&] {
+        if (loads_) w -= sys_->residualOverAllDofs(p, false).dot(dx);  // f_loads = -residual
+        if (supportsMove_) {
+          const Eigen::VectorXd r = sys_->residualOverAllDofs(p, true);
+          for (int d = 0; d < sys_->dofs().numDofs(); ++d)
+            if (sys_->dofs().eqOfDof(d) < 0) w += r[d] * dx[d];  // R = r at constrained dofs
+        }
+      },
+      [&] { e = sys_->energy(eq.x, eq.v, s.t); });
   work_ += w;
   grossWork_ += std::abs(w);
-  const EnergyBreakdown e = sys_->energy(eq.x, eq.v, s.t);
   energy_ = e.total();
   scale_ = std::max(scale_, e.kinetic + std::abs(e.strain));
   const double b = balance();

@@ -1,6 +1,7 @@
 #include "solver/StructuralSystem.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <string>
 
@@ -42,6 +43,9 @@ StructuralSystem::StructuralSystem(const Model& model, SliderSearch search,
 
   for (const auto& t : terms_)
     if (auto* e = t->events()) events_.push_back(e);
+
+  for (int d = 0; d < dofs_.numDofs(); ++d)
+    if (dofs_.eqOfDof(d) < 0) constrainedDofs_.push_back(d);
 
   std::vector<std::vector<int>> cliques;
   for (const auto& t : terms_) t->addCouplings(cliques);
@@ -139,23 +143,46 @@ int StructuralSystem::updateState(const Eigen::VectorXd& x) {
 }
 
 void StructuralSystem::assemble(const EvalPoint& p, bool wantMatrix) {
+  assemble(p, wantMatrix, nullptr);
+}
+
+void StructuralSystem::assemble(const EvalPoint& p, bool wantMatrix,
+                                const std::function<void()>& alongside) {
   ScopedTimer timer(timings_.assembly);
   ++timings_.assemblies;
   assembler_.begin(wantMatrix);
   if (secondPart_.empty()) {
     for (const auto& t : terms_) t->assemble(p, assembler_);
+    if (alongside) alongside();
     return;
   }
   if (wantMatrix && !secondAssembler_.hasPattern()) secondAssembler_.sharePatternOf(assembler_);
   secondAssembler_.begin(wantMatrix);
+  // alongside() on whichever thread finishes its part first (the other one's part is the longer).
+  std::atomic<bool> taken{false};
+  auto then = [&] {
+    if (alongside && !taken.exchange(true)) alongside();
+  };
   runner_->run(
       [&] {
         for (auto* t : firstPart_) t->assemble(p, assembler_);
+        then();
       },
       [&] {
         for (auto* t : secondPart_) t->assemble(p, secondAssembler_);
+        then();
       });
   assembler_.accumulate(secondAssembler_);
+}
+
+void StructuralSystem::runTwo(const std::function<void()>& first,
+                              const std::function<void()>& second) {
+  if (runner_) {
+    runner_->runOther(first, second);
+  } else {
+    first();
+    second();
+  }
 }
 
 StructuralSystem::NodalForces StructuralSystem::nodalForces(const Eigen::VectorXd& x,
@@ -274,8 +301,7 @@ SystemSnapshot StructuralSystem::saveState(const StructuralState& s) const {
 
 void StructuralSystem::prescribeMotion(StructuralState& s) const {
   const Model& m = *model_;
-  for (int d = 0; d < dofs_.numDofs(); ++d) {
-    if (dofs_.eqOfDof(d) >= 0) continue;
+  for (int d : constrainedDofs_) {
     const auto& c = m.constraint[d / 3];
     s.x[d] = c.position(m.X[d / 3][d % 3] + m.u0[d / 3][d % 3], d % 3, s.t);
     s.v[d] = c.speed(d % 3, s.t);

@@ -1,6 +1,7 @@
 #pragma once
 // The discrete system of one scene: its dof map, the terms the scene needs (and only those),
 // the sparsity pattern built once, and timing of assembly and search.
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -34,17 +35,29 @@ class StructuralSystem {
   // Constrained dofs of s on their prescribed motion at s.t (fixed ones where they started):
   // positions, velocities and accelerations. Free dofs are left alone.
   void prescribeMotion(StructuralState& s) const;
+  // The dofs without an equation (fixed or prescribed), in order.
+  const std::vector<int>& constrainedDofs() const { return constrainedDofs_; }
   int numEquations() const { return dofs_.numEquations(); }
 
   // Discrete state updates (sliding search) for trial positions; returns the number of changes.
   int updateState(const Eigen::VectorXd& x);
   void assemble(const EvalPoint& p, bool wantMatrix);
+  // The same, and alongside() after the part that finishes first, on its thread (after the whole
+  // assembly without a split): work that reads what the assembly reads and writes nothing it
+  // touches (the explicit step's lumped mass of the sliding elements, EX2), so that the same bits
+  // come out on whichever thread it runs.
+  void assemble(const EvalPoint& p, bool wantMatrix, const std::function<void()>& alongside);
   // Whether assemble() splits the terms into two parts (docs/performance.md, "Two threads").
   bool assemblesInTwoParts() const { return !secondPart_.empty(); }
   // Assemblies whose two parts ran on two threads, and one after the other (0, 0 without a
   // split or without a second hardware thread).
   long concurrentAssemblies() const { return runner_ ? runner_->concurrentRuns() : 0; }
   long serialAssemblies() const { return runner_ ? runner_->serialRuns() : 0; }
+  // first() here and second() on the assembly's second thread when it has one (and the
+  // assemblies run on two threads now), else one after the other: for evaluations that do not
+  // touch each other's data (the energy balance's load residual and energy), whose results are
+  // the same bits either way.
+  void runTwo(const std::function<void()>& first, const std::function<void()>& second);
   const Eigen::VectorXd& residual() const { return assembler_.residual(); }
   const SparseMatrix& matrix() const { return assembler_.matrix(); }
   bool symmetric() const;
@@ -109,6 +122,7 @@ class StructuralSystem {
  private:
   const Model* model_;
   DofMap dofs_;
+  std::vector<int> constrainedDofs_;  // the dofs without an equation, in order (prescribeMotion)
   std::vector<std::unique_ptr<Term>> terms_;
   std::vector<EventSource*> events_;
   std::vector<SlidingGroupTerm*> groups_;

@@ -16,6 +16,25 @@ void FaceDragTerm::addCouplings(std::vector<std::vector<int>>& cliques) const {
       cliques.emplace_back(e.nodes.begin(), e.nodes.begin() + e.numNodes);
 }
 
+namespace {
+// Residual only (the explicit path): the one residual every node of the face gets (FD1).
+template <int N>
+void addNodeResiduals(const MembraneElement& e, const FaceDragLoadDef& load, double coef,
+                      const EvalPoint& p, SystemAssembler& out) {
+  std::array<Vec3, N> x, v;
+  std::array<int, N> ids;
+  for (int i = 0; i < N; ++i) {
+    ids[i] = e.nodes[i];
+    x[i] = p.x.segment<3>(3 * ids[i]);
+    v[i] = p.v.segment<3>(3 * ids[i]);
+  }
+  const Vec3 r = kernels::faceDragNodeResidual<N>(x, v, load.wind, coef, load.steadySubtracted);
+  Eigen::Matrix<double, 3 * N, 1> rs;
+  for (int i = 0; i < N; ++i) rs.template segment<3>(3 * i) = r;
+  out.add<N>(ids, rs, nullptr);
+}
+}  // namespace
+
 void FaceDragTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
   if (!p.inertia) return;  // drag needs motion: nothing in statics
   const bool wantJ = out.wantMatrix();
@@ -23,6 +42,14 @@ void FaceDragTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
     const double coef = load.coefficient * p.loadFactor;  // an applied load, like the others
     for (const auto& e : m_->membranes) {
       if (e.set != load.set) continue;
+      ++out.work().faceDrag;
+      if (!wantJ) {
+        if (e.numNodes == 3)
+          addNodeResiduals<3>(e, load, coef, p, out);
+        else
+          addNodeResiduals<4>(e, load, coef, p, out);
+        continue;
+      }
       auto one = [&](auto nodesTag) {
         constexpr int N = decltype(nodesTag)::value;
         std::array<Vec3, N> x, v;
@@ -32,12 +59,7 @@ void FaceDragTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
           x[i] = p.x.segment<3>(3 * ids[i]);
           v[i] = p.v.segment<3>(3 * ids[i]);
         }
-        const auto d = kernels::faceDrag<N>(x, v, load.wind, coef, load.steadySubtracted, wantJ);
-        ++out.work().faceDrag;
-        if (!wantJ) {
-          out.add<N>(ids, d.residual, nullptr);
-          return;
-        }
+        const auto d = kernels::faceDrag<N>(x, v, load.wind, coef, load.steadySubtracted, true);
         const Eigen::Matrix<double, 3 * N, 3 * N> J = p.cx * d.dPosition + p.cv * d.dVelocity;
         out.add<N>(ids, d.residual, &J);
       };

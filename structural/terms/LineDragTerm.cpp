@@ -7,6 +7,16 @@ namespace chute {
 using kernels::Vec3;
 
 // ---- LineDragTerm --------------------------------------------------------------------------
+LineDragTerm::LineDragTerm(const Model& m, std::vector<const SlidingGroupState*> groups)
+    : m_(&m), groups_(std::move(groups)), cablesOf_(m.drags.size()), groupsOf_(m.drags.size()) {
+  for (size_t d = 0; d < m.drags.size(); ++d) {
+    for (size_t c = 0; c < m.cables.size(); ++c)
+      if (m.cables[c].set == m.drags[d].lineSet) cablesOf_[d].push_back(static_cast<int>(c));
+    for (size_t g = 0; g < m.groups.size(); ++g)
+      if (m.groups[g].set == m.drags[d].lineSet) groupsOf_[d].push_back(static_cast<int>(g));
+  }
+}
+
 void LineDragTerm::addCouplings(std::vector<std::vector<int>>& cliques) const {
   for (const auto& d : m_->drags) {
     for (const auto& e : d.edges) cliques.push_back({e[0], e[1]});
@@ -23,28 +33,33 @@ void LineDragTerm::addCouplings(std::vector<std::vector<int>>& cliques) const {
 void LineDragTerm::addSegment(int a, int b, const Vec3& wind, double c, const EvalPoint& p,
                               SystemAssembler& out) const {
   const bool wantJ = out.wantMatrix();
-  const auto d = kernels::lineDrag(p.x.segment<3>(3 * a), p.x.segment<3>(3 * b),
-                                   p.v.segment<3>(3 * a), p.v.segment<3>(3 * b), wind, c, wantJ);
   ++out.work().drag;
-  if (!wantJ) {
-    out.add<2>({a, b}, d.residual, nullptr);
+  if (!wantJ) {  // residual only: the same residual on both nodes (LD1)
+    const Vec3 r =
+        kernels::lineDragNodeResidual(p.x.segment<3>(3 * a), p.x.segment<3>(3 * b),
+                                      p.v.segment<3>(3 * a), p.v.segment<3>(3 * b), wind, c);
+    Eigen::Matrix<double, 6, 1> rs;
+    rs << r, r;
+    out.add<2>({a, b}, rs, nullptr);
     return;
   }
+  const auto d = kernels::lineDrag(p.x.segment<3>(3 * a), p.x.segment<3>(3 * b),
+                                   p.v.segment<3>(3 * a), p.v.segment<3>(3 * b), wind, c, wantJ);
   const Eigen::Matrix<double, 6, 6> J = p.cx * d.dPosition + p.cv * d.dVelocity;
   out.add<2>({a, b}, d.residual, &J);
 }
 
 void LineDragTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
   if (!p.inertia) return;  // drag needs motion: nothing in statics
-  for (const auto& d : m_->drags) {
+  for (size_t di = 0; di < m_->drags.size(); ++di) {
+    const auto& d = m_->drags[di];
     // Drag is an applied load: scaled by the load factor like the others (1 in dynamics).
     const double coef = d.coefficient * p.loadFactor;
     for (const auto& e : d.edges) addSegment(e[0], e[1], d.wind, coef, p, out);
-    for (const auto& c : m_->cables)
-      if (c.set == d.lineSet) addSegment(c.a, c.b, d.wind, coef, p, out);
-    for (size_t gi = 0; gi < m_->groups.size(); ++gi) {
+    for (int ci : cablesOf_[di])
+      addSegment(m_->cables[ci].a, m_->cables[ci].b, d.wind, coef, p, out);
+    for (int gi : groupsOf_[di]) {
       const auto& g = m_->groups[gi];
-      if (g.set != d.lineSet) continue;
       for (int k = 0; k < g.numElements(); ++k) {
         const int s = groups_[gi]->sliderOfElement(k);
         if (s < 0) {

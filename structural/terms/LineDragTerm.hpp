@@ -12,8 +12,7 @@ namespace chute {
 class LineDragTerm final : public Term {
  public:
   // groups: the sliding-group states in model order (drag on active elements acts on both parts).
-  LineDragTerm(const Model& m, std::vector<const SlidingGroupState*> groups)
-      : m_(&m), groups_(std::move(groups)) {}
+  LineDragTerm(const Model& m, std::vector<const SlidingGroupState*> groups);
   const char* name() const override { return "drag"; }
   bool doesExternalWork() const override { return true; }
   void addCouplings(std::vector<std::vector<int>>& cliques) const override;
@@ -27,6 +26,9 @@ class LineDragTerm final : public Term {
                   SystemAssembler& out) const;
   const Model* m_;
   std::vector<const SlidingGroupState*> groups_;
+  // Per drag load (model order): the cables and the sliding groups of its line set, in model
+  // order (found once, not by a search of every cable and group at every evaluation).
+  std::vector<std::vector<int>> cablesOf_, groupsOf_;
 };
 
 }  // namespace chute

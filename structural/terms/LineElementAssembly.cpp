@@ -13,15 +13,23 @@ void assembleCable(const Model& m, int a, int b, double L, int material, const E
   if (p.inertiaOnly) {  // EX2's lumped mass of an inactive sliding element: M a only
     if (mat.density > 0.0) {
       ++out.work().lineMass;
-      const Vec6 r = kernels::cableMass(L, mat, m.massKind) * gather2(p.a, a, b);
+      const Vec6 r = kernels::cableMassTimes(L, mat, m.massKind, gather2(p.a, a, b));
       out.add<2>({a, b}, r, nullptr);
     }
     return;
   }
   const bool wantJ = out.wantMatrix();
+  ++out.work().lineElastic;
+  if (!wantJ && !p.xStart && (!p.inertia || p.zeroAcceleration) && m.massDamping == 0.0 &&
+      !m.hasGravity()) {
+    // The explicit step's evaluation (EX2): the internal force alone, what the general path
+    // below gives then (no Jacobian, M a = 0, no damping, no gravity).
+    if (mat.density > 0.0) ++out.work().lineMass;
+    out.add<2>({a, b}, kernels::cableForce(pos(p.x, a), pos(p.x, b), L, mat, false).force, nullptr);
+    return;
+  }
   Vec6 r;
   Mat6 J;
-  ++out.work().lineElastic;
   if (p.xStart) {
     // Energy-momentum step: the discrete gradient between x_n and x_{n+1} (EM5).
     const Eigen::VectorXd& x0 = *p.xStart;
@@ -46,10 +54,11 @@ void assembleCable(const Model& m, int a, int b, double L, int material, const E
   }
   if (mat.density > 0.0) {
     ++out.work().lineMass;
-    const Vec6 acc = p.inertia ? gather2(p.a, a, b) : Vec6::Zero();
+    const bool gathered = p.inertia && !p.zeroAcceleration;
+    const Vec6 acc = gathered ? gather2(p.a, a, b) : Vec6::Zero();
     // A residual-only evaluation at zero acceleration without mass damping (the explicit step,
     // EX2) has M a = 0: skipped.
-    if (p.inertia && (wantJ || m.massDamping > 0.0 || !acc.isZero(0.0))) {
+    if (p.inertia && (wantJ || m.massDamping > 0.0 || (gathered && !acc.isZero(0.0)))) {
       const Mat6 M = kernels::cableMass(L, mat, m.massKind);
       r += M * acc;
       if (wantJ) J += p.ca * M;
@@ -69,7 +78,7 @@ void cableEnergy(const Model& m, int a, int b, double L, int material, const Eig
   e.strain += kernels::cableForce(pos(x, a), pos(x, b), L, mat, false).energy;
   if (mat.density > 0.0) {
     const Vec6 vv = gather2(v, a, b);
-    e.kinetic += 0.5 * vv.dot(kernels::cableMass(L, mat, m.massKind) * vv);
+    e.kinetic += 0.5 * vv.dot(kernels::cableMassTimes(L, mat, m.massKind, vv));
     e.gravity -= kernels::cableGravity(L, mat, m.gravity).dot(gather2(x, a, b));
   }
 }

@@ -84,13 +84,16 @@ void MembraneTerm::assembleElement(int k, const kernels::MembraneReference<N>& r
       G += ref.weight[g] * ref.dN[g] * ref.dN[g].transpose();
     J += p.cx * kernels::kMembraneSlackTangent * mat.E * expand<N>(G);
   }
-  Eigen::Matrix<double, 3 * N, 1> a = Eigen::Matrix<double, 3 * N, 1>::Zero();
-  if (p.inertia)
-    for (int i = 0; i < N; ++i) a.template segment<3>(3 * i) = p.a.segment<3>(3 * e.nodes[i]);
   // A residual-only evaluation at zero acceleration without mass damping (the explicit step,
   // EX2) has M a = 0: skipped, and without gravity so is the mass.
-  const bool withInertia =
-      mat.density > 0.0 && p.inertia && (wantJ || m_->massDamping > 0.0 || !a.isZero(0.0));
+  const bool gathered = p.inertia && !p.zeroAcceleration;
+  Eigen::Matrix<double, 3 * N, 1> a;
+  if (gathered)
+    for (int i = 0; i < N; ++i) a.template segment<3>(3 * i) = p.a.segment<3>(3 * e.nodes[i]);
+  else
+    a.setZero();
+  const bool withInertia = mat.density > 0.0 && p.inertia &&
+                           (wantJ || m_->massDamping > 0.0 || (gathered && !a.isZero(0.0)));
   if (withInertia || (mat.density > 0.0 && m_->hasGravity())) {
     const auto Ms =
         kernels::membraneMass<N>(ref, mat.density, m_->massKind == kernels::MassKind::Lumped);
@@ -114,9 +117,33 @@ void MembraneTerm::assembleElement(int k, const kernels::MembraneReference<N>& r
   out.add<N>(nodeIds<N>(e), r, wantJ ? &J : nullptr);
 }
 
+template <int N>
+void MembraneTerm::assembleInternalForce(int k, const kernels::MembraneReference<N>& ref,
+                                         const EvalPoint& p, SystemAssembler& out) {
+  const auto& e = m_->membranes[k];
+  ++out.work().membrane;
+  const auto res =
+      kernels::membraneForce<N>(gatherNodes<N>(p.x, e), ref, m_->membraneMaterials[e.material],
+                                m_->membraneSets[e.set].wrinkling, false, false);
+  states_[k].state = res.state;
+  out.add<N>(nodeIds<N>(e), res.force, nullptr);
+}
+
 void MembraneTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
   lastX_ = p.x;
   principalsStale_ = true;
+  // The explicit step's evaluation (EX2): no Jacobian, a = 0 and no mass damping, no gravity, so
+  // only the internal force f(x) (what assembleElement gives then, without its other branches).
+  if (!out.wantMatrix() && !p.xStart && (!p.inertia || p.zeroAcceleration) &&
+      m_->massDamping == 0.0 && !m_->hasGravity()) {
+    for (size_t k = 0; k < m_->membranes.size(); ++k) {
+      if (m_->membranes[k].numNodes == 3)
+        assembleInternalForce<3>(static_cast<int>(k), refs3_[slot_[k]], p, out);
+      else
+        assembleInternalForce<4>(static_cast<int>(k), refs4_[slot_[k]], p, out);
+    }
+    return;
+  }
   for (size_t k = 0; k < m_->membranes.size(); ++k) {
     if (m_->membranes[k].numNodes == 3)
       assembleElement<3>(static_cast<int>(k), refs3_[slot_[k]], p, out);
@@ -152,15 +179,20 @@ void MembraneTerm::addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
   auto one = [&](const auto& ref, const MembraneElement& e, auto nodesTag) {
     constexpr int N = decltype(nodesTag)::value;
     const auto& mat = m_->membraneMaterials[e.material];
-    en.strain += kernels::membraneForce<N>(gatherNodes<N>(x, e), ref, mat,
-                                           m_->membraneSets[e.set].wrinkling, false, false)
-                     .energy;
+    en.strain += kernels::membraneEnergy<N>(gatherNodes<N>(x, e), ref, mat,
+                                            m_->membraneSets[e.set].wrinkling);
     if (mat.density <= 0.0) return;
-    const auto Ms =
-        kernels::membraneMass<N>(ref, mat.density, m_->massKind == kernels::MassKind::Lumped);
-    Eigen::Matrix<double, 3 * N, 1> vv;
+    const bool lumped = m_->massKind == kernels::MassKind::Lumped;
+    const auto Ms = kernels::membraneMass<N>(ref, mat.density, lumped);
+    Eigen::Matrix<double, 3 * N, 1> vv, Mv;
     for (int i = 0; i < N; ++i) vv.template segment<3>(3 * i) = v.segment<3>(3 * e.nodes[i]);
-    en.kinetic += 0.5 * vv.dot(expand<N>(Ms) * vv);
+    if (lumped) {  // a diagonal mass: the product below without its zeros, bit for bit
+      for (int i = 0; i < N; ++i)
+        Mv.template segment<3>(3 * i) = Ms(i, i) * vv.template segment<3>(3 * i);
+    } else {
+      Mv = expand<N>(Ms) * vv;
+    }
+    en.kinetic += 0.5 * vv.dot(Mv);
     const Eigen::Matrix<double, N, 1> share = Ms.rowwise().sum();
     for (int i = 0; i < N; ++i)
       en.gravity -= share[i] * m_->gravity.dot(x.segment<3>(3 * e.nodes[i]));

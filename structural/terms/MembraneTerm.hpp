@@ -39,6 +39,10 @@ class MembraneTerm final : public Term {
   template <int N>
   void assembleElement(int e, const kernels::MembraneReference<N>& ref, const EvalPoint& p,
                        SystemAssembler& out);
+  // The internal force alone, residual only (the explicit step).
+  template <int N>
+  void assembleInternalForce(int e, const kernels::MembraneReference<N>& ref, const EvalPoint& p,
+                             SystemAssembler& out);
   const Model* m_;
   std::vector<int> slot_;  // per element: index into refs3_ or refs4_
   std::vector<kernels::MembraneReference<3>> refs3_;

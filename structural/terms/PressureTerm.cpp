@@ -8,6 +8,7 @@
 
 namespace chute {
 
+using kernels::Vec3;
 using membrane_assembly::gatherNodes;
 using membrane_assembly::nodeIds;
 
@@ -20,6 +21,18 @@ void PressureTerm::addCouplings(std::vector<std::vector<int>>& cliques) const {
       cliques.emplace_back(e.nodes.begin(), e.nodes.begin() + e.numNodes);
 }
 
+namespace {
+// Residual only (the explicit path), a triangle under a uniform pressure: the one force on each
+// of its nodes (P1).
+void addTriangleResidual(const MembraneElement& e, double pressure, const EvalPoint& p,
+                         SystemAssembler& out) {
+  const Vec3 f = kernels::trianglePressureForce(gatherNodes<3>(p.x, e), pressure);
+  Eigen::Matrix<double, 9, 1> r;
+  r << -f, -f, -f;
+  out.add<3>(nodeIds<3>(e), r, nullptr);
+}
+}  // namespace
+
 void PressureTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
   const bool wantJ = out.wantMatrix();
   for (const auto& load : m_->pressures) {
@@ -30,10 +43,14 @@ void PressureTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
       if (e.set != load.set) continue;
       const double pr = load.elementFactor.empty() ? p0 : p0 * load.elementFactor[inSet];
       ++inSet;
+      ++out.work().pressure;
+      if (!wantJ && e.numNodes == 3) {
+        addTriangleResidual(e, pr, p, out);
+        continue;
+      }
       auto one = [&](auto nodesTag) {
         constexpr int N = decltype(nodesTag)::value;
         const auto pl = kernels::pressureLoad<N>(gatherNodes<N>(p.x, e), pr, wantJ);
-        ++out.work().pressure;
         const Eigen::Matrix<double, 3 * N, 1> r = -pl.force;
         if (!wantJ) {
           out.add<N>(nodeIds<N>(e), r, nullptr);

@@ -317,7 +317,31 @@ SlidingGroupTerm::ActiveParts SlidingGroupTerm::activeParts(int element,
   return {r.axialForce, r.strain, r.axialForce, r.strain};
 }
 
+void SlidingGroupTerm::assembleInertia(const EvalPoint& p, SystemAssembler& out) const {
+  const auto& g = state_.def();
+  const auto& mat = m_->materials[g.material];
+  for (int k = 0; k < g.numElements(); ++k) {
+    const int n1 = g.chain[k], n2 = g.chain[k + 1];
+    const int s = state_.sliderOfElement(k);
+    if (s < 0) {  // inactive: a plain two-node cable's M a
+      assembleCable(*m_, n1, n2, state_.refLength(k), g.material, p, out);
+      continue;
+    }
+    if (mat.density <= 0.0) continue;
+    const int n3 = g.sliders[s];
+    ++out.work().lineMass;
+    const Vec9 r = kernels::slidingInertiaForce(pos(p.x, n1), pos(p.x, n2), pos(p.x, n3),
+                                                gather3(p.a, n1, n2, n3), state_.refLength(k), mat,
+                                                m_->massKind);
+    out.add<3>({n1, n2, n3}, r, nullptr);
+  }
+}
+
 void SlidingGroupTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
+  if (p.inertiaOnly) {  // reads only (no floor_): may run alongside the assembly (EX2)
+    assembleInertia(p, out);
+    return;
+  }
   const auto& g = state_.def();
   const auto& mat = m_->materials[g.material];
   const bool wantJ = out.wantMatrix();
@@ -333,16 +357,6 @@ void SlidingGroupTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
     const int n3 = g.sliders[s];
     const double L = state_.refLength(k);
     const Vec3 x1 = pos(p.x, n1), x2 = pos(p.x, n2), x3 = pos(p.x, n3);
-    if (p.inertiaOnly) {
-      if (mat.density > 0.0) {
-        ++out.work().lineMass;
-        const Vec9 r =
-            kernels::slidingInertia(x1, x2, x3, gather3(p.a, n1, n2, n3), L, mat, m_->massKind)
-                .force;
-        out.add<3>({n1, n2, n3}, r, nullptr);
-      }
-      continue;
-    }
     ++out.work().sliding;
     Vec9 r;
     Mat9 J;
@@ -378,8 +392,10 @@ void SlidingGroupTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
     } else {
       const auto res = kernels::slidingForce(x1, x2, x3, L, mat, wantJ);
       r = res.force;
-      J = p.cx * res.stiffness;
-      if (wantJ) addSlackTangent<3>(res, mat, L, {0, 2, 1}, p.cx, J);  // path 1 -> slider -> 2
+      if (wantJ) {
+        J = p.cx * res.stiffness;
+        addSlackTangent<3>(res, mat, L, {0, 2, 1}, p.cx, J);  // path 1 -> slider -> 2
+      }
     }
     if (mat.density > 0.0 && p.inertia && !g.frictionOf(s)) {
       // RG8: the whirl of an end node about the slider, damped within kWhirlDampingFraction L.
@@ -401,22 +417,25 @@ void SlidingGroupTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
     }
     if (mat.density > 0.0) {
       ++out.work().lineMass;
-      if (p.inertia) {
-        const auto in =
-            kernels::slidingInertia(x1, x2, x3, gather3(p.a, n1, n2, n3), L, mat, m_->massKind);
+      const bool gathered = p.inertia && !p.zeroAcceleration;
+      const Vec9 acc = gathered ? gather3(p.a, n1, n2, n3) : Vec9::Zero();
+      // A residual-only evaluation at zero acceleration without mass damping (the explicit step,
+      // EX2) has M(x) a = 0: skipped, as for the cables and membranes.
+      if (p.inertia && (wantJ || m_->massDamping > 0.0 || (gathered && !acc.isZero(0.0)))) {
+        const auto in = kernels::slidingInertia(x1, x2, x3, acc, L, mat, m_->massKind);
         r += in.force;
-        J += p.ca * in.mass + p.cx * in.dForce;
+        if (wantJ) J += p.ca * in.mass + p.cx * in.dForce;
         if (m_->massDamping > 0.0) {  // C v with C = alpha M(x) (solver.mass_damping)
           const auto dv =
               kernels::slidingInertia(x1, x2, x3, gather3(p.v, n1, n2, n3), L, mat, m_->massKind);
           r += m_->massDamping * dv.force;
-          J += m_->massDamping * (p.cv * dv.mass + p.cx * dv.dForce);
+          if (wantJ) J += m_->massDamping * (p.cv * dv.mass + p.cx * dv.dForce);
         }
       }
       if (m_->hasGravity()) {
         const auto gr = kernels::slidingGravity(x1, x2, x3, L, mat, m_->gravity);
         r -= p.loadFactor * gr.force;
-        J -= p.loadFactor * p.cx * gr.dForce;
+        if (wantJ) J -= p.loadFactor * p.cx * gr.dForce;
       }
     }
     out.add<3>({n1, n2, n3}, r, wantJ ? &J : nullptr);
@@ -441,8 +460,7 @@ void SlidingGroupTerm::addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd
                                 : kernels::slidingForce(x1, x2, x3, L, mat, false).energy;
     if (mat.density > 0.0) {
       const Vec9 vv = gather3(v, n1, n2, n3);
-      e.kinetic +=
-          0.5 * vv.dot(kernels::slidingInertia(x1, x2, x3, vv, L, mat, m_->massKind).force);
+      e.kinetic += 0.5 * vv.dot(kernels::slidingInertiaForce(x1, x2, x3, vv, L, mat, m_->massKind));
       // The F11 nodal loads are exactly the weights of the two straight parts placed at their
       // ends, so -f.x is the parts' true potential energy.
       e.gravity -= kernels::slidingGravity(x1, x2, x3, L, mat, m_->gravity)

@@ -66,6 +66,9 @@ class SlidingGroupTerm final : public Term, public EventSource {
   ActiveParts activeParts(int element, const Eigen::VectorXd& x) const;
 
  private:
+  // EvalPoint::inertiaOnly: M(x) a alone (EX2's lumped mass), reading the state and writing only
+  // to out.
+  void assembleInertia(const EvalPoint& p, SystemAssembler& out) const;
   const Model* m_;
   SlidingGroupState state_;
   SliderSearch search_;

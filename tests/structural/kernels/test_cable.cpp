@@ -115,3 +115,35 @@ TEST(SlackTautCrossing, FindsWhereTheLengthPassesTheReferenceLength) {
   EXPECT_EQ(slackTautCrossing(Vec3(L * (1 + 0.5 * kSlackTautBand), 0, 0), Vec3(-0.1, 0, 0), L),
             1.0);
 }
+
+// Residual-only evaluations (explicit steps) skip the Hessians and the stiffness: everything else
+// is bit for bit the evaluation with the tangent, taut, slack (cable) and compressed (truss), and
+// with the ends inside the apex radius. cableMassTimes is cableMass * a, bit for bit.
+TEST(CableKernel, ResidualOnlyIsTheFullEvaluationBitForBit) {
+  std::mt19937 rng(17);
+  std::normal_distribution<double> n(0, 1);
+  for (int trial = 0; trial < 300; ++trial) {
+    const double L = 0.5 + std::abs(n(rng));
+    const Vec3 xa(n(rng), n(rng), n(rng));
+    const double stretch = trial % 3 == 0 ? 0.9 : (trial % 3 == 1 ? 1.05 : 1e-12);  // apex too
+    const Vec3 xb = xa + stretch * L * randomUnit(rng);
+    for (bool tension : {true, false}) {
+      const auto mat = rope(tension);
+      const auto full = cableForce(xa, xb, L, mat, true);
+      const auto res = cableForce(xa, xb, L, mat, false);
+      EXPECT_EQ(res.length, full.length);
+      EXPECT_EQ(res.strain, full.strain);
+      EXPECT_EQ(res.axialForce, full.axialForce);
+      EXPECT_EQ(res.energy, full.energy);
+      EXPECT_EQ(res.dLength, full.dLength);
+      EXPECT_EQ(res.force, full.force) << trial;
+    }
+    Vec6 a;
+    for (int k = 0; k < 6; ++k) a[k] = n(rng);
+    if (trial == 0) a.setOnes();  // the explicit path's M 1
+    for (auto kind : {MassKind::Lumped, MassKind::Consistent}) {
+      const Vec6 product = cableMass(L, rope(), kind) * a;
+      EXPECT_EQ(cableMassTimes(L, rope(), kind, a), product) << trial;
+    }
+  }
+}

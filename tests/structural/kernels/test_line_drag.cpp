@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <cmath>
 #include <random>
 
 #include "kernels/LineDragKernel.hpp"
@@ -38,4 +39,44 @@ TEST(DragKernel, PositionAndVelocityTangentsMatchFiniteDifferences) {
   std::printf("line drag: worst relative error dr/dx %.2e, dr/dv %.2e\n", worstX, worstV);
   EXPECT_LE(worstX, 1e-6);
   EXPECT_LE(worstV, 1e-6);
+}
+
+// The residual-only variant (explicit steps) is the kernel's residual on both nodes, bit for bit:
+// random elements, velocities and winds, and the degenerate ones (no length, no drag).
+TEST(DragKernel, NodeResidualIsTheKernelsResidualBitForBit) {
+  std::mt19937 rng(5);
+  std::normal_distribution<double> n(0, 1);
+  for (int trial = 0; trial < 500; ++trial) {
+    const Vec3 xa(n(rng), n(rng), n(rng)), va(20 * n(rng), 20 * n(rng), 20 * n(rng));
+    const Vec3 xb = trial == 0 ? xa : Vec3(n(rng), n(rng), n(rng));
+    const Vec3 vb(20 * n(rng), 20 * n(rng), 20 * n(rng)), wind(9 * n(rng), 9 * n(rng), 9 * n(rng));
+    const double c = trial == 1 ? 0.0 : 0.5 * 0.0023769 * 1.2 * 0.03 * std::exp(n(rng));
+    const auto d = lineDrag(xa, xb, va, vb, wind, c, false);
+    const Vec3 r = lineDragNodeResidual(xa, xb, va, vb, wind, c);
+    EXPECT_EQ(r, Vec3(d.residual.head<3>())) << trial;
+    EXPECT_EQ(r, Vec3(d.residual.tail<3>())) << trial;
+  }
+}
+
+// The kernel writes the projector and the normal velocity out entry by entry (a stall-free form):
+// its residual is bit for bit that of the matrix expressions u = (I - e e^T) v, r = (c l / 2)
+// |u| u.
+TEST(DragKernel, ResidualIsBitForBitThatOfTheMatrixExpressions) {
+  std::mt19937 rng(13);
+  std::normal_distribution<double> n(0, 1);
+  for (int trial = 0; trial < 2000; ++trial) {
+    const Vec3 xa(n(rng), n(rng), n(rng)), xb(n(rng), n(rng), n(rng));
+    const Vec3 va(20 * n(rng), 20 * n(rng), 20 * n(rng)), vb(20 * n(rng), 20 * n(rng), 20 * n(rng));
+    const Vec3 wind(9 * n(rng), 9 * n(rng), 9 * n(rng));
+    const double c = 0.5 * 0.0023769 * 1.2 * 0.03;
+    const Vec3 d = xb - xa;
+    const double l = d.norm();
+    const Vec3 e = d / l;
+    const Mat3 P = Mat3::Identity() - e * e.transpose();
+    const Vec3 v = 0.5 * (va + vb) - wind;
+    const Vec3 u = P * v;
+    const Vec3 r = 0.5 * c * l * u.norm() * u;
+    EXPECT_EQ(lineDragNodeResidual(xa, xb, va, vb, wind, c), r) << trial;
+    EXPECT_EQ(Vec3(lineDrag(xa, xb, va, vb, wind, c, true).residual.head<3>()), r) << trial;
+  }
 }

@@ -148,3 +148,71 @@ TEST(MembraneKernel, LumpedMassIsRowSumOfConsistentAndTotalsTheElementMass) {
                 .norm(),
             1e-15);
 }
+
+// membraneEnergy (the energy balance's and the probes' strain energy) is membraneForce's energy
+// bit for bit, with and without the tangent, in every state, for triangles and quads.
+template <int N>
+void checkEnergyOnly() {
+  std::mt19937 rng(29 + N);
+  const auto X = referenceNodes<N>();
+  const auto ref = reference<N>(X);
+  for (const auto& c : kStates)
+    for (int trial = 0; trial < 50; ++trial) {
+      const auto x = deformed<N>(X, c.lx, c.ly, c.shear, rng, 1e-3);
+      for (bool wrinkling : {true, false}) {
+        const double W = membraneEnergy<N>(x, ref, kFabric, wrinkling);
+        const auto res = membraneForce<N>(x, ref, kFabric, wrinkling, false, false);
+        const auto full = membraneForce<N>(x, ref, kFabric, wrinkling, true, true);
+        if (wrinkling) {
+          EXPECT_EQ(full.state, c.expected) << c.name;
+        }
+        EXPECT_EQ(W, res.energy) << c.name;
+        EXPECT_EQ(W, full.energy) << c.name;
+        EXPECT_EQ(res.state, full.state) << c.name;
+      }
+    }
+}
+
+TEST(MembraneKernel, EnergyOnlyIsTheKernelsEnergyBitForBitInEveryState) {
+  checkEnergyOnly<3>();
+  checkEnergyOnly<4>();
+}
+
+// The kernel's strains are written out entry by entry (a stall-free form): its residual-only force
+// and energy are bit for bit those of the matrix expressions F = sum_i x_i dN_i^T, C = F^T F,
+// f = w F S dN^T, in every state, for triangles and quads.
+template <int N>
+void checkAgainstMatrixExpressions() {
+  std::mt19937 rng(41 + N);
+  const auto X = referenceNodes<N>();
+  const auto ref = reference<N>(X);
+  for (const auto& c : kStates)
+    for (int trial = 0; trial < 50; ++trial) {
+      const auto x = deformed<N>(X, c.lx, c.ly, c.shear, rng, 1e-3);
+      for (bool wrinkling : {true, false}) {
+        Eigen::Matrix<double, 3 * N, 1> force = Eigen::Matrix<double, 3 * N, 1>::Zero();
+        double energy = 0.0;
+        for (int k = 0; k < MembraneReference<N>::kGauss; ++k) {
+          const auto& dN = ref.dN[k];
+          Eigen::Matrix<double, 3, 2> F = Eigen::Matrix<double, 3, 2>::Zero();
+          for (int i = 0; i < N; ++i) F += x[i] * dN.row(i);
+          const Eigen::Matrix2d C = F.transpose() * F;
+          const Vec3 e(0.5 * (C(0, 0) - 1.0), 0.5 * (C(1, 1) - 1.0), C(0, 1));
+          const PlaneStress ps = planeStressSVK(e, kFabric.E, kFabric.nu, wrinkling);
+          energy += ref.weight[k] * ps.energy;
+          Eigen::Matrix2d S2;
+          S2 << ps.stress[0], ps.stress[2], ps.stress[2], ps.stress[1];
+          const Eigen::Matrix<double, 3, N> f = ref.weight[k] * (F * S2) * dN.transpose();
+          for (int i = 0; i < N; ++i) force.template segment<3>(3 * i) += f.col(i);
+        }
+        const auto r = membraneForce<N>(x, ref, kFabric, wrinkling, false, false);
+        EXPECT_EQ(r.force, force) << c.name;
+        EXPECT_EQ(r.energy, energy) << c.name;
+      }
+    }
+}
+
+TEST(MembraneKernel, ResidualIsBitForBitThatOfTheMatrixExpressions) {
+  checkAgainstMatrixExpressions<3>();
+  checkAgainstMatrixExpressions<4>();
+}

@@ -228,3 +228,35 @@ TEST(SlidingKernel, TangentMatchesFiniteDifferencesInsideTheApexRadius) {
   EXPECT_LE(worstK, 1e-6);
   EXPECT_LE(worstF, 1e-6);
 }
+
+// Residual-only evaluations (explicit steps) skip the Hessians and the stiffness: everything else
+// is bit for bit the evaluation with the tangent, taut, slack and with the slider at or near an
+// end (inside the apex radius). slidingInertiaForce is slidingInertia's force, bit for bit.
+TEST(SlidingKernel, ResidualOnlyIsTheFullEvaluationBitForBit) {
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::normal_distribution<double> n(0, 1);
+  const auto mat = rope();
+  for (int trial = 0; trial < 300; ++trial) {
+    const double split = trial % 4 == 0 ? 1e-9 : (trial % 4 == 1 ? 1.0 : u(rng));
+    const double strain = trial % 2 == 0 ? 0.02 * u(rng) : -0.1 * u(rng);
+    auto c = makeSliding(rng, split, strain);
+    if (trial % 7 == 0) c.x3 = c.x1;  // on an end node
+    const auto full = slidingForce(c.x1, c.x2, c.x3, c.L, mat, true);
+    const auto res = slidingForce(c.x1, c.x2, c.x3, c.L, mat, false);
+    EXPECT_EQ(res.length, full.length);
+    EXPECT_EQ(res.strain, full.strain);
+    EXPECT_EQ(res.axialForce, full.axialForce);
+    EXPECT_EQ(res.energy, full.energy);
+    EXPECT_EQ(res.segmentLength, full.segmentLength);
+    EXPECT_EQ(res.dLength, full.dLength);
+    EXPECT_EQ(res.force, full.force) << trial;
+    Vec9 a;
+    for (int k = 0; k < 9; ++k) a[k] = n(rng);
+    if (trial == 0) a.setOnes();  // the explicit path's M(x) 1
+    for (auto kind : {MassKind::Lumped, MassKind::Consistent}) {
+      const auto in = slidingInertia(c.x1, c.x2, c.x3, a, c.L, mat, kind);
+      EXPECT_EQ(slidingInertiaForce(c.x1, c.x2, c.x3, a, c.L, mat, kind), in.force) << trial;
+    }
+  }
+}
