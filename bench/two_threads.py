@@ -14,7 +14,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 CASE = os.path.join(ROOT, "cases", "c9_slider.toml")
 RESULTS = os.environ.get("CHUTE_BENCH_RESULTS", os.path.join(ROOT, "bench", "results"))
 SETUPS = [("central differences", ['solver.integrator="central_difference"']),
-          ("Bossak as shipped", [])]
+          ("Bossak with the case's settings", ['solver.integrator="bossak"'])]
 
 
 def run(chute, sets, t_end):
