@@ -302,10 +302,10 @@ def report():
         f.write("Made by `nice /usr/bin/python3 bench/explicit_vs_implicit.py` (see its docstring); "
                 "wall = the run's own wall_time.total, CPU = the process's user + system time "
                 "(includes ~0.15-0.25 s of program start), medians of 3 runs for pulley and bead, one "
-                "run for the C-9 scenes; the machine was shared (load average 5-20 on 2 cores): "
-                "compare within a scene only. C-9 errors: the skirt radius against Bossak at "
+                "run for the C-9 scenes; the 2-core machine is shared (this sitting: load "
+                "average 1-2, 2026-11-25): compare within a scene only. C-9 errors: the skirt radius against Bossak at "
                 f"dt = {C9_REF_DT} (c9_slider) and 1.25e-4 (stiff lines), see "
-                "bench/results/explicit_c9.md for how converged those are.\n\n")
+                "bench/results/c9_convergence_after.md for how converged Bossak is.\n\n")
         f.write("| scene | method | setting | steps | wall (median) s | CPU (median) s | error | note |\n")
         f.write("|---|---|---|---|---|---|---|---|\n")
         for r in out:
