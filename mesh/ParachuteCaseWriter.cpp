@@ -204,16 +204,18 @@ void writeParachuteCase(const ParachuteSpec& spec, const GeneratedParachute& gen
     drag("group", "slider_edges", spec.sliderSide, 1.17 / 4,
          "the four edges carry the slider's flat-plate drag, Cd 1.17 on its area");
 
-  f << "[solver]\ntype = \"dynamic\"\nintegrator = \"bossak\"   # needed by slider_events = "
-       "false\n"
+  f << "[solver]\ntype = \"dynamic\"\n"
+    << "integrator = \"central_difference\"   # explicit: 5-14x less wall time than Bossak on "
+       "parachutes at equal accuracy (docs/explicit.md)\n"
     << "dt = " << num(o.dt)
-    << "   # the fabric's fast in-plane modes are left unresolved and annihilated (rho_inf 0)\n"
+    << "   # the largest step allowed; the step taken is the fabric's stable step\n"
     << "t_end = " << num(o.tEnd) << "   # s of flight\n"
-    << "rho_inf = 0.0   # annihilates the unresolved mesh-size fabric modes that crumple a "
-       "canopy\n"
+    << "# The implicit alternative, --set solver.integrator='\"bossak\"', runs with these:\n"
+    << "rho_inf = 0.0   # Bossak: annihilates the unresolved mesh-size fabric modes that crumple "
+       "a canopy\n"
     << "slack_events = false   # locating each slack/taut switch of hundreds of lines costs "
        "thousands of cut steps\n"
-    << "slider_events = false   # grommets pass line nodes inside the Newton solve (no "
+    << "slider_events = false   # Bossak: grommets pass line nodes inside the Newton solve (no "
        "micro-steps)\n\n";
 
   f << "[output]\ninterval = " << num(o.probeInterval) << "   # a probes.csv row every "

@@ -71,7 +71,7 @@ def cpu_seconds(stderr):
     return sum(t) if t else float("nan")
 
 
-def run_member(chute, member, t_end, work):
+def run_member(chute, member, t_end, work, sets=()):
     name, d = member[0], member[3]
     folder = os.path.join(work, name)
     os.makedirs(folder, exist_ok=True)
@@ -83,8 +83,9 @@ def run_member(chute, member, t_end, work):
     triangles = int(re.search(r"(\d+) canopy triangles", mesh.stdout).group(1))
     out = os.path.join(folder, "out")
     t0 = time.time()
+    extra = [x for s in sets for x in ("--set", s)]
     run = subprocess.run(["/usr/bin/time", "-v", chute, "run", case, "--out", out, "--set",
-                          f"solver.t_end={t_end}"], capture_output=True, text=True)
+                          f"solver.t_end={t_end}", *extra], capture_output=True, text=True)
     wall = time.time() - t0
     row = {"name": name, "units": member[1], "gores": member[2], "D": d, "vent": member[4],
            "slider": member[5], "start": member[6], "payload": member[7],
@@ -111,6 +112,8 @@ def run_member(chute, member, t_end, work):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--chute", default=os.path.join(ROOT, "build", "bin", "chute"))
+    ap.add_argument("--set", action="append", default=[],
+                    help="KEY=VALUE for every member's run (e.g. solver.integrator=...)")
     ap.add_argument("--t-end", type=float, default=2.0)
     ap.add_argument("--only", nargs="*", help="member names")
     ap.add_argument("--work", default=os.path.join(ROOT, "out", "parachute_matrix"))
@@ -120,7 +123,7 @@ def main():
     a = ap.parse_args()
     members = [m for m in MEMBERS if not a.only or m[0] in a.only]
     def one(m):
-        r = run_member(a.chute, m, a.t_end, a.work)
+        r = run_member(a.chute, m, a.t_end, a.work, a.set)
         print(json.dumps(r), flush=True)
         return r
 
