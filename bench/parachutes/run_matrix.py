@@ -144,7 +144,8 @@ def main():
 
     with open(os.path.join(a.results_dir, "results.md"), "w") as f:
         f.write("# Generated-parachute matrix\n\n")
-        f.write(f"Generated parachutes flown {a.t_end:g} s with the generated case unchanged "
+        changed = f" but for {', '.join(a.set)}" if a.set else ""
+        f.write(f"Generated parachutes flown {a.t_end:g} s with the generated case unchanged{changed} "
                 f"(`{' '.join(['python3', 'bench/parachutes/run_matrix.py'] + sys.argv[1:])}`); "
                 "vent and slider as fractions of D; skirt radius (mean distance of the skirt "
                 "nodes from the axis) over D at the start and the end.\n\n")
