@@ -44,8 +44,10 @@ VERIFICATION = [
     ("test_cable_discrete_gradient", "energy-momentum cable force (EM3-EM5, EM8): discrete-gradient property, tangent vs central differences"),
     ("test_membrane_discrete_gradient", "energy-momentum membrane force (EM9-EM10): discrete-gradient property across wrinkling states, tangent"),
     ("test_sliding_discrete_gradient", "energy-momentum sliding element (EM11): discrete-gradient property, tangent"),
+    ("test_polyline_discrete_gradient", "energy-momentum condensed massless chain (EM12): discrete-gradient property, tangent, momenta, the placement of its nodes"),
+    ("test_slider_whirl_damping", "whirl damping of a line node beside a slider (RG8): derivatives vs central differences, dissipation, momentum"),
     ("test_energy_momentum", "energy_momentum: stiff pendulums against the exact period and peak force, momenta of spinning free structures, dissipation, restart"),
-    ("test_energy_momentum_cases", "energy_momentum on bead_1 against the ellipse ODE, beside Bossak"),
+    ("test_energy_momentum_cases", "energy_momentum on bead_1 and bead_5 (condensed chain) against the ellipse ODE, beside Bossak; a bead on a rope with mass against central differences"),
     ("test_static_far_start", "static ring on a rope from starts up to one rope length away (ST1) against the analytic equilibrium"),
     ("test_signals", "signals while the case loads and during a static solve: exit status and what is written"),
 ]
@@ -59,6 +61,14 @@ CSV_TABLES = [
     ("stress.csv", "Stability stress suite, long runs (`python3 bench/stress.py`)"),
     ("explicit_vs_implicit.csv", "Implicit (Bossak) against explicit (central differences) on the same scenes (`bench/explicit_vs_implicit.py`; docs/explicit.md)"),
     ("peer_calculix.csv", "chute against CalculiX on the same membrane problems (`bench/peer/run_peer.py`)"),
+]
+
+# Result pages the benchmark scripts write as Markdown, included as they are.
+MD_PAGES = [
+    ("c9_speed_before_after.md", "The C-9 slider case before and after, one sitting (`bench/c9_speed/before_after.py`)"),
+    ("c9_convergence_after.md", "The C-9 slider case: convergence in the step and the method (`bench/c9_convergence.py`)"),
+    ("explicit_crossover.md", "Implicit against explicit over the canopy mesh (`bench/explicit_crossover.py`)"),
+    ("energy_momentum_c9.md", "The C-9 slider case with the energy-momentum integrator"),
 ]
 
 
@@ -198,6 +208,15 @@ def performance():
         out.append(summarize.summary_table())
     except (ImportError, AttributeError, KeyError, ValueError) as e:
         print(f"gen-docs: bench/summarize.py: {e}", file=sys.stderr)
+    for name, what in MD_PAGES:
+        path = os.path.join(RESULTS, name)
+        if not os.path.exists(path):
+            continue
+        text = open(path).read()
+        # The page's own title, if any, gives way to this one.
+        lines = [l for l in text.splitlines() if not l.startswith("# ")]
+        out.append(f"\n## {what}\n\n`bench/results/{name}`\n")
+        out.append("\n".join(lines).strip() + "\n")
     for name, what in CSV_TABLES:
         path = os.path.join(RESULTS, name)
         if not os.path.exists(path):
