@@ -209,6 +209,8 @@ void writeParachuteCase(const ParachuteSpec& spec, const GeneratedParachute& gen
        "parachutes at equal accuracy (docs/explicit.md)\n"
     << "dt = " << num(o.dt)
     << "   # the largest step allowed; the step taken is the fabric's stable step\n"
+    << "stiffness_damping = 1e-5   # 1-2 % of critical at the highest frequencies: the fabric's "
+       "stresses and the lines' forces do not ring\n"
     << "t_end = " << num(o.tEnd) << "   # s of flight\n"
     << "# The implicit alternative, --set solver.integrator='\"bossak\"', runs with these:\n"
     << "rho_inf = 0.0   # Bossak: annihilates the unresolved mesh-size fabric modes that crumple "

@@ -106,5 +106,6 @@ TEST(GeneratedFlight, EverySolverSettingOfTheGeneratedCaseSaysWhy) {
     ++settings;
     EXPECT_NE(line.find(" # "), std::string::npos) << "no reason given: " << line;
   }
-  EXPECT_EQ(settings, 6);  // integrator, dt, t_end, rho_inf, slack_events, slider_events
+  // integrator, dt, stiffness_damping, t_end, rho_inf, slack_events, slider_events
+  EXPECT_EQ(settings, 7);
 }
