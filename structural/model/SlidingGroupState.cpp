@@ -40,6 +40,17 @@ void SlidingGroupState::setRefLengths(const std::vector<double>& ref) {
   for (int k = 0; k < def_->numElements(); ++k) cumulativeRef_[k + 1] = cumulativeRef_[k] + ref_[k];
 }
 
+void SlidingGroupState::carryMaterial(int from, int to, double length) {
+  // At most half the element left: a transfer never empties it (each reference length stays
+  // positive, as load() checks).
+  const double m = std::min(length, 0.5 * ref_[from]);
+  if (!(m > 0.0)) return;
+  std::vector<double> ref = ref_;
+  ref[from] -= m;
+  ref[to] += m;
+  setRefLengths(ref);
+}
+
 double SlidingGroupState::lengthMismatch(int slider, int element, const Eigen::VectorXd& x) const {
   const Vec3 xs = nodePos(x, def_->sliders[slider]);
   const double l = (xs - nodePos(x, def_->chain[element])).norm() +
@@ -80,13 +91,7 @@ int SlidingGroupState::search(const Eigen::VectorXd& x, SliderSearch kind) {
       // At a chain end, or against another slider, the slider stays where it is.
       if (k >= 0 && k < nEl && !takenByOther(k)) {
         // F12b: the material between node and slider where they passed goes with the slider.
-        const double m = std::min(pendingTransfer_[s], 0.5 * ref_[best]);
-        if (m > 0.0) {
-          std::vector<double> ref = ref_;
-          ref[best] -= m;
-          ref[k] += m;
-          setRefLengths(ref);
-        }
+        carryMaterial(best, k, pendingTransfer_[s]);
         best = k;
       }
     }
@@ -374,13 +379,7 @@ void SlidingGroupState::commit(const Eigen::VectorXd& x) {
     const int k = trial_[s] + handoverAtCommit_[s];
     if (hasFriction(static_cast<int>(s))) splitStart_[s] = frTrial_[s].s;
     if (handoverAtCommit_[s] != 0 && k >= 0 && k < def_->numElements()) {
-      const double m = std::min(transferAtCommit_[s], 0.5 * ref_[trial_[s]]);
-      if (m > 0.0) {  // F12b
-        std::vector<double> ref = ref_;
-        ref[trial_[s]] -= m;
-        ref[k] += m;
-        setRefLengths(ref);
-      }
+      carryMaterial(trial_[s], k, transferAtCommit_[s]);  // F12b
       trial_[s] = k;
       splitStart_[s] = frTrial_[s].s = uniformSplit(static_cast<int>(s), k, x);
     }

@@ -143,10 +143,12 @@ class SlidingGroupState {
   std::vector<double> pendingTransfer_;     // per slider: reference length carried across (F12b)
   std::vector<double> ref_, refCommitted_;  // per element: reference length (trial, committed)
   void setRefLengths(const std::vector<double>& ref);  // and the cumulative table
-  std::vector<int> handoverAtCommit_;                  // same, applied when the step is committed
-  std::vector<double> cumulativeRef_;                  // reference arc length at each chain node
-  std::vector<char> driven_;  // per slider: follows a moving prescribed path
-  long handovers_ = 0;        // nodes passed by committed steps
+  // F12b: moves `length` of reference length (at most half of it) from element `from` to `to`.
+  void carryMaterial(int from, int to, double length);
+  std::vector<int> handoverAtCommit_;  // same, applied when the step is committed
+  std::vector<double> cumulativeRef_;  // reference arc length at each chain node
+  std::vector<char> driven_;           // per slider: follows a moving prescribed path
+  long handovers_ = 0;                 // nodes passed by committed steps
   // Friction history: the split the step starts from, per slider (reset to the uniform split
   // when the slider changes element), and the committed / converged-trial friction state.
   double uniformSplit(int slider, int element, const Eigen::VectorXd& x) const;
