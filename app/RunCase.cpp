@@ -22,7 +22,7 @@
 #include "solver/EnergyMonitor.hpp"
 #include "solver/StaticLoadStepper.hpp"
 #include "solver/TimeStepper.hpp"
-#include "terms/SlidingGroupTerm.hpp"
+#include "terms/sliding/SlidingGroupTerm.hpp"
 #include "verification/HenckyReference.hpp"
 #include "verification/References.hpp"
 

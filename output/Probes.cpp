@@ -16,7 +16,7 @@
 #include "kernels/CableKernel.hpp"
 #include "kernels/SliderFriction.hpp"
 #include "terms/MembraneTerm.hpp"
-#include "terms/SlidingGroupTerm.hpp"
+#include "terms/sliding/SlidingGroupTerm.hpp"
 
 namespace chute {
 

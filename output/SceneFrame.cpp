@@ -7,7 +7,7 @@
 #include "case/CaseSpec.hpp"
 #include "kernels/CableKernel.hpp"
 #include "terms/MembraneTerm.hpp"
-#include "terms/SlidingGroupTerm.hpp"
+#include "terms/sliding/SlidingGroupTerm.hpp"
 
 namespace chute {
 

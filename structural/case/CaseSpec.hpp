@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "model/Model.hpp"
-#include "model/SlidingGroupState.hpp"
+#include "model/SliderSearch.hpp"
 #include "solver/IntegratorKind.hpp"
 
 namespace chute {

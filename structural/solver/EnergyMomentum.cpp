@@ -45,7 +45,7 @@ EnergyMomentum::EnergyMomentum(StructuralSystem& sys, NewtonSettings newton, dou
     : ImplicitIntegrator(sys, newton, dtNominal, dtMin), chi_(chi), order_(order) {
   // The discrete gradient's tangent is not symmetric (EM5): LU from the start.
   newton_.linearSolver().useLU();
-  // EM12: massless chains are condensed to one polyline each (terms/SlidingGroupTerm.hpp).
+  // EM12: the terms that can condense themselves for discrete gradients do (Term::prepareFor).
   sys.prepareFor(IntegrationTraits{false, true});
 }
 

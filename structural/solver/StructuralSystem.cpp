@@ -7,11 +7,11 @@
 
 namespace chute {
 
-StructuralSystem::StructuralSystem(const Model& model, SliderSearch search,
+StructuralSystem::StructuralSystem(const Model& model, TermOptions options,
                                    std::vector<std::unique_ptr<Term>> extraTerms)
     : model_(&model),
       dofs_(model),
-      list_(model, search, std::move(extraTerms)),
+      list_(model, options, std::move(extraTerms)),
       terms_(list_.terms()),
       assembler_(dofs_),
       secondAssembler_(dofs_) {

@@ -10,7 +10,6 @@
 #include "assembly/Term.hpp"
 #include "assembly/TwoPartRunner.hpp"
 #include "model/Model.hpp"
-#include "model/SlidingGroupState.hpp"
 #include "solver/StructuralState.hpp"
 #include "solver/Timings.hpp"
 #include "terms/TermList.hpp"
@@ -21,7 +20,7 @@ class StructuralSystem {
  public:
   // The terms of the model (terms/TermList.hpp); extraTerms: terms the model does not describe
   // (loads supplied by a coupled flow solver), which join the sparsity pattern like the others.
-  StructuralSystem(const Model& model, SliderSearch search,
+  StructuralSystem(const Model& model, TermOptions options,
                    std::vector<std::unique_ptr<Term>> extraTerms = {});
 
   const Model& model() const { return *model_; }

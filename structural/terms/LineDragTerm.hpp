@@ -5,7 +5,7 @@
 
 #include "assembly/Term.hpp"
 #include "model/Model.hpp"
-#include "model/SlidingGroupState.hpp"
+#include "terms/sliding/SlidingGroupState.hpp"
 
 namespace chute {
 

@@ -8,16 +8,16 @@
 #include "terms/MembraneTerm.hpp"
 #include "terms/PointMassTerm.hpp"
 #include "terms/PressureTerm.hpp"
-#include "terms/SlidingGroupTerm.hpp"
+#include "terms/sliding/SlidingGroupTerm.hpp"
 
 namespace chute {
 
-TermList::TermList(const Model& model, SliderSearch search,
+TermList::TermList(const Model& model, TermOptions options,
                    std::vector<std::unique_ptr<Term>> extraTerms) {
   // Only what the scene uses: a term exists only if the model has something for it.
   if (!model.cables.empty()) terms_.push_back(std::make_unique<CableTerm>(model));
   for (size_t g = 0; g < model.groups.size(); ++g) {
-    auto t = std::make_unique<SlidingGroupTerm>(model, static_cast<int>(g), search);
+    auto t = std::make_unique<SlidingGroupTerm>(model, static_cast<int>(g), options.search);
     groups_.push_back(t.get());
     terms_.push_back(std::move(t));
   }

@@ -10,18 +10,25 @@
 
 #include "assembly/Term.hpp"
 #include "model/Model.hpp"
-#include "model/SlidingGroupState.hpp"
+#include "model/SliderSearch.hpp"
 
 namespace chute {
 
 class SlidingGroupTerm;
 class MembraneTerm;
 
+// The choices the terms are built with (from the case's [solver] table).
+struct TermOptions {
+  SliderSearch search = SliderSearch::MaterialCoordinate;
+  TermOptions() = default;
+  TermOptions(SliderSearch s) : search(s) {}  // NOLINT: implicit, the one choice there is
+};
+
 class TermList {
  public:
   // extraTerms: terms the model does not describe (loads supplied by a coupled flow solver),
   // appended after the model's.
-  TermList(const Model& model, SliderSearch search,
+  TermList(const Model& model, TermOptions options,
            std::vector<std::unique_ptr<Term>> extraTerms = {});
   TermList(TermList&&) = default;
   TermList& operator=(TermList&&) = default;

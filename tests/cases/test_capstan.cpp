@@ -11,7 +11,7 @@
 #include "case/CaseSpec.hpp"
 #include "solver/GeneralizedAlpha.hpp"
 #include "solver/StaticLoadStepper.hpp"
-#include "terms/SlidingGroupTerm.hpp"
+#include "terms/sliding/SlidingGroupTerm.hpp"
 
 using namespace chute;
 

@@ -13,7 +13,7 @@
 #include "app/RunCase.hpp"
 #include "case/CaseError.hpp"
 #include "case/CaseSpec.hpp"
-#include "terms/SlidingGroupTerm.hpp"
+#include "terms/sliding/SlidingGroupTerm.hpp"
 
 using namespace chute;
 

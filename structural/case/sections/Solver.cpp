@@ -3,7 +3,7 @@
 
 #include "case/sections/SectionLookup.hpp"
 #include "case/sections/Sections.hpp"
-#include "terms/SlidingGroupTerm.hpp"
+#include "terms/sliding/SlidingGroupTerm.hpp"
 
 namespace chute::caseio {
 

@@ -19,7 +19,7 @@
 #include "support/AssembledJacobian.hpp"
 #include "support/FiniteDifference.hpp"
 #include "support/Scenes.hpp"
-#include "terms/SlidingGroupTerm.hpp"
+#include "terms/sliding/SlidingGroupTerm.hpp"
 
 using namespace chute;
 using namespace chute::coupling;

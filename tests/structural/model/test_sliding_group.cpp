@@ -9,10 +9,10 @@
 #include "kernels/CableKernel.hpp"
 #include "kernels/SlidingCableKernel.hpp"
 #include "model/History.hpp"
-#include "model/SlidingGroupState.hpp"
 #include "solver/StructuralSystem.hpp"
 #include "support/FiniteDifference.hpp"
-#include "terms/SlidingGroupTerm.hpp"
+#include "terms/sliding/SlidingGroupState.hpp"
+#include "terms/sliding/SlidingGroupTerm.hpp"
 
 using namespace chute;
 

@@ -1,4 +1,4 @@
-#include "terms/SlidingGroupTerm.hpp"
+#include "terms/sliding/SlidingGroupTerm.hpp"
 
 #include <algorithm>
 #include <cmath>
