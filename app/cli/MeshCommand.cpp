@@ -162,7 +162,7 @@ Command addMeshCommand(CLI::App& app) {
   p->add_option("--riser-length", s.riserLength,
                 "confluence to payload point (box: to each top corner)");
   p->add_option("--riser-elements", s.riserElements, "elements per riser")->default_val(1);
-  p->add_option("--start", s.start, "start configuration: flat, folded or inflated")
+  p->add_option("--start", s.start, "start configuration: flat, folded, inflated or packed")
       ->default_val("flat");
   p->add_option("--inflated-ratio", s.inflatedRatio,
                 "inflated: projected diameter / D of the spherical-cap start")
@@ -172,6 +172,10 @@ Command addMeshCommand(CLI::App& app) {
                 "slider below the skirt at the start (default L/20)");
   p->add_option("--line-slack", s.lineSlack, "start slack of the longest line (fraction)")
       ->default_val(0.005);
+  p->add_option("--pack-length", s.packLength, "packed: length of the bag (default D/12)");
+  p->add_option("--pack-diameter", s.packDiameter, "packed: diameter of the bag (default D/25)");
+  p->add_option("--pack-gap", s.packGap,
+                "packed: least gap between layers of cloth (default 1 mm in the --units)");
   p->add_option("--out", a->out, "output mesh (.msh, format 4.1)");
   p->add_option("--case", a->caseFile, "also write a case file that runs the mesh");
   p->add_option("--units", a->caseOptions.units,
@@ -211,6 +215,9 @@ Command addMeshCommand(CLI::App& app) {
           return kExitBadInput;
         }
         if (!a->box.empty()) a->spec.payloadBox = {a->box[0], a->box[1], a->box[2]};
+        // 1 mm: of the order of a contact thickness for cloth (docs/meshing.md, "Packed start").
+        if (!p->count("--pack-gap"))
+          a->spec.packGap = a->caseOptions.units == "si" ? 1e-3 : 1e-3 / 0.3048;
         mesh::GeneratedParachute g;
         try {
           if (p->count("--pressure") && !std::isfinite(a->caseOptions.pressure))
