@@ -137,7 +137,9 @@ Vec3 packedPoint(const PackLayout& l, const Vec3& X, double c) {
     const Vec3 t = run ? (r % 2 == 0 ? ez : Vec3(-ez)) : ex;
     const double cloth =
         run ? l.runCloth + (r == 0 ? l.firstRunExtra / kRunFactor : 0.0) : l.crossingCloth;
-    const double length = run ? c * cloth : l.pitch;
+    // The first run's extra stretch (below the bottom crossings) keeps its length whatever c:
+    // the crossings stay clear of the bag's mouth.
+    const double length = run ? c * l.runCloth + (r == 0 ? l.firstRunExtra : 0.0) : l.pitch;
     const Vec3 end = start + length * t;
     if (s <= cloth0 + cloth || i == segments - 1) {
       const Vec3 tPrev = i == 0 ? t : (run ? ex : (r % 2 == 0 ? ez : Vec3(-ez)));
