@@ -22,6 +22,7 @@
 #include "solver/EnergyMonitor.hpp"
 #include "solver/StaticLoadStepper.hpp"
 #include "solver/TimeStepper.hpp"
+#include "terms/CanopyFlowTerm.hpp"
 #include "terms/sliding/SlidingGroupTerm.hpp"
 #include "verification/HenckyReference.hpp"
 #include "verification/References.hpp"
@@ -322,6 +323,20 @@ void reportSystem(StructuralSystem& sys, RunResult& r) {
     r.handovers.push_back(g->state().committedHandovers());
 }
 
+// The flight figures of a run with a canopy probe and a force probe (docs/flight.md).
+void reportFlight(const CaseSpec& spec, const StructuralSystem& sys, RunResult& r) {
+  const auto series = flightSeries(spec.output.probes, r.columns, r.times, r.rows);
+  if (!series) return;
+  for (const auto& p : spec.output.probes)
+    if (p.kind == ProbeKind::Canopy)
+      for (const auto* c : sys.termList().canopyFlows())
+        if (c->set() == p.membraneSet) {
+          r.flight = flightFigures(*series, c->nominalDiameter(), c->nominalArea(),
+                                   spec.model.totalMass() * spec.model.gravity.norm());
+          return;
+        }
+}
+
 }  // namespace
 
 std::string_view runStatusName(RunStatus s) {
@@ -391,6 +406,7 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
   sys.timings().outputBackground = out.backgroundSeconds();
   r.vtuFrames = out.vtuFrames();
   reportSystem(sys, r);
+  reportFlight(spec, sys, r);
   r.work.vtuSeries = spec.output.vtu.write && !options.outDir.empty() ? 1 : 0;
   r.work.vtuFrames = r.vtuFrames;
   r.wallTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
@@ -485,6 +501,24 @@ void writeSummary(const std::string& path, const CaseSpec& spec, const RunResult
   j["output"] = {
       {"probe_rows", r.times.size()}, {"vtu_frames", r.vtuFrames}, {"checkpoints", r.checkpoints}};
   if (!spec.units.empty()) j["units"] = spec.units;
+  if (r.flight) {
+    const auto& f = *r.flight;
+    j["flight"] = {{"frame", f.held ? "held in a wind (infinite mass)" : "free flight"},
+                   {"peak_opening_force", f.peakForce},
+                   {"peak_opening_force_time", f.peakForceTime},
+                   {"opening_force_factor", f.openingForceFactor},
+                   {"filling_time", f.fillingTime},
+                   {"filling_distance", f.fillingDistance},
+                   {"steady_from", f.steadyFrom},
+                   {"steady_force", f.steadyForce},
+                   {"steady_force_variation", f.steadyVariation},
+                   {"steady_descent_speed", f.steadyDescentSpeed},
+                   {"steady_airspeed", f.steadyAirspeed},
+                   {"drag_area", f.dragArea},
+                   {"drag_coefficient", f.dragCoefficient},
+                   {"projected_diameter_ratio", f.projectedDiameterRatio},
+                   {"largest_swing", f.largestSwing}};
+  }
   j["energy"] = {
       {"initial", r.energyInitial}, {"max_drift", r.energyMaxDrift}, {"max_kinetic", r.kineticMax}};
   if (std::isfinite(r.balanceMax))

@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "FlightFigures.hpp"
 #include "assembly/WorkCounters.hpp"
 #include "case/CaseSpec.hpp"
 #include "solver/Timings.hpp"
@@ -82,6 +83,7 @@ struct RunResult {
   std::vector<std::vector<double>> rows;
   std::optional<ReferenceError> reference;
   std::optional<ExplicitRunInfo> explicitRun;
+  std::optional<FlightFigures> flight;  // a canopy with a force probe (docs/flight.md)
   // An output interval shorter than solver.dt caps every implicit step (steps land on output
   // times): the cap (NaN: none) and a note saying so, on stderr and in summary.json.
   double outputStepCap = std::numeric_limits<double>::quiet_NaN();

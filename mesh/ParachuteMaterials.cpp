@@ -4,7 +4,7 @@
 
 namespace chute::mesh {
 
-ParachuteMaterials parachuteMaterials(const std::string& units) {
+ParachuteMaterials parachuteMaterials(const std::string& units, double permeabilityCfm) {
   // Exact conversion factors (NIST SP 811): 1 ft = 0.3048 m, 1 lbf = 4.4482216152605 N,
   // 1 slug = 1 lbf s^2 / ft.
   constexpr double ft = 0.3048, lbf = 4.4482216152605, slug = lbf / ft;
@@ -25,6 +25,10 @@ ParachuteMaterials parachuteMaterials(const std::string& units) {
   m.airDensity = 0.0023769;
   m.gravity = 9.80665 / ft;
   m.defaultPressure = 0.1;
+  m.defaultSpeed = 20.0 / ft;
+  // ft^3/ft^2/min is ft/min; 0.5 in of water (1 inH2O = 249.0889 Pa, NIST SP 811) in psf.
+  m.clothPermeability = permeabilityCfm / 60.0;
+  m.permeabilityTestPressure = 0.5 * 249.0889 / (lbf / (ft * ft));
   if (units == "ft") {
     m.unitsLabel = "ft, slug, s, lbf";
     return m;
@@ -45,6 +49,9 @@ ParachuteMaterials parachuteMaterials(const std::string& units) {
   m.airDensity = 1.225;  // the standard atmosphere's sea-level value (0.0023769 slug/ft^3)
   m.gravity = 9.80665;
   m.defaultPressure *= pressure;
+  m.defaultSpeed = 20.0;
+  m.clothPermeability *= ft;
+  m.permeabilityTestPressure *= pressure;
   return m;
 }
 

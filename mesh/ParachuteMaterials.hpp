@@ -23,10 +23,14 @@ struct ParachuteMaterials {
   double frameE = 0.0, frameArea = 0.0;  // payload box: stiff massless trusses
   double airDensity = 0.0, gravity = 0.0;
   double defaultPressure = 0.0;  // the half-scale C-9's 0.1 psf (4.79 Pa)
-  double length = 1.0;           // one ft in these units (for printing sizes)
+  double defaultSpeed = 0.0;     // at line stretch: 20 m/s
+  // The cloth's air permeability: the velocity through it at the test pressure difference.
+  double clothPermeability = 0.0, permeabilityTestPressure = 0.0;
+  double length = 1.0;  // one ft in these units (for printing sizes)
 };
 
-// Throws std::invalid_argument("--units: ...") for anything but "ft" or "si".
-ParachuteMaterials parachuteMaterials(const std::string& units);
+// Throws std::invalid_argument("--units: ...") for anything but "ft" or "si". permeabilityCfm:
+// the cloth's air permeability in ft^3/ft^2/min at 0.5 in of water (MIL-C-7020 type I: 80-120).
+ParachuteMaterials parachuteMaterials(const std::string& units, double permeabilityCfm = 100.0);
 
 }  // namespace chute::mesh

@@ -13,6 +13,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "FlightProbes.hpp"
 #include "kernels/CableKernel.hpp"
 #include "kernels/SliderFriction.hpp"
 #include "terms/MembraneTerm.hpp"
@@ -88,10 +89,14 @@ std::array<double, 3> radiusAboutAxis(const ProbeSpec& p, const Eigen::VectorXd&
 }
 }  // namespace
 
-std::vector<double> ProbeSet::evaluate(const StructuralSystem& sys, const StructuralState& s,
+std::vector<double> ProbeSet::evaluate(StructuralSystem& sys, const StructuralState& s,
                                        const EquilibriumPoint& eq, const EnergyBreakdown& e,
                                        const ProbeBalance& balance) const {
   std::vector<double> out;
+  Eigen::VectorXd reaction;  // the supports' forces at eq, when a probe asks for them
+  for (const auto& p : probes_)
+    if (p.kind == ProbeKind::SupportForce && reaction.size() == 0)
+      reaction = sys.nodalForces(eq.x, eq.v, eq.a, eq.t, true).reaction;
   for (const auto& p : probes_) {
     if (p.kind == ProbeKind::NodePosition || p.kind == ProbeKind::NodeVelocity) {
       const Eigen::VectorXd& v = p.kind == ProbeKind::NodePosition ? s.x : s.v;
@@ -160,6 +165,20 @@ std::vector<double> ProbeSet::evaluate(const StructuralSystem& sys, const Struct
     } else if (p.kind == ProbeKind::SkirtRadius) {
       const auto r = radiusAboutAxis(p, s.x);
       out.insert(out.end(), r.begin(), r.end());
+    } else if (p.kind == ProbeKind::SupportForce) {
+      // The residual at the supported dofs: the force the structure puts on its supports
+      // (docs/output.md, "reaction"), summed over the set.
+      Vec3 f = Vec3::Zero();
+      for (int n : p.nodes) f += reaction.segment<3>(3 * n);
+      out.insert(out.end(), {f.x(), f.y(), f.z(), f.norm()});
+    } else if (p.kind == ProbeKind::LinePull) {
+      const Vec3 f = linePull(*model_, sys, p.node, p.lineSets, eq.x, s.t);
+      out.insert(out.end(), {f.x(), f.y(), f.z(), f.norm()});
+    } else if (p.kind == ProbeKind::LineForceMax) {
+      out.push_back(largestLineForce(*model_, sys, p.lineSets, eq.x, s.t));
+    } else if (p.kind == ProbeKind::Canopy) {
+      const auto c = canopyFigures(*model_, sys, p.membraneSet, s);
+      out.insert(out.end(), c.begin(), c.end());
     }
   }
   return out;

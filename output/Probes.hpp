@@ -27,7 +27,8 @@ class ProbeSet {
   // step's equations hold (solver/EquilibriumPoint.hpp); energy: the system's energy at eq (the
   // run needs it anyway for its drift: evaluated once).
   // balance: the energy balance's work and balance (solver/EnergyMonitor.hpp; NaN without one).
-  std::vector<double> evaluate(const StructuralSystem& sys, const StructuralState& s,
+  // The supports' forces are evaluated (one more assembly) only when a probe asks for them.
+  std::vector<double> evaluate(StructuralSystem& sys, const StructuralState& s,
                                const EquilibriumPoint& eq, const EnergyBreakdown& energy,
                                const ProbeBalance& balance = {}) const;
   const std::vector<ProbeSpec>& probes() const { return probes_; }

@@ -1,7 +1,8 @@
 // `chute mesh parachute --gores N --diameter D --line-length L --element-size h --out FILE.msh
 //  [--vent-diameter d] [--line-elements n] [--slider SIDE] [--payload-mass m] [--payload-box
 //  a,b,c] [--riser-length l] [--start flat|folded|inflated] [--case FILE.toml]
-//  [--units ft|si] [--pressure p] [--ramp-time s] [--dt s] [--t-end s] [--config PARAMS.toml]`:
+//  [--units ft|si] [--speed V] [--altitude H] [--held] [--cloth-permeability cfm] [--pressure p]
+//  [--ramp-time s] [--dt s] [--t-end s] [--config PARAMS.toml]`:
 // a flat circular canopy with lines, slider and payload meshed with gmsh (docs/meshing.md).
 // `chute mesh cluster --canopies 2|3 [the geometry and case options of mesh parachute]
 //  [--spacing s] [--riser-length l] [--riser-elements n] [--payload-mass m]`: a cluster of
@@ -170,6 +171,22 @@ struct Outputs {
   bool quiet = false;
 };
 
+// The flight a generated parachute's case starts (docs/flight.md).
+void addFlightOptions(CLI::App* p, Outputs& o) {
+  p->add_option("--speed", o.caseOptions.speed,
+                "case: the system's speed at line stretch, downward (held: the wind's), in the "
+                "--units (default 20 m/s = 65.6 ft/s)");
+  p->add_option("--altitude", o.caseOptions.altitude,
+                "case: altitude of the standard atmosphere, in the --units (default 0)");
+  p->add_flag(
+      "--held", o.caseOptions.held,
+      "case: the payload held in a steady wind of --speed (the wind tunnel, infinite mass)");
+  p->add_option("--cloth-permeability", o.caseOptions.clothPermeability,
+                "case: the cloth's air permeability, ft^3/ft^2/min at 0.5 in of water "
+                "(default 100: MIL-C-7020 type I; 0: impermeable)")
+      ->default_val(100.0);
+}
+
 void addOutputOptions(CLI::App* p, Outputs& o) {
   p->add_option("--config", o.config,
                 "parameter file (TOML): option = value, names without '--'; the command line wins");
@@ -180,9 +197,9 @@ void addOutputOptions(CLI::App* p, Outputs& o) {
       ->default_val("ft")
       ->check(CLI::IsMember({"ft", "si"}));
   p->add_option("--pressure", o.caseOptions.pressure,
-                "case: canopy pressure, the dynamic pressure of the descent (default 0.1 psf or "
-                "4.79 Pa; 0: none)");
-  p->add_option("--ramp-time", o.caseOptions.rampTime, "case: pressure ramp time")
+                "case: a constant canopy pressure in the frame of the falling payload instead of "
+                "the airflow's loads (legacy; mesh cluster: its default 0.1 psf or 4.79 Pa)");
+  p->add_option("--ramp-time", o.caseOptions.rampTime, "case: --pressure's ramp time")
       ->default_val(0.1);
   p->add_option("--t-end", o.caseOptions.tEnd, "case: end time")->default_val(2.0);
   p->add_option("--dt", o.caseOptions.dt, "case: time step")->default_val(2e-3);
@@ -300,6 +317,7 @@ Command addMeshCommand(CLI::App& app) {
                 "confluence to payload point (box: to each top corner)");
   p->add_option("--riser-elements", s.riserElements, "elements per riser")->default_val(1);
   addOutputOptions(p, a->o);
+  addFlightOptions(p, a->o);
   return {mesh, [a, p, geoRun, clusterRun, mesh] {
             if (mesh->got_subcommand("geo")) return geoRun();
             if (mesh->got_subcommand("cluster")) return clusterRun();

@@ -45,6 +45,11 @@ struct EvalPoint {
   // a is zero at every dof (the explicit step evaluates its forces at a = 0, EX2): the terms skip
   // the inertia M a without gathering a at every element. Set only by the caller that made a.
   bool zeroAcceleration = false;
+  // Stiffness-proportional damping (EX7) evaluates the internal forces at x = x_step + beta v:
+  // the step's own positions, for loads that are not part of the stiffness it damps (the
+  // captured air of a canopy, docs/flight.md FL3). nullptr: x is the step's.
+  const Eigen::VectorXd* undamped = nullptr;
+  const Eigen::VectorXd& stepPositions() const { return undamped ? *undamped : x; }
 
   // The state (x, v, a) at t as it is: residual r(x, v, a, t), Jacobian dr/dx (output, the
   // energy balance, checks).
@@ -70,10 +75,13 @@ struct EvalPoint {
     return p;
   }
   // The forces of an explicit step of length dt at a = 0 (EX2; zeroA must be zero at every dof),
-  // residual only; dt = 0 for the forces of a start or after a cut.
+  // residual only; dt = 0 for the forces of a start or after a cut. undamped: the step's own
+  // positions when x is shifted by stiffness damping (EX7).
   static EvalPoint explicitForces(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
-                                  const Eigen::VectorXd& zeroA, double t, double dt) {
+                                  const Eigen::VectorXd& zeroA, double t, double dt,
+                                  const Eigen::VectorXd* undamped = nullptr) {
     EvalPoint p(x, v, zeroA, t);
+    p.undamped = undamped;
     p.cx = p.cv = p.ca = 0.0;
     p.dt = dt;
     p.explicitStep = dt;
@@ -138,6 +146,7 @@ struct CommitPoint {
   double t = 0.0;
   double dt = 0.0;
   double tForces = 0.0;
+  const Eigen::VectorXd* v = nullptr;  // the end velocities, where the integrator has them
 };
 
 // What a term may adapt to the integrator that steps it, told once before the first step
@@ -151,7 +160,10 @@ struct EnergyBreakdown {
   double kinetic = 0.0;
   double strain = 0.0;
   double gravity = 0.0;  // potential of gravity, -sum f_g . x
-  double total() const { return kinetic + strain + gravity; }
+  // Energy that entered with mass the structure took on, not through a force's work (the kinetic
+  // energy of air a canopy captured, docs/flight.md FL12): the balance counts it as supplied.
+  double supplied = 0.0;
+  double total() const { return kinetic + strain + gravity - supplied; }
 };
 
 class Term {
@@ -197,6 +209,13 @@ class Term {
   virtual void addStiffnessBound(const Eigen::VectorXd& /*x*/, double /*t*/,
                                  const std::vector<char>& /*free*/,
                                  std::vector<double>& /*S*/) const {}
+  // A bound on the squared frequency of modes that couple many nodes at once, which the nodal
+  // bounds above cannot see (a gas spring over a whole canopy: docs/flight.md FL12), given the
+  // lumped nodal masses; 0: none.
+  virtual double frequencySquaredBound(const Eigen::VectorXd& /*x*/, double /*t*/,
+                                       const std::vector<double>& /*nodalMass*/) const {
+    return 0.0;
+  }
   // The cost of one residual assembly, in units of a membrane triangle's (the two-part split of
   // the assembly, docs/performance.md "Two threads"); 0: negligible or unknown.
   virtual double assemblyCost() const { return 0.0; }

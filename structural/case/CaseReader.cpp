@@ -25,7 +25,7 @@ CaseSpec readCaseFromString(const std::string& text, const std::string& file,
   // something missing.
   top.finish({"name", "description", "units", "nodes", "materials", "cables", "sliding_groups",
               "membranes", "point_masses", "boundary", "loads", "solver", "output", "reference",
-              "mesh", "events"});
+              "mesh", "events", "air", "initial"});
   CaseSpec c;
   c.file = file;
   c.name = top.string("name", std::filesystem::path(file).stem().string());
@@ -49,6 +49,8 @@ CaseSpec readCaseFromString(const std::string& text, const std::string& file,
   if (m.numNodes() == 0) top.fail("nodes", "the case has no nodes (no [nodes] and no meshes)");
   caseio::readPointMasses(m, mesh.get(), top);
   if (top.has("boundary")) caseio::readBoundary(m, top.table("boundary"));
+  if (top.has("air")) caseio::readAir(c, top.table("air"));
+  if (top.has("initial")) caseio::readInitial(m, top.table("initial"));
   if (top.has("loads")) caseio::readLoads(m, mesh.get(), top.table("loads"));
   caseio::readEvents(m, top);
   caseio::readSolver(c, top.table("solver"));

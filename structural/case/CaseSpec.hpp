@@ -25,6 +25,10 @@ enum class ProbeKind {
   SliderFriction,
   SkirtRadius,
   EdgeAngle,
+  SupportForce,  // the force the supports put on a node set
+  LinePull,      // the resultant pull of line sets' elements on a node
+  LineForceMax,  // the largest axial force over line sets
+  Canopy,        // a canopy's flow figures (docs/flight.md)
 };
 // Each kind's case-file name and the quantities its columns carry ("<probe>.<quantity>"), in
 // the order the reader lists them.
@@ -43,6 +47,8 @@ struct ProbeSpec {
   int node2 = -1;                  // edge_angle: the edge runs node -> node2
   int group = -1, slider = -1;     // slider probes
   int lineSet = -1, element = -1;  // line_force probes: set index and element within it
+  std::vector<int> lineSets;       // line_pull, line_force_max: the line sets (all when empty)
+  int membraneSet = -1;            // canopy: the membrane set with loads from the airflow
   // skirt_radius: distance of `nodes` from the axis through the centroids of axisFrom and axisTo.
   std::vector<int> nodes, axisFrom, axisTo;
   std::vector<std::string> columns() const;  // "<name>.<quantity>"

@@ -73,6 +73,20 @@ double Model::totalLineMass() const {
   return m;
 }
 
+double Model::totalMass() const {
+  double m = totalLineMass();
+  for (double p : pointMass) m += p;
+  for (const auto& e : membranes) {
+    const auto& mat = membraneMaterials[e.material];
+    const Vec3 A =
+        e.numNodes == 3
+            ? Vec3(0.5 * (X[e.nodes[1]] - X[e.nodes[0]]).cross(X[e.nodes[2]] - X[e.nodes[0]]))
+            : Vec3(0.5 * (X[e.nodes[2]] - X[e.nodes[0]]).cross(X[e.nodes[3]] - X[e.nodes[1]]));
+    m += mat.density * mat.thickness * A.norm();
+  }
+  return m;
+}
+
 double Model::nextCutAfter(double t) const {
   double next = std::numeric_limits<double>::infinity();
   for (const auto& s : lineSets)

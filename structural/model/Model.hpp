@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "kernels/CanopyFlow.hpp"
 #include "kernels/LineElementTypes.hpp"
 #include "kernels/MembraneKernel.hpp"
 #include "kernels/SliderFriction.hpp"
@@ -97,6 +98,28 @@ struct FaceDragLoadDef {
   bool steadySubtracted = false;  // drag relative to the fabric at rest in the wind
 };
 
+// The air the structure moves in ([air]): its density and ambient pressure, and the wind, the
+// air's velocity in the model's frame (docs/flight.md).
+struct AirSpec {
+  bool given = false;
+  double density = 0.0, pressure = 0.0;
+  Vec3 wind = Vec3::Zero();
+};
+
+// Loads from the airflow on a canopy (docs/flight.md FL1-FL12, [[loads.canopy_flow]]): a
+// membrane set whose node-order normals point out of the canopy (the way its pressure pushes).
+struct CanopyFlowDef {
+  int set = -1;
+  double baseCoefficient = 0.0;      // Cb (FL7)
+  double discharge = 0.61;           // Cd of the mouth and the vent (FL4)
+  kernels::ClothPermeability cloth;  // FL6
+  double normalDrag = 1.17;          // Cn of the fabric's normal motion (FL8)
+  double apparentMass = 8.0 / 3.0;   // k_a: the air moving with it is k_a rho R_p^3 (FL11)
+  double gamma = 1.4;                // the captured air's isentropic exponent (FL3)
+  double volumeFloor = 1e-4;  // of the pattern's hemisphere: the least volume the gas law sees
+  double initialInsideGauge = 0.0;  // p_in - p_a of the air the start holds (FL3)
+};
+
 // How a node's three dofs are constrained: free, or prescribed. A prescribed dof follows
 // x(t) = X + velocity t + amplitude sin(2 pi frequency t) (all zero: fixed where it starts).
 struct NodeConstraint {
@@ -134,16 +157,26 @@ struct Model {
   std::vector<PressureLoadDef> pressures;
   std::vector<DragLoadDef> drags;
   std::vector<FaceDragLoadDef> faceDrags;
+  std::vector<CanopyFlowDef> canopyFlows;
+  AirSpec air;
+  // Initial velocity of each node (free dofs; a prescribed dof follows its constraint): a run
+  // that starts in motion, e.g. at line stretch at the system's speed ([initial]).
+  std::vector<Vec3> v0;
 
   Vec3 gravity = Vec3::Zero();
   double massDamping = 0.0;  // Rayleigh mass-proportional damping C = alpha M (every mass)
   kernels::MassKind massKind = kernels::MassKind::Lumped;
 
   int numNodes() const { return static_cast<int>(X.size()); }
+  Vec3 initialVelocity(int n) const {
+    return static_cast<size_t>(n) < v0.size() ? v0[n] : Vec3::Zero();
+  }
   int addNode(const Vec3& x, const std::string& name = {});
   int nodeId(const std::string& name) const;  // throws std::out_of_range if unknown
   bool hasGravity() const { return gravity.squaredNorm() > 0.0; }
   double totalLineMass() const;  // sum of rho A0 L over all line elements
+  // Lines, membranes (rho t A on the reference) and point masses.
+  double totalMass() const;
   // The first time a set is cut after t (infinity if none): where a run must land a step.
   double nextCutAfter(double t) const;
   bool hasCutAt(double t) const;      // a set is cut exactly at t

@@ -165,7 +165,11 @@ double CentralDifference::chooseStep(double lastStep, const Eigen::VectorXd& x, 
   const double maxStep = maxStep_;
   const Eigen::VectorXd& massEq = lumpedMass(x, t);
   const auto S = sys_->stiffnessBound(x, t);
-  const auto est = chute::stableStep(S, nodalMass(massEq), freeNode_);
+  const auto mass = nodalMass(massEq);
+  auto est = chute::stableStep(S, mass, freeNode_);
+  // Modes over many nodes that the nodal bounds do not see (EX5).
+  const double w2 = sys_->frequencySquaredBound(x, t, mass);
+  if (w2 > 0.0 && 2.0 / std::sqrt(w2) < est.dt) est.dt = 2.0 / std::sqrt(w2), est.node = -1;
   const double stable = settings_.safety * dampedStableStep(est.dt, settings_.stiffnessDamping);
   // EX5: the step changes only when the stable step leaves [step, 1.25 step], and then to 0.9
   // of it. A step that followed the estimate from step to step near the stability limit mixes
@@ -231,7 +235,8 @@ NewtonReport CentralDifference::advance(StructuralState& s, double dt) {
   const Eigen::VectorXd xEval =
       damped ? Eigen::VectorXd(n.x + settings_.stiffnessDamping * vStar) : Eigen::VectorXd();
   // EX2: the forces at a = 0; the step's length for RG8.
-  const EvalPoint p = EvalPoint::explicitForces(damped ? xEval : n.x, vStar, zeroDofs_, n.t, dt);
+  const EvalPoint p = EvalPoint::explicitForces(damped ? xEval : n.x, vStar, zeroDofs_, n.t, dt,
+                                                damped ? &n.x : nullptr);
   if (cutSets(n.t) == fixedMassCuts_) {
     // The sliding elements' mass M(x) 1 at x_{n+1} (all lumpedMass has to evaluate while no cut
     // changes the fixed mass) alongside the assembly, on the thread that finishes its part first:
@@ -255,7 +260,7 @@ NewtonReport CentralDifference::advance(StructuralState& s, double dt) {
     sys_->revert();
     return rep;
   }
-  sys_->commit(CommitPoint{n.x, n.t, dt, n.t});
+  sys_->commit(CommitPoint{n.x, n.t, dt, n.t, &n.v});
   std::swap(s, n);  // n keeps the old state's buffers for the next step
   rep.converged = true;
   return rep;

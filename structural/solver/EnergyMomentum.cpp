@@ -93,7 +93,7 @@ NewtonReport EnergyMomentum::midpointStep(StructuralState& s, double dt) {
   if (sys.drivesKinks() && sys.crossDriven(old.x, n.x) > 0) problem.afterUpdate();
   NewtonReport rep = newton.solve(n.x, newton.settings().toleranceFor(dt), problem, false, &old.x);
   if (rep.converged) {
-    sys.commit(CommitPoint{n.x, n.t, dt, problem.forceTime()});
+    sys.commit(CommitPoint{n.x, n.t, dt, problem.forceTime(), &n.v});
     s = n;
   } else {
     sys.revert();

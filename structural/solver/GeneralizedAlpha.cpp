@@ -87,7 +87,7 @@ NewtonReport GeneralizedAlpha::tryStep(StructuralState& s, double dt) {
   NewtonReport rep =
       newton_.solve(n.x, newton_.settings().toleranceFor(dt), problem, false, &old.x);
   if (rep.converged) {
-    sys_->commit(CommitPoint{n.x, n.t, dt, problem.forceTime()});
+    sys_->commit(CommitPoint{n.x, n.t, dt, problem.forceTime(), &n.v});
     if (!eq_.atEnd) {  // the alpha-point of the converged step (eq. TI5)
       eq_.x = (1.0 - p_.alphaF) * n.x + p_.alphaF * old.x;
       eq_.v = (1.0 - p_.alphaF) * n.v + p_.alphaF * old.v;

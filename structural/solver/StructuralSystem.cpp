@@ -81,7 +81,8 @@ StructuralState StructuralSystem::initialState() const {
   s.v.setZero(n);
   s.a.setZero(n);
   for (int d = 0; d < n; ++d)
-    if (dofs_.eqOfDof(d) < 0) s.v[d] = m.constraint[d / 3].speed(d % 3, 0.0);
+    s.v[d] = dofs_.eqOfDof(d) < 0 ? m.constraint[d / 3].speed(d % 3, 0.0)
+                                  : m.initialVelocity(d / 3)[d % 3];
   return s;
 }
 
@@ -93,6 +94,13 @@ std::vector<double> StructuralSystem::stiffnessBound(const Eigen::VectorXd& x, d
   std::vector<double> S(model_->numNodes(), 0.0);
   for (const auto& term : terms_) term->addStiffnessBound(x, t, freeNode_, S);
   return S;
+}
+
+double StructuralSystem::frequencySquaredBound(const Eigen::VectorXd& x, double t,
+                                               const std::vector<double>& nodalMass) const {
+  double w2 = 0.0;
+  for (const auto& term : terms_) w2 = std::max(w2, term->frequencySquaredBound(x, t, nodalMass));
+  return w2;
 }
 
 void StructuralSystem::afterExplicitMotion(const Eigen::VectorXd& x, Eigen::VectorXd& xEnd) {

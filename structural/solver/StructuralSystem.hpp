@@ -43,6 +43,10 @@ class StructuralSystem {
   // Per node, the row sum S_i of the stiffness at x, t that bounds the explicit step's highest
   // frequency, omega^2 <= max S_i / m_i (EX5): the terms' bounds added up in term order.
   std::vector<double> stiffnessBound(const Eigen::VectorXd& x, double t) const;
+  // The largest of the terms' bounds on the squared frequencies of modes over many nodes
+  // (Term::frequencySquaredBound), given the lumped nodal masses.
+  double frequencySquaredBound(const Eigen::VectorXd& x, double t,
+                               const std::vector<double>& nodalMass) const;
 
   // Discrete state updates (sliding search) for trial positions; returns the number of changes.
   int updateState(const Eigen::VectorXd& x);

@@ -14,7 +14,7 @@ StructuralState TimeStepper::start() {
   s.control = integrator_->initialControl();
   integrator_->computeAcceleration(s);
   accelerationAfterCut(s);
-  sys_->commit(CommitPoint{s.x, s.t, 0.0, s.t});
+  sys_->commit(CommitPoint{s.x, s.t, 0.0, s.t, &s.v});
   return s;
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "terms/CableTerm.hpp"
+#include "terms/CanopyFlowTerm.hpp"
 #include "terms/FaceDragTerm.hpp"
 #include "terms/LineDragTerm.hpp"
 #include "terms/MembraneTerm.hpp"
@@ -35,14 +36,20 @@ TermList::TermList(const Model& model, TermOptions options,
     terms_.push_back(std::make_unique<LineDragTerm>(model, states));
   }
   if (!model.faceDrags.empty()) terms_.push_back(std::make_unique<FaceDragTerm>(model));
+  for (size_t f = 0; f < model.canopyFlows.size(); ++f) {
+    auto t = std::make_unique<CanopyFlowTerm>(model, static_cast<int>(f));
+    canopyFlows_.push_back(t.get());
+    terms_.push_back(std::move(t));
+  }
   for (auto& t : extraTerms) terms_.push_back(std::move(t));
 }
 
 TermList::~TermList() = default;
 
 const std::vector<std::string>& TermList::kinds() {
-  static const std::vector<std::string> kinds{
-      "cables", "sliding_group", "point_masses", "membranes", "pressure", "drag", "face_drag"};
+  static const std::vector<std::string> kinds{"cables",    "sliding_group", "point_masses",
+                                              "membranes", "pressure",      "drag",
+                                              "face_drag", "canopy_flow"};
   return kinds;
 }
 

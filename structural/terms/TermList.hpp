@@ -16,6 +16,7 @@ namespace chute {
 
 class SlidingGroupTerm;
 class MembraneTerm;
+class CanopyFlowTerm;
 
 // The choices the terms are built with (from the case's [solver] table).
 struct TermOptions {
@@ -44,11 +45,14 @@ class TermList {
   // The membrane term (nullptr without membranes).
   const MembraneTerm* membranes() const { return membranes_; }
   MembraneTerm* membranes() { return membranes_; }
+  // The canopies with loads from the airflow, in the model's order.
+  const std::vector<CanopyFlowTerm*>& canopyFlows() const { return canopyFlows_; }
 
  private:
   std::vector<std::unique_ptr<Term>> terms_;
   std::vector<SlidingGroupTerm*> groups_;
   MembraneTerm* membranes_ = nullptr;
+  std::vector<CanopyFlowTerm*> canopyFlows_;
 };
 
 }  // namespace chute

@@ -102,7 +102,8 @@ TEST(Docs, EveryEquationTagAndSectionTheCodeCitesExists) {
     return page.find("| " + tag + " |") != std::string::npos ||
            page.find("(" + tag + ")") != std::string::npos;
   };
-  static const std::regex tag(R"(\b(F[0-9]{1,2}|FR[0-9]{1,2}|FD[0-9]|RG[0-9]|WR[0-9]|TI[0-9])\b)");
+  static const std::regex tag(
+      R"(\b(F[0-9]{1,2}|FR[0-9]{1,2}|FD[0-9]|RG[0-9]|WR[0-9]|TI[0-9]|FL[0-9]{1,2})\b)");
   static const std::regex section(R"(formulation\.md sections? ([0-9])(?:-([0-9]))?)");
   std::set<std::string> tags;
   int sections = 0;

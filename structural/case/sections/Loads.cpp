@@ -4,8 +4,15 @@
 
 #include "case/MeshGroups.hpp"
 #include "case/sections/Sections.hpp"
+#include "terms/CanopyFlowTerm.hpp"
 
 namespace chute::caseio {
+
+namespace {
+// FL7's base pressure coefficient, calibrated once on the generated 5 m solid flat circular
+// canopy's drag coefficient (docs/flight.md, "Calibration").
+constexpr double kCalibratedBasePressure = -0.83;
+}  // namespace
 
 void readLoads(Model& m, const MeshImport* mesh, TomlTable l) {
   m.gravity = l.vec3("gravity", Vec3::Zero());
@@ -77,6 +84,50 @@ void readLoads(Model& m, const MeshImport* mesh, TomlTable l) {
     d.steadySubtracted = t.boolean("subtract_steady", false);
     t.finish();
     m.faceDrags.push_back(d);
+  }
+  // [[loads.canopy_flow]]: loads from the relative airflow on a canopy (docs/flight.md).
+  for (auto& t : l.tables("canopy_flow")) {
+    if (!m.air.given) t.fail("membranes", "loads from the airflow need the air: an [air] table");
+    CanopyFlowDef d;
+    const std::string set = t.string("membranes");
+    for (size_t k = 0; k < m.membraneSets.size(); ++k)
+      if (m.membraneSets[k].name == set) d.set = static_cast<int>(k);
+    if (d.set < 0) t.fail("membranes", "unknown membrane set '" + set + "'");
+    for (const auto& other : m.canopyFlows)
+      if (other.set == d.set) t.fail("membranes", "'" + set + "' has loads from the airflow twice");
+    d.baseCoefficient = t.number("base_pressure", kCalibratedBasePressure);
+    if (!(d.baseCoefficient <= 0.0 && d.baseCoefficient >= -3.0))
+      t.fail("base_pressure", "a wake's base pressure coefficient is in [-3, 0]");
+    d.discharge = t.positive("discharge", d.discharge);
+    if (d.discharge > 1.0) t.fail("discharge", "a discharge coefficient is at most 1");
+    const double u = t.nonNegative("permeability", 0.0);
+    if (u > 0.0) {
+      const double dp = t.positive("permeability_pressure");
+      const double inertial = t.nonNegative("permeability_inertial", 0.0);
+      try {
+        d.cloth = kernels::ClothPermeability::fromTest(u, dp, inertial);
+      } catch (const std::invalid_argument& e) {
+        t.fail("permeability_inertial", e.what());
+      }
+    } else {
+      t.notUsed({"permeability_pressure", "permeability_inertial"}, "without permeability");
+    }
+    d.normalDrag = t.nonNegative("normal_drag", d.normalDrag);
+    d.apparentMass = t.nonNegative("apparent_mass", d.apparentMass);
+    d.gamma = t.positive("gamma", d.gamma);
+    d.volumeFloor = t.positive("volume_floor", d.volumeFloor);
+    if (d.volumeFloor > 1.0) t.fail("volume_floor", "must be in (0, 1]");
+    d.initialInsideGauge = t.nonNegative("initial_inside_pressure", 0.0);
+    if (m.air.pressure > 0.0 && d.initialInsideGauge > m.air.pressure)
+      t.fail("initial_inside_pressure", "more than the ambient pressure over it is not a canopy's");
+    t.finish();
+    m.canopyFlows.push_back(d);
+    try {
+      CanopyFlowTerm check(m, static_cast<int>(m.canopyFlows.size()) - 1);
+    } catch (const std::invalid_argument& e) {
+      m.canopyFlows.pop_back();
+      t.fail("membranes", "'" + set + "' cannot carry loads from the airflow: " + e.what());
+    }
   }
   l.finish();
 }

@@ -26,6 +26,13 @@ const std::vector<ProbeKindInfo>& probeKinds() {
        {"state", "slip_rate", "tension_ratio", "wrap_angle", "N1", "N2"}},
       {ProbeKind::SkirtRadius, "skirt_radius", {"mean", "min", "max"}},
       {ProbeKind::EdgeAngle, "edge_angle", {"angle"}},
+      {ProbeKind::SupportForce, "support_force", {"fx", "fy", "fz", "magnitude"}},
+      {ProbeKind::LinePull, "line_pull", {"fx", "fy", "fz", "magnitude"}},
+      {ProbeKind::LineForceMax, "line_force_max", {"N"}},
+      {ProbeKind::Canopy,
+       "canopy",
+       {"volume", "projected_diameter", "inside_pressure", "dynamic_pressure", "airspeed",
+        "descent_speed", "inflow", "cloth_outflow", "vent_outflow", "swing"}},
   };
   return kinds;
 }
@@ -61,16 +68,51 @@ ProbeSpec readProbe(const Model& m, TomlTable t) {
     if (kind == info.name) p.kind = info.kind;
   const std::string why = "by a probe of kind \"" + kind + "\"";
   const bool atNode = p.kind == ProbeKind::NodePosition || p.kind == ProbeKind::NodeVelocity ||
-                      p.kind == ProbeKind::MembraneStress;
+                      p.kind == ProbeKind::MembraneStress || p.kind == ProbeKind::LinePull;
+  const bool overLines = p.kind == ProbeKind::LinePull || p.kind == ProbeKind::LineForceMax;
   const bool atSlider = p.kind == ProbeKind::Slider || p.kind == ProbeKind::SliderFriction;
   if (!atNode) t.notUsed({"node"}, why);
   if (!atSlider) t.notUsed({"group", "slider"}, why);
   if (p.kind != ProbeKind::LineForce) t.notUsed({"element"}, why);
-  if (p.kind != ProbeKind::LineForce && p.kind != ProbeKind::SkirtRadius) t.notUsed({"set"}, why);
+  if (p.kind != ProbeKind::LineForce && p.kind != ProbeKind::SkirtRadius &&
+      p.kind != ProbeKind::SupportForce)
+    t.notUsed({"set"}, why);
+  if (p.kind != ProbeKind::SupportForce) t.notUsed({"nodes"}, why);
+  if (!overLines) t.notUsed({"sets"}, why);
+  if (p.kind != ProbeKind::Canopy) t.notUsed({"membranes"}, why);
   if (p.kind != ProbeKind::SkirtRadius) t.notUsed({"axis"}, why);
   if (p.kind != ProbeKind::EdgeAngle) t.notUsed({"from", "to"}, why);
+  if (overLines) {
+    // The line sets by name; all of them when not given.
+    if (t.has("sets")) {
+      for (const auto& name : t.strings("sets")) {
+        int set = -1;
+        for (size_t i = 0; i < m.lineSets.size(); ++i)
+          if (m.lineSets[i].name == name) set = static_cast<int>(i);
+        if (set < 0) t.fail("sets", "unknown cable set or sliding group '" + name + "'");
+        p.lineSets.push_back(set);
+      }
+    } else {
+      for (size_t i = 0; i < m.lineSets.size(); ++i) p.lineSets.push_back(static_cast<int>(i));
+    }
+    if (p.lineSets.empty()) t.fail("sets", "the model has no lines");
+  }
   if (atNode) {
     p.node = nodeRef(m, t, "node", t.string("node", p.name));
+  } else if (p.kind == ProbeKind::SupportForce) {
+    p.nodes = caseio::nodesOf(m, t);
+    for (int n : p.nodes) {
+      const auto& c = m.constraint[n];
+      if (!(c.fixed[0] || c.fixed[1] || c.fixed[2]))
+        t.fail(t.has("set") ? "set" : "nodes",
+               "node '" + m.nodeName[n] + "' has no support (no fixed or prescribed dof)");
+    }
+  } else if (p.kind == ProbeKind::Canopy) {
+    const std::string set = t.string("membranes");
+    for (const auto& f : m.canopyFlows)
+      if (m.membraneSets[f.set].name == set) p.membraneSet = f.set;
+    if (p.membraneSet < 0)
+      t.fail("membranes", "no membrane set '" + set + "' with loads from the airflow");
   } else if (p.kind == ProbeKind::EdgeAngle) {
     p.node = nodeRef(m, t, "from", t.string("from"));
     p.node2 = nodeRef(m, t, "to", t.string("to"));

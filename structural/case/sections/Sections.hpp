@@ -19,6 +19,8 @@ void readSlidingGroups(Model& m, const MeshImport* mesh, TomlTable& top);
 void readMembranes(Model& m, const MeshImport* mesh, TomlTable& top);
 void readPointMasses(Model& m, const MeshImport* mesh, TomlTable& top);
 void readBoundary(Model& m, TomlTable b);                       // [boundary]
+void readAir(CaseSpec& c, TomlTable a);                         // [air]
+void readInitial(Model& m, TomlTable i);                        // [initial]
 void readLoads(Model& m, const MeshImport* mesh, TomlTable l);  // [loads]
 void readEvents(Model& m, TomlTable& top);                      // [[events]]
 void readSolver(CaseSpec& c, TomlTable s);                      // [solver]

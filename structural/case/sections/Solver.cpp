@@ -121,6 +121,14 @@ void readSolver(CaseSpec& c, TomlTable s) {
   sv.reuseTangent = s.boolean("reuse_tangent", false);
   sv.symmetricPartSolver =
       s.choice("linear_solver", "auto", {"auto", "symmetric_part"}) == "symmetric_part";
+  // FL: the captured air couples every face of a canopy through its volume (a dense Jacobian):
+  // loads from the airflow are stepped by the explicit integrator only (docs/flight.md).
+  if (!m.canopyFlows.empty() &&
+      (sv.type == AnalysisType::Static || sv.integrator != IntegratorKind::CentralDifference))
+    s.fail(sv.type == AnalysisType::Static ? "type" : "integrator",
+           "loads from the airflow ([[loads.canopy_flow]]) need type = \"dynamic\" and "
+           "integrator = \"central_difference\" (the captured air couples every face of the "
+           "canopy through its volume)");
   // Slider hand-over inside a step needs the forces at the step's end: Bossak, or explicit
   // (which always hands over inside the step).
   if (!sv.sliderEvents && sv.integrator != IntegratorKind::Bossak &&

@@ -1,0 +1,162 @@
+#!/usr/bin/env python3
+"""Generates solid flat circular parachutes with `chute mesh parachute`, flies them with the
+airflow's loads (docs/flight.md) and collects the flight figures of their summary.json.
+
+    bench/flight/flight_runs.py matrix      # steady descent of the matrix (free, inflated start)
+    bench/flight/flight_runs.py opening     # held in a 20-40 m/s wind from a folded start
+    bench/flight/flight_runs.py payload     # released at 40 m/s with payloads of 50-200 kg
+    bench/flight/flight_runs.py porosity    # C_D0 against the cloth's permeability
+    bench/flight/flight_runs.py calibrate   # the base pressure coefficient on one canopy
+
+Each writes bench/results/flight_<what>.csv and .md (or --out). Runs go in parallel (--jobs);
+CHUTE_BIN names another chute binary (default build/bin/chute).
+"""
+import argparse
+import concurrent.futures
+import csv
+import json
+import math
+import os
+import subprocess
+import sys
+import tempfile
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+CHUTE = os.environ.get("CHUTE_BIN", os.path.join(ROOT, "build/bin/chute"))
+G = 9.80665
+
+# The matrix (SI): D0, gores, vent diameter, line length, payload (kg), element size. Payloads
+# give 4-9 m/s with C_D0 ~ 0.78; lines ~0.85 D0 (the C-9's 23 ft on 28 ft: 0.82).
+MATRIX = [
+    dict(name="d1.5_g12", D=1.5, gores=12, vent=0.0, lines=1.3, payload=2.2, size=0.09),
+    dict(name="d3_g16_vent", D=3.0, gores=16, vent=0.3, lines=2.55, payload=17.0, size=0.18),
+    dict(name="d5_g20", D=5.0, gores=20, vent=0.0, lines=4.25, payload=34.0, size=0.3),
+    dict(name="c9_d8.53_g28", D=8.5344, gores=28, vent=0.4267, lines=7.01, payload=103.0,
+         size=0.43),
+    dict(name="d15_g28_vent", D=15.0, gores=28, vent=1.5, lines=12.75, payload=550.0, size=0.9),
+    dict(name="d30_g32_vent", D=30.0, gores=32, vent=3.0, lines=25.5, payload=2770.0, size=1.8),
+]
+CALIBRATION = "d5_g20"  # the one member the base pressure is fitted on
+
+
+def generate_and_run(tag, m, workdir, start="inflated", speed=None, held=False, t_end=6.0,
+                     size_factor=1.0, sets=(), permeability=None, payload=None):
+    d = os.path.join(workdir, tag)
+    os.makedirs(d, exist_ok=True)
+    msh, case = os.path.join(d, "p.msh"), os.path.join(d, "p.toml")
+    pay = m["payload"] if payload is None else payload
+    V = speed if speed is not None else math.sqrt(2 * pay * G / (1.225 * 0.78 * math.pi * m["D"] ** 2 / 4))
+    cmd = [CHUTE, "mesh", "parachute", "--units", "si", "--gores", str(m["gores"]), "--diameter",
+           str(m["D"]), "--line-length", str(m["lines"]), "--element-size",
+           str(m["size"] * size_factor), "--payload-mass", str(pay), "--start", start,
+           "--speed", "%.4f" % V, "--t-end", str(t_end), "--out", msh, "--case", case, "--quiet"]
+    if m["vent"] > 0:
+        cmd += ["--vent-diameter", str(m["vent"])]
+    if held:
+        cmd += ["--held"]
+    if permeability is not None:
+        cmd += ["--cloth-permeability", str(permeability)]
+    subprocess.run(cmd, check=True, capture_output=True)
+    out = os.path.join(d, "out")
+    run = [CHUTE, "run", case, "--out", out, "--quiet"]
+    for s in sets:
+        run += ["--set", s]
+    t0 = time.time()
+    p = subprocess.run(run, capture_output=True, text=True)
+    wall = time.time() - t0
+    with open(os.path.join(out, "summary.json")) as f:
+        s = json.load(f)
+    fl = s.get("flight", {})
+    return dict(tag=tag, status=s["status"], exit=p.returncode, wall=round(wall, 1),
+                steps=s["steps"], triangles=None, speed=V, payload=pay, **fl)
+
+
+def table(rows, keys, path_md, title, notes=""):
+    with open(path_md, "w") as f:
+        f.write("# " + title + "\n\n" + notes + "\n\n")
+        f.write("| " + " | ".join(keys) + " |\n|" + "---|" * len(keys) + "\n")
+        for r in rows:
+            f.write("| " + " | ".join(fmt(r.get(k)) for k in keys) + " |\n")
+    print(open(path_md).read())
+
+
+def fmt(v):
+    if isinstance(v, float):
+        return "%.4g" % v
+    return str(v)
+
+
+def write_csv(rows, path):
+    keys = sorted({k for r in rows for k in r})
+    with open(path, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=keys)
+        w.writeheader()
+        w.writerows(rows)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("what", choices=["matrix", "opening", "payload", "porosity", "calibrate"])
+    ap.add_argument("--jobs", type=int, default=2)
+    ap.add_argument("--out", default=os.path.join(ROOT, "bench/results"))
+    ap.add_argument("--set", action="append", default=[], help="passed to every chute run")
+    ap.add_argument("--only", default="")
+    ap.add_argument("--t-end", type=float, default=None)
+    ap.add_argument("--size-factors", default="1.0")
+    ap.add_argument("--cb", default="-0.6,-0.7,-0.8,-0.9")
+    a = ap.parse_args()
+    work = tempfile.mkdtemp(prefix="chute-flight-")
+    jobs = []
+    members = [m for m in MATRIX if a.only in m["name"]]
+    if a.what == "matrix":
+        for m in members:
+            for sf in [float(x) for x in a.size_factors.split(",")]:
+                V = math.sqrt(2 * m["payload"] * G / (1.225 * 0.78 * math.pi * m["D"] ** 2 / 4))
+                te = a.t_end or max(6.0, 4.0 * m["D"] / V + 4.0)
+                jobs.append(("%s_h%.2f" % (m["name"], sf), m, dict(t_end=te, size_factor=sf,
+                                                                    sets=a.set)))
+    elif a.what == "calibrate":
+        m = next(x for x in MATRIX if x["name"] == CALIBRATION)
+        for cb in a.cb.split(","):
+            jobs.append(("cb%s" % cb, m, dict(t_end=a.t_end or 8.0, sets=a.set + [
+                "loads.canopy_flow.0.base_pressure=%s" % cb])))
+    elif a.what == "opening":
+        m = next(x for x in MATRIX if x["name"].startswith("c9"))
+        for V in (20.0, 30.0, 40.0):
+            jobs.append(("held_%g" % V, m, dict(start="folded", speed=V, held=True,
+                                                t_end=a.t_end or 4.0 * 20.0 / V + 2.0,
+                                                sets=a.set)))
+    elif a.what == "payload":
+        m = next(x for x in MATRIX if x["name"].startswith("c9"))
+        for pay in (50.0, 100.0, 150.0, 200.0):
+            jobs.append(("payload_%g" % pay, m, dict(start="folded", speed=40.0, payload=pay,
+                                                     t_end=a.t_end or 6.0, sets=a.set)))
+    elif a.what == "porosity":
+        m = next(x for x in MATRIX if x["name"].startswith("c9"))
+        for cfm in (0.0, 30.0, 100.0, 200.0, 300.0):
+            jobs.append(("cfm_%g" % cfm, m, dict(permeability=cfm, t_end=a.t_end or 8.0,
+                                                 sets=a.set)))
+    rows = []
+    with concurrent.futures.ThreadPoolExecutor(a.jobs) as ex:
+        futs = {ex.submit(generate_and_run, tag, m, work, **kw): tag for tag, m, kw in jobs}
+        for fu in concurrent.futures.as_completed(futs):
+            try:
+                r = fu.result()
+            except Exception as e:  # noqa
+                r = dict(tag=futs[fu], status="error: %s" % e)
+            rows.append(r)
+            print(json.dumps(r), flush=True)
+    rows.sort(key=lambda r: r["tag"])
+    os.makedirs(a.out, exist_ok=True)
+    base = os.path.join(a.out, "flight_" + a.what)
+    write_csv(rows, base + ".csv")
+    keys = ["tag", "status", "speed", "payload", "steady_descent_speed", "drag_coefficient",
+            "projected_diameter_ratio", "opening_force_factor", "peak_opening_force",
+            "filling_time", "filling_distance", "largest_swing", "steady_force_variation", "wall"]
+    table(rows, keys, base + ".md", "Flight figures: " + a.what,
+          "Made by bench/flight/flight_runs.py %s (%s)." % (a.what, " ".join(sys.argv[2:])))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,449 @@
+#include "terms/CanopyFlowTerm.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <stdexcept>
+
+namespace chute {
+
+using Vec3 = Eigen::Vector3d;
+
+namespace {
+
+Vec3 at(const Eigen::VectorXd& x, int n) {
+  return x.segment<3>(3 * n);
+}
+
+// The triangles of a face: itself, or a quad's two halves (0, 1, 2), (0, 2, 3).
+template <class F>
+void forTriangles(const MembraneElement& e, F&& f) {
+  f(e.nodes[0], e.nodes[1], e.nodes[2]);
+  if (e.numNodes == 4) f(e.nodes[0], e.nodes[2], e.nodes[3]);
+}
+
+// The boundary of a set of faces as closed loops of nodes (edges used by one face only).
+std::vector<std::vector<int>> boundaryLoops(const Model& m, const std::vector<int>& faces) {
+  std::map<std::pair<int, int>, int> uses;
+  for (int k : faces) {
+    const auto& e = m.membranes[k];
+    for (int i = 0; i < e.numNodes; ++i) {
+      const int a = e.nodes[i], b = e.nodes[(i + 1) % e.numNodes];
+      ++uses[{std::min(a, b), std::max(a, b)}];
+    }
+  }
+  std::map<int, std::vector<int>> next;
+  for (const auto& [edge, count] : uses)
+    if (count == 1) {
+      next[edge.first].push_back(edge.second);
+      next[edge.second].push_back(edge.first);
+    }
+  std::vector<std::vector<int>> loops;
+  std::map<int, bool> seen;
+  for (const auto& [start, ns] : next) {
+    if (seen[start]) continue;
+    if (ns.size() != 2)
+      throw std::invalid_argument("its boundary is not a set of closed loops (node " +
+                                  std::to_string(start + 1) + " has " + std::to_string(ns.size()) +
+                                  " boundary edges)");
+    std::vector<int> loop{start};
+    seen[start] = true;
+    int prev = start, cur = ns[0];
+    while (cur != start) {
+      if (next[cur].size() != 2)
+        throw std::invalid_argument("its boundary is not a set of closed loops (node " +
+                                    std::to_string(cur + 1) + ")");
+      loop.push_back(cur);
+      seen[cur] = true;
+      const int nxt = next[cur][0] == prev ? next[cur][1] : next[cur][0];
+      prev = cur, cur = nxt;
+    }
+    loops.push_back(std::move(loop));
+  }
+  return loops;
+}
+
+double perimeter(const Model& m, const std::vector<int>& loop) {
+  double p = 0.0;
+  for (size_t i = 0; i < loop.size(); ++i)
+    p += (m.X[loop[(i + 1) % loop.size()]] - m.X[loop[i]]).norm();
+  return p;
+}
+
+}  // namespace
+
+CanopyFlowTerm::CanopyFlowTerm(const Model& m, int flow) : m_(&m), def_(&m.canopyFlows[flow]) {
+  for (size_t k = 0; k < m.membranes.size(); ++k)
+    if (m.membranes[k].set == def_->set) faces_.push_back(static_cast<int>(k));
+  if (faces_.empty()) throw std::invalid_argument("the membrane set has no elements");
+  slot_.assign(m.numNodes(), -1);
+  for (int k : faces_)
+    for (int i = 0; i < m.membranes[k].numNodes; ++i) {
+      const int n = m.membranes[k].nodes[i];
+      if (slot_[n] < 0) slot_[n] = static_cast<int>(nodes_.size()), nodes_.push_back(n);
+    }
+  // FL2: the openings, oriented on the reference (the cut pattern, where the canopy's area
+  // vector S is clear): the mouth's outward normal against S, a vent's along it. The mouth is the
+  // longest boundary loop.
+  auto loops = boundaryLoops(m, faces_);
+  if (loops.empty()) throw std::invalid_argument("it has no opening (a closed surface)");
+  std::sort(loops.begin(), loops.end(),
+            [&](const auto& a, const auto& b) { return perimeter(m, a) > perimeter(m, b); });
+  Eigen::VectorXd X(3 * m.numNodes());
+  for (int n = 0; n < m.numNodes(); ++n) X.segment<3>(3 * n) = m.X[n];
+  Vec3 S = Vec3::Zero();
+  double areaRef = 0.0;
+  for (int k : faces_)
+    forTriangles(m.membranes[k], [&](int a, int b, int c) {
+      const Vec3 A = 0.5 * (at(X, b) - at(X, a)).cross(at(X, c) - at(X, a));
+      S += A;
+      areaRef += A.norm();
+    });
+  for (size_t l = 0; l < loops.size(); ++l) {
+    Loop loop{loops[l], 1.0};
+    const double along = loopArea(loop, X).dot(S);
+    if (!(std::abs(along) > 1e-9 * areaRef * areaRef))
+      throw std::invalid_argument(
+          "its openings cannot be oriented on the reference (its area vector vanishes)");
+    loop.sign = (l == 0) == (along > 0.0) ? -1.0 : 1.0;
+    (l == 0 ? mouth_ : vents_.emplace_back()) = loop;
+  }
+  {
+    Vec3 c = Vec3::Zero();
+    for (int n : mouth_.nodes) c += m.X[n];
+    c /= static_cast<double>(mouth_.nodes.size());
+    for (int n : mouth_.nodes)
+      nominalDiameter_ = std::max(nominalDiameter_, 2.0 * (m.X[n] - c).norm());
+  }
+  // The gas law's least volume: a fraction of the hemisphere on the pattern's radius.
+  const double R = std::sqrt(areaRef / std::numbers::pi);
+  volumeFloor_ = def_->volumeFloor * (2.0 / 3.0) * std::numbers::pi * R * R * R;
+  // The start holds air at the ambient pressure plus the case's initial gauge (FL3, isentropic).
+  Eigen::VectorXd x0(3 * m.numNodes());
+  for (int n = 0; n < m.numNodes(); ++n) x0.segment<3>(3 * n) = m.X[n] + m.u0[n];
+  const Geometry g = geometry(x0, Eigen::VectorXd::Zero(x0.size()));
+  captured_ = m.air.density * (std::max(g.volume, 0.0) + volumeFloor_) *
+              std::pow(1.0 + def_->initialInsideGauge / m.air.pressure, 1.0 / def_->gamma);
+  inertiaMass_ = apparentMass(x0);
+}
+
+double CanopyFlowTerm::reach(const Eigen::VectorXd& x) const {
+  // The largest distance of a canopy node from the axis through the mouth's centroid along the
+  // mouth's normal (the canopy's projected radius).
+  const Vec3 A = loopArea(mouth_, x);
+  const double area = A.norm();
+  if (!(area > 0.0)) return 0.0;
+  const Vec3 axis = A / area;
+  Vec3 c = Vec3::Zero();
+  for (int n : mouth_.nodes) c += at(x, n);
+  c /= static_cast<double>(mouth_.nodes.size());
+  double r = 0.0;
+  for (int n : nodes_) {
+    const Vec3 d = at(x, n) - c;
+    r = std::max(r, (d - d.dot(axis) * axis).norm());
+  }
+  return r;
+}
+
+double CanopyFlowTerm::apparentMass(const Eigen::VectorXd& x) const {
+  // FL11: k_a rho R^3 with R the radius of the hemisphere that holds the canopy's volume
+  // (R^3 = 3 V / (2 pi)). The volume, an integral over the surface, changes smoothly with the
+  // positions; the canopy's largest radius (its reach) jumps as one node swings out, and the
+  // growth force of FL10 took such a jump as a burst of air (a folded C-9 went unstable).
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(x.size());
+  const double radiusCubed = 1.5 * std::max(geometry(x, zero).volume, 0.0) / std::numbers::pi;
+  return def_->apparentMass * m_->air.density * radiusCubed;
+}
+
+double CanopyFlowTerm::nominalArea() const {
+  return 0.25 * std::numbers::pi * nominalDiameter_ * nominalDiameter_;
+}
+
+Vec3 CanopyFlowTerm::loopArea(const Loop& l, const Eigen::VectorXd& x) const {
+  Vec3 c = Vec3::Zero();
+  for (int n : l.nodes) c += at(x, n);
+  c /= static_cast<double>(l.nodes.size());
+  Vec3 A = Vec3::Zero();
+  for (size_t i = 0; i < l.nodes.size(); ++i)
+    A += 0.5 * (at(x, l.nodes[i]) - c).cross(at(x, l.nodes[(i + 1) % l.nodes.size()]) - c);
+  return l.sign * A;
+}
+
+CanopyFlowTerm::Geometry CanopyFlowTerm::geometry(const Eigen::VectorXd& x,
+                                                  const Eigen::VectorXd& v) const {
+  Geometry g;
+  for (int k : faces_)
+    forTriangles(m_->membranes[k], [&](int a, int b, int c) {
+      const Vec3 xa = at(x, a), xb = at(x, b), xc = at(x, c);
+      const Vec3 A = 0.5 * (xb - xa).cross(xc - xa);
+      const Vec3 vf = (at(v, a) + at(v, b) + at(v, c)) / 3.0;
+      g.volume += kernels::tetraVolume(xa, xb, xc);
+      g.area += A.norm();
+      g.velocity += A.norm() * vf;
+      g.volumeRate += A.dot(vf);
+    });
+  if (g.area > 0.0) g.velocity /= g.area;
+  // The openings close the surface with fans from their centroids (FL2).
+  auto close = [&](const Loop& l) {
+    const double n = static_cast<double>(l.nodes.size());
+    Vec3 c = Vec3::Zero(), vc = Vec3::Zero();
+    for (int node : l.nodes) c += at(x, node), vc += at(v, node);
+    c /= n, vc /= n;
+    Vec3 A = Vec3::Zero();
+    for (size_t i = 0; i < l.nodes.size(); ++i) {
+      int a = l.nodes[i], b = l.nodes[(i + 1) % l.nodes.size()];
+      if (l.sign < 0.0) std::swap(a, b);
+      const Vec3 Ai = 0.5 * (at(x, a) - c).cross(at(x, b) - c);
+      A += Ai;
+      g.volume += kernels::tetraVolume(c, at(x, a), at(x, b));
+      g.volumeRate += Ai.dot((vc + at(v, a) + at(v, b)) / 3.0);
+    }
+    return A;
+  };
+  g.mouth = close(mouth_);
+  for (const auto& vent : vents_) g.vents.push_back(close(vent));
+  return g;
+}
+
+std::vector<double> CanopyFlowTerm::areaShares(const Eigen::VectorXd& x) const {
+  std::vector<double> share(nodes_.size(), 0.0);
+  double total = 0.0;
+  for (int k : faces_)
+    forTriangles(m_->membranes[k], [&](int a, int b, int c) {
+      const double third = (at(x, b) - at(x, a)).cross(at(x, c) - at(x, a)).norm() / 6.0;
+      share[slot_[a]] += third, share[slot_[b]] += third, share[slot_[c]] += third;
+      total += 3.0 * third;
+    });
+  if (total > 0.0)
+    for (double& s : share) s /= total;
+  return share;
+}
+
+void CanopyFlowTerm::addCouplings(std::vector<std::vector<int>>& cliques) const {
+  for (int k : faces_) {
+    const auto& e = m_->membranes[k];
+    cliques.emplace_back(e.nodes.begin(), e.nodes.begin() + e.numNodes);
+  }
+}
+
+void CanopyFlowTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
+  if (!p.inertia) return;  // a load of motion: dynamics only
+  if (p.inertiaOnly) {
+    // FL11: the captured air moves with the canopy, each node carrying its area's share. Reads
+    // only x and the committed masses (it may run alongside the step's assembly).
+    const auto share = areaShares(p.x);
+    for (size_t i = 0; i < nodes_.size(); ++i) {
+      const int n = nodes_[i];
+      out.add<1>({n}, inertiaMass_ * share[i] * p.a.segment<3>(3 * n), nullptr);
+    }
+    return;
+  }
+  // Loads, not stiffness: at the step's own positions whatever stiffness damping shifts (EX7).
+  // An explicit step's forces take the captured air at the step's end (FL9): its update is made
+  // here, on trial, and committed with the step.
+  const Evaluation e = evaluate(p.stepPositions(), p.v, &out, p.loadFactor, p.explicitStep);
+  if (p.explicitStep > 0.0) trialMass_ = e.capturedMass, trialTime_ = p.t;
+}
+
+CanopyFlowTerm::Figures CanopyFlowTerm::figuresAt(const Eigen::VectorXd& x,
+                                                  const Eigen::VectorXd& v) const {
+  return evaluate(x, v, nullptr, 1.0, 0.0).figures;
+}
+
+double CanopyFlowTerm::AirBudget::rate(double M, const CanopyFlowTerm& term) const {
+  const Model& m = *term.m_;
+  const double rho = m.air.density, cd = term.def_->discharge;
+  const double p = kernels::capturedAirPressure(M, volume, m.air.pressure, rho, term.def_->gamma) -
+                   m.air.pressure;
+  double q = kernels::orificeFlow(ram - p, mouthArea, cd, rho, dpLinear);
+  for (const auto& [area, outside] : vents)
+    q -= kernels::orificeFlow(p - outside, area, cd, rho, dpLinear);
+  q -= cloth + dCloth * (p - insideGauge);
+  return rho * q;
+}
+
+double CanopyFlowTerm::AirBudget::massAfter(double Mn, double dt,
+                                            const CanopyFlowTerm& term) const {
+  // FL9: implicit Euler, M = M_n + dt rate(M), solved exactly: the rate falls as M (and with it
+  // the inside pressure) rises, so the residual is monotone and bisection finds its one root
+  // however stiff the orifice and cloth laws are (a linearised step overshoots an orifice's
+  // square root by its whole distance).
+  auto residual = [&](double M) { return M - Mn - dt * rate(M, term); };
+  double lo = Mn, hi = Mn;
+  for (int i = 0; i < 200 && residual(lo) > 0.0; ++i) lo *= 0.5;
+  for (int i = 0; i < 200 && residual(hi) < 0.0; ++i) hi *= 2.0;
+  for (int i = 0; i < 100 && hi - lo > 1e-15 * hi; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (residual(mid) < 0.0 ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+CanopyFlowTerm::Evaluation CanopyFlowTerm::evaluate(const Eigen::VectorXd& x,
+                                                    const Eigen::VectorXd& v, SystemAssembler* out,
+                                                    double loadFactor, double stepDt) const {
+  const Model& m = *m_;
+  const double rho = m.air.density;
+  const Geometry g = geometry(x, v);
+  // FL1: the relative flow of the canopy as a whole.
+  const Vec3 U = m.air.wind - g.velocity;
+  const double speed = U.norm();
+  kernels::CanopyFlowState s;
+  s.canopyVelocity = g.velocity;
+  s.flowDirection = speed > 0.0 ? Vec3(U / speed) : Vec3::Zero();
+  s.dynamicPressure = 0.5 * rho * speed * speed;
+  s.baseCoefficient = def_->baseCoefficient;
+  s.normalDrag = 0.5 * rho * def_->normalDrag;
+  // FL2: the volume the gas law sees, with its floor.
+  const double volume = std::max(g.volume, 0.0) + volumeFloor_;
+  // FL4-FL5: the openings: the flow's ram pressure into the mouth, the vents' outside pressure.
+  const double mouthArea = g.mouth.norm();
+  const Vec3 axis = mouthArea > 0.0 ? Vec3(-g.mouth / mouthArea) : Vec3::Zero();
+  const double into = std::max(0.0, s.flowDirection.dot(axis));
+  Evaluation e;
+  AirBudget& b = e.budget;
+  b.volume = volume;
+  b.ram = s.dynamicPressure * into * into;
+  b.mouthArea = mouthArea;
+  b.dpLinear = 1e-4 * s.dynamicPressure + 1e-12 * m.air.pressure;
+  for (const Vec3& A : g.vents) {
+    const double area = A.norm();
+    if (!(area > 0.0)) continue;
+    const double c = (A / area).dot(s.flowDirection);
+    b.vents.emplace_back(
+        area, s.dynamicPressure * kernels::outsidePressureCoefficient(c, s.baseCoefficient));
+  }
+  // FL6: the cloth's outflow, linearised in the inside pressure about the step's start mass's.
+  b.insideGauge =
+      kernels::capturedAirPressure(captured_, volume, m.air.pressure, rho, def_->gamma) -
+      m.air.pressure;
+  if (def_->cloth.permeable())
+    for (int k : faces_)
+      forTriangles(m.membranes[k], [&](int i, int j, int l) {
+        const Vec3 A = 0.5 * (at(x, j) - at(x, i)).cross(at(x, l) - at(x, i));
+        const double area = A.norm();
+        if (!(area > 0.0)) return;
+        const double dp = b.insideGauge - s.dynamicPressure * kernels::outsidePressureCoefficient(
+                                                                  (A / area).dot(s.flowDirection),
+                                                                  s.baseCoefficient);
+        b.cloth += area * def_->cloth.velocity(dp);
+        b.dCloth += area * def_->cloth.dVelocity(dp);
+      });
+  // FL3, FL9: the captured air at the end of a step (its update solved here), or as committed.
+  e.capturedMass = stepDt > 0.0 ? b.massAfter(captured_, stepDt, *this) : captured_;
+  s.insideGauge =
+      kernels::capturedAirPressure(e.capturedMass, volume, m.air.pressure, rho, def_->gamma) -
+      m.air.pressure;
+  // FL8: the faces' loads.
+  if (out)
+    for (int k : faces_) {
+      const auto& el = m.membranes[k];
+      auto face = [&](auto tag) {
+        constexpr int N = decltype(tag)::value;
+        std::array<Vec3, N> xf, vf;
+        std::array<int, N> ids;
+        for (int i = 0; i < N; ++i) {
+          ids[i] = el.nodes[i];
+          xf[i] = at(x, ids[i]);
+          vf[i] = at(v, ids[i]);
+        }
+        out->add<N>(ids, loadFactor * kernels::canopyFaceLoad<N>(xf, vf, s, false).residual,
+                    nullptr);
+      };
+      if (el.numNodes == 3)
+        face(std::integral_constant<int, 3>{});
+      else
+        face(std::integral_constant<int, 4>{});
+    }
+  // FL10: air newly set moving with the canopy is brought from rest (in the air) to the
+  // canopy's velocity: the force -dm_a/dt (v_c - w) while the apparent mass grows (air shed as it
+  // shrinks leaves with the canopy's velocity), shared by the nodes as the inertia is.
+  if (massRate_ > 0.0 && out) {
+    const auto share = areaShares(x);
+    const Vec3 push = massRate_ * (g.velocity - m.air.wind);
+    for (size_t i = 0; i < nodes_.size(); ++i)
+      out->add<1>({nodes_[i]}, Vec3(loadFactor * share[i] * push), nullptr);
+  }
+  // What probes and the summary report of this evaluation.
+  Figures& fig = e.figures;
+  const double p = s.insideGauge;
+  fig.volume = g.volume;
+  fig.mouthArea = mouthArea;
+  fig.insideGauge = p;
+  fig.dynamicPressure = s.dynamicPressure;
+  fig.inflow = kernels::orificeFlow(b.ram - p, mouthArea, def_->discharge, rho, b.dpLinear);
+  for (const auto& [area, outside] : b.vents)
+    fig.ventOutflow += kernels::orificeFlow(p - outside, area, def_->discharge, rho, b.dpLinear);
+  fig.clothOutflow = b.cloth + b.dCloth * (p - b.insideGauge);
+  fig.capturedMass = e.capturedMass;
+  fig.flowDirection = s.flowDirection;
+  fig.axis = axis;
+  const double r = reach(x);
+  fig.projectedArea = std::numbers::pi * r * r;
+  return e;
+}
+
+void CanopyFlowTerm::addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v, double /*t*/,
+                               EnergyBreakdown& e) const {
+  const auto share = areaShares(x);
+  for (size_t i = 0; i < nodes_.size(); ++i)
+    e.kinetic += 0.5 * inertiaMass_ * share[i] * at(v, nodes_[i]).squaredNorm();
+  e.supplied += supplied_;
+}
+
+double CanopyFlowTerm::frequencySquaredBound(const Eigen::VectorXd& x, double /*t*/,
+                                             const std::vector<double>& nodalMass) const {
+  // FL12: the gas spring K = (dp/dV) a a^T, a_i = (1/3) sum of the areas at node i (the force
+  // the pressure puts there), dp/dV = gamma p / V: its one nonzero frequency
+  // omega^2 = (gamma p / V) sum_i |a_i|^2 / m_i.
+  const Model& m = *m_;
+  std::vector<Vec3> a(nodes_.size(), Vec3::Zero());
+  for (int k : faces_)
+    forTriangles(m.membranes[k], [&](int i, int j, int l) {
+      const Vec3 A = 0.5 * (at(x, j) - at(x, i)).cross(at(x, l) - at(x, i)) / 3.0;
+      a[slot_[i]] += A, a[slot_[j]] += A, a[slot_[l]] += A;
+    });
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(x.size());
+  const double volume = std::max(geometry(x, zero).volume, 0.0) + volumeFloor_;
+  const double pAbs =
+      kernels::capturedAirPressure(captured_, volume, m.air.pressure, m.air.density, def_->gamma);
+  double sum = 0.0;
+  for (size_t i = 0; i < nodes_.size(); ++i)
+    if (nodalMass[nodes_[i]] > 0.0) sum += a[i].squaredNorm() / nodalMass[nodes_[i]];
+  return def_->gamma * pAbs / volume * sum;
+}
+
+void CanopyFlowTerm::commit(const CommitPoint& c) {
+  // FL11-FL12: the next step's inertia is the apparent mass at the step's end; the kinetic energy
+  // the air it gained has at the nodes' velocities came with it, not from a force's work.
+  const double before = inertiaMass_;
+  inertiaMass_ = apparentMass(c.x);
+  massRate_ = c.dt > 0.0 ? (inertiaMass_ - before) / c.dt : 0.0;
+  if (c.v && inertiaMass_ != before) {
+    const auto share = areaShares(c.x);
+    double v2 = 0.0;
+    for (size_t i = 0; i < nodes_.size(); ++i) v2 += share[i] * at(*c.v, nodes_[i]).squaredNorm();
+    supplied_ += 0.5 * (inertiaMass_ - before) * v2;
+  }
+  // FL9: the captured air as the step's evaluation found it at the step's end.
+  if (c.dt > 0.0 && trialTime_ == c.t) captured_ = trialMass_;
+}
+
+void CanopyFlowTerm::save(History& h) const {
+  h.put(captured_);
+  h.put(inertiaMass_);
+  h.put(massRate_);
+  h.put(supplied_);
+}
+
+void CanopyFlowTerm::load(HistoryReader& h) {
+  const double captured = h.finiteReal(), inertia = h.finiteReal(), rate = h.finiteReal(),
+               supplied = h.finiteReal();
+  if (!(captured > 0.0)) h.fail("captured air mass not positive");
+  if (!(inertia >= 0.0)) h.fail("apparent mass negative");
+  captured_ = captured, inertiaMass_ = inertia, massRate_ = rate, supplied_ = supplied;
+}
+
+}  // namespace chute

@@ -1,0 +1,124 @@
+#pragma once
+// Loads from the airflow on one canopy, without a flow solver (docs/flight.md FL1-FL12): the
+// relative flow of the canopy as a whole (FL1), the air it has captured at one pressure (FL2-FL3,
+// its mass the term's history), the flows through its mouth, vent and cloth that change that mass
+// (FL4-FL6, FL9), the outside pressure of the flow around it (FL7), the fabric's own normal
+// motion (FL8), and the captured air's inertia with the momentum of the air it takes in (FL10-
+// FL11). Residual only: the explicit integrator steps it (the captured air couples every face of
+// the canopy through its volume, a dense Jacobian; case/sections refuse implicit integrators).
+#include <array>
+#include <vector>
+
+#include "assembly/Term.hpp"
+#include "kernels/CanopyFlow.hpp"
+#include "model/Model.hpp"
+
+namespace chute {
+
+class CanopyFlowTerm final : public Term {
+ public:
+  CanopyFlowTerm(const Model& m, int flow);
+  const char* name() const override { return "canopy_flow"; }
+  bool doesExternalWork() const override { return true; }
+  bool symmetricJacobian() const override { return false; }
+  void addCouplings(std::vector<std::vector<int>>& cliques) const override;
+  void assemble(const EvalPoint& p, SystemAssembler& out) override;
+  // The kinetic energy of the air moving with the canopy (FL11), and what the captured air
+  // brought in with it (EnergyBreakdown::supplied, FL12).
+  void addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v, double t,
+                 EnergyBreakdown& e) const override;
+  bool massMovesWithPositions() const override { return true; }
+  // FL12: the captured air is a gas spring over the whole canopy, K = (gamma p / V) a a^T.
+  double frequencySquaredBound(const Eigen::VectorXd& x, double t,
+                               const std::vector<double>& nodalMass) const override;
+  double assemblyCost() const override { return 1.2 * static_cast<double>(faces_.size()); }
+
+  bool hasHistory() const override { return true; }
+  void commit(const CommitPoint& c) override;
+  void save(History& h) const override;
+  void load(HistoryReader& h) override;
+
+  // What the last evaluation of a step found (probes, summary).
+  struct Figures {
+    double volume = 0.0;         // enclosed by the canopy and its openings
+    double mouthArea = 0.0;      // |A_m|
+    double projectedArea = 0.0;  // the canopy's area seen along the relative flow
+    double insideGauge = 0.0;    // p_in - p_a
+    double dynamicPressure = 0.0;
+    double inflow = 0.0, ventOutflow = 0.0, clothOutflow = 0.0;  // volume flows
+    double capturedMass = 0.0;
+    Eigen::Vector3d flowDirection = Eigen::Vector3d::Zero();
+    Eigen::Vector3d axis = Eigen::Vector3d::Zero();  // into the canopy through its mouth
+  };
+  // The figures at positions x and velocities v, with the committed captured air.
+  Figures figuresAt(const Eigen::VectorXd& x, const Eigen::VectorXd& v) const;
+  int set() const { return def_->set; }
+  // The nominal diameter D0 (of the mouth on the flat pattern: the skirt's) and area S0 = pi D0^2
+  // / 4, the reference of the drag coefficient C_D0 (docs/flight.md).
+  double nominalDiameter() const { return nominalDiameter_; }
+  double nominalArea() const;
+
+ private:
+  struct Loop {
+    std::vector<int> nodes;  // in order around the opening
+    double sign = 1.0;       // orients its area vector out of the closed surface (FL2)
+  };
+  // The closed surface's volume, the openings' outward area vectors, and the canopy's mean
+  // velocity and outward area at positions x, velocities v (FL1-FL2).
+  struct Geometry {
+    double volume = 0.0, area = 0.0, volumeRate = 0.0;
+    Eigen::Vector3d velocity = Eigen::Vector3d::Zero();
+    Eigen::Vector3d mouth = Eigen::Vector3d::Zero();  // outward area vector of the mouth
+    std::vector<Eigen::Vector3d> vents;
+  };
+  Geometry geometry(const Eigen::VectorXd& x, const Eigen::VectorXd& v) const;
+  Eigen::Vector3d loopArea(const Loop& l, const Eigen::VectorXd& x) const;
+  // Per canopy node, its share of the canopy's area at x (the captured air's inertia, FL11).
+  std::vector<double> areaShares(const Eigen::VectorXd& x) const;
+  // FL11: the air moving with the canopy, k_a rho R_p^3 with R_p its projected radius (the
+  // canopy's reach from its axis) at x; and that reach.
+  double apparentMass(const Eigen::VectorXd& x) const;
+  double reach(const Eigen::VectorXd& x) const;
+  // What the captured air's update over a step needs of an evaluation (FL9): the volume, the
+  // openings (the ram pressure into the mouth, the outside pressures at the vents) and the
+  // cloth's outflow linearised in the inside pressure about the evaluation's.
+  struct AirBudget {
+    double volume = 0.0, ram = 0.0, mouthArea = 0.0, dpLinear = 0.0;
+    std::vector<std::pair<double, double>> vents;  // (area, outside gauge pressure)
+    double cloth = 0.0, dCloth = 0.0, insideGauge = 0.0;
+    // The captured mass's rate at a mass M (in the budget's volume), and the mass after a step
+    // of length dt from Mn (implicit Euler, FL9).
+    double rate(double M, const CanopyFlowTerm& term) const;
+    double massAfter(double Mn, double dt, const CanopyFlowTerm& term) const;
+  };
+  // One evaluation at (x, v): the face loads into out (when given, scaled by loadFactor), the
+  // figures, and the air budget.
+  struct Evaluation {
+    Figures figures;
+    AirBudget budget;
+    double capturedMass = 0.0;  // at the end of a step (stepDt > 0), else the committed
+  };
+  Evaluation evaluate(const Eigen::VectorXd& x, const Eigen::VectorXd& v, SystemAssembler* out,
+                      double loadFactor, double stepDt) const;
+
+  const Model* m_;
+  const CanopyFlowDef* def_;
+  std::vector<int> faces_;  // membrane elements of the set
+  std::vector<int> nodes_;  // the canopy's nodes, and each node's slot in nodes_
+  std::vector<int> slot_;
+  Loop mouth_;
+  std::vector<Loop> vents_;
+  double volumeFloor_ = 0.0;
+  double nominalDiameter_ = 0.0;
+  // History: the captured air's mass (FL3); the apparent mass at the last commit, which the next
+  // step's inertia uses (the explicit step evaluates its mass alongside its forces, before the
+  // commit), and its rate over the last step (FL10); the kinetic energy the air set moving
+  // brought in so far (FL12).
+  double captured_ = 0.0, inertiaMass_ = 0.0, massRate_ = 0.0, supplied_ = 0.0;
+  // Of the last evaluation of a step (not history: made again by the next step's evaluation).
+  // The captured mass an explicit step's evaluation found at the step's end, and the step's end
+  // time (committed with that step only).
+  double trialMass_ = 0.0, trialTime_ = -1.0;
+};
+
+}  // namespace chute

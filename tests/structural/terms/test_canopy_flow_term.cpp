@@ -1,0 +1,141 @@
+// The airflow's loads on a canopy as a term (docs/flight.md FL1-FL12), on a rigid polygonal cup
+// (every node held): the enclosed volume against its closed form, the captured air's steady
+// pressure against the flow's stagnation pressure (impermeable) and against the balance of mouth
+// inflow and cloth outflow solved independently (porous), and nothing at all in still air.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <numbers>
+
+#include "solver/CentralDifference.hpp"
+#include "solver/TimeStepper.hpp"
+#include "terms/CanopyFlowTerm.hpp"
+
+using namespace chute;
+
+namespace {
+
+constexpr int kSides = 12;
+constexpr double kRadius = 1.0, kHeight = 0.8;
+
+// A cup open at the bottom: a regular kSides-gon roof (a fan from its centre) at z = kHeight on
+// walls of quads down to z = 0. Outward normals (the node order's). Every node held: the flow's
+// loads act on a rigid shape, and the captured air settles.
+Model rigidCup(double windSpeed, double permeability) {
+  Model m;
+  m.membraneMaterials.push_back({1e6, 0.3, 1e-4, 500.0});
+  m.membraneSets.push_back({"cup"});
+  const int top = m.addNode(Vec3(0, 0, kHeight));
+  std::vector<int> upper, lower;
+  for (int k = 0; k < kSides; ++k) {
+    const double a = 2 * std::numbers::pi * k / kSides;
+    upper.push_back(m.addNode(Vec3(kRadius * std::cos(a), kRadius * std::sin(a), kHeight)));
+    lower.push_back(m.addNode(Vec3(kRadius * std::cos(a), kRadius * std::sin(a), 0.0)));
+  }
+  auto element = [&](std::array<int, 4> nodes, int n) {
+    MembraneElement e;
+    e.nodes = nodes;
+    e.numNodes = n;
+    e.material = 0;
+    e.set = 0;
+    m.membranes.push_back(e);
+  };
+  for (int k = 0; k < kSides; ++k) {
+    const int j = (k + 1) % kSides;
+    element({top, upper[k], upper[j], -1}, 3);             // roof, normal up
+    element({lower[k], lower[j], upper[j], upper[k]}, 4);  // wall, normal out
+  }
+  m.u0.assign(m.numNodes(), Vec3::Zero());
+  m.pointMass.assign(m.numNodes(), 0.0);
+  m.constraint.assign(m.numNodes(), NodeConstraint{});
+  for (auto& c : m.constraint) c.fixed = {true, true, true};
+  m.air.given = true;
+  m.air.density = 1.225;
+  m.air.pressure = 101325.0;
+  m.air.wind = Vec3(0, 0, windSpeed);  // up, into the mouth
+  CanopyFlowDef d;
+  d.set = 0;
+  d.baseCoefficient = -0.8;
+  if (permeability > 0.0) d.cloth = kernels::ClothPermeability::fromTest(permeability, 124.5, 0.0);
+  m.canopyFlows.push_back(d);
+  return m;
+}
+
+// The captured air's gauge pressure after `time` of the explicit steps' air updates.
+double settledPressure(const Model& m, double time) {
+  StructuralSystem sys(m, SliderSearch::MaterialCoordinate);
+  CentralDifference cd(sys, ExplicitSettings{}, 1e-4);
+  TimeStepper stepper(sys, cd, 1e-4);
+  StructuralState s = stepper.start();
+  stepper.advanceTo(
+      s, time, [](double) { return 1e300; }, [](const StructuralState&, int) { return true; });
+  return sys.termList().canopyFlows().front()->figuresAt(s.x, s.v).insideGauge;
+}
+
+}  // namespace
+
+TEST(CanopyFlowTerm, EnclosedVolumeIsTheCupsClosedForm) {
+  const Model m = rigidCup(0.0, 0.0);
+  const CanopyFlowTerm term(m, 0);
+  Eigen::VectorXd x(3 * m.numNodes()), v = Eigen::VectorXd::Zero(3 * m.numNodes());
+  for (int n = 0; n < m.numNodes(); ++n) x.segment<3>(3 * n) = m.X[n];
+  const double polygon = 0.5 * kSides * kRadius * kRadius * std::sin(2 * std::numbers::pi / kSides);
+  const auto f = term.figuresAt(x, v);
+  // Moved and turned rigidly: the same volume.
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(0.7, Vec3(1, 2, 0.5).normalized()).toRotationMatrix();
+  Eigen::VectorXd y(x.size());
+  for (int n = 0; n < m.numNodes(); ++n) y.segment<3>(3 * n) = R * m.X[n] + Vec3(3, -1, 2);
+  const auto g = term.figuresAt(y, v);
+  std::printf("cup volume %.12g, closed form %.12g; moved and turned %.12g; mouth %.12g (%.12g)\n",
+              f.volume, polygon * kHeight, g.volume, f.mouthArea, polygon);
+  EXPECT_NEAR(f.volume, polygon * kHeight, 1e-12);
+  EXPECT_NEAR(g.volume, polygon * kHeight, 1e-12);
+  EXPECT_NEAR(f.mouthArea, polygon, 1e-12);
+  EXPECT_NEAR(term.nominalDiameter(), 2 * kRadius, 1e-12);
+}
+
+TEST(CanopyFlowTerm, ImpermeableCupCapturesTheStagnationPressure) {
+  // FL4: no way out, so the inflow stops where the inside pressure is the flow's ram pressure q.
+  const double V = 10.0, q = 0.5 * 1.225 * V * V;
+  const double p = settledPressure(rigidCup(V, 0.0), 0.2);
+  std::printf("impermeable cup in a %g m/s wind: inside %.6g Pa, q = %.6g Pa (%.2e)\n", V, p, q,
+              p / q - 1);
+  EXPECT_NEAR(p / q, 1.0, 1e-3);
+}
+
+TEST(CanopyFlowTerm, PorousCupSettlesWhereInflowMatchesTheClothsOutflow) {
+  // FL4, FL6, FL9 solved independently: the mouth's Bernoulli inflow
+  // Cd A_m sqrt(2 (q - p) / rho) equals the cloth's Darcy outflow through the roof (outside at
+  // the base pressure Cb q: it looks downstream) and the walls (along the flow: the attached
+  // band, no suction), u = p_diff u_ref / 124.5.
+  const double V = 10.0, rho = 1.225, q = 0.5 * rho * V * V, uRef = 0.5;
+  const double polygon = 0.5 * kSides * kRadius * kRadius * std::sin(2 * std::numbers::pi / kSides);
+  const double walls = kSides * 2 * kRadius * std::sin(std::numbers::pi / kSides) * kHeight;
+  auto imbalance = [&](double p) {
+    const double in = 0.61 * polygon * std::sqrt(2 * (q - p) / rho);
+    const double out = polygon * (p + 0.8 * q) * uRef / 124.5 + walls * p * uRef / 124.5;
+    return in - out;
+  };
+  double lo = -q, hi = q;
+  for (int i = 0; i < 200; ++i) (imbalance(0.5 * (lo + hi)) > 0 ? lo : hi) = 0.5 * (lo + hi);
+  const double expected = 0.5 * (lo + hi);
+  const double p = settledPressure(rigidCup(V, uRef), 0.2);
+  std::printf(
+      "porous cup (u_ref %g m/s at 124.5 Pa) in a %g m/s wind: inside %.6g Pa, the "
+      "balance's %.6g Pa (%.2e); q = %.6g Pa\n",
+      uRef, V, p, expected, p / expected - 1, q);
+  EXPECT_NEAR(p / expected, 1.0, 1e-3);
+  EXPECT_LT(p, q);
+}
+
+TEST(CanopyFlowTerm, StillAirLoadsNothing) {
+  const Model m = rigidCup(0.0, 0.5);
+  StructuralSystem sys(m, SliderSearch::MaterialCoordinate);
+  const StructuralState s = sys.initialState();
+  const auto f = sys.termList().canopyFlows().front()->figuresAt(s.x, s.v);
+  EXPECT_EQ(f.insideGauge, 0.0);  // ambient air captured at the start
+  EXPECT_EQ(f.dynamicPressure, 0.0);
+  EXPECT_EQ(f.inflow, 0.0);
+  EXPECT_EQ(f.clothOutflow, 0.0);
+}
