@@ -13,12 +13,24 @@
 //   slider (2-D), slider_edges (1-D), grommet_<k>, grommets (0-D, k = 0..3);
 //   risers (1-D), payload_box (1-D trusses), payload (0-D: the payload point or box corners).
 #include <array>
+#include <cstddef>
 #include <string>
 #include <vector>
 
 #include "GmshMesh.hpp"
 
 namespace chute::mesh {
+
+// The least size of any feature of a generated parachute (vent, canopy ring, slider, riser,
+// box edge, bundle radius, slider drop, height of the canopy over the confluence), relative to
+// the diameter, and the least positive payload mass (docs/limits.md).
+inline constexpr double kLeastFeature = 1e-3;
+inline constexpr double kLeastMass = 1e-6;
+
+// The limits of the run a generated case goes to (0: no case is written, nothing checked).
+struct CaseLimits {
+  std::size_t maxNodes = 0, maxElements = 0, maxEquations = 0;
+};
 
 struct ParachuteSpec {
   int gores = 0;              // gores and suspension lines (>= 4)
@@ -40,6 +52,7 @@ struct ParachuteSpec {
   double bundleRadius = 0.0;   // folded: radius of the packed canopy at the skirt (0: D / 40)
   double sliderDrop = 0.0;     // slider below the skirt at the start (0: line length / 20)
   double lineSlack = 0.005;    // the longest line starts this fraction shorter than its length
+  CaseLimits caseLimits;       // a case is written: the mesh must fit the run's default limits
 
   bool hasSlider() const { return sliderSide > 0.0; }
   bool hasBox() const { return payloadBox[0] > 0.0; }

@@ -20,9 +20,11 @@
 #include "GeoScript.hpp"
 #include "GmshSession.hpp"
 #include "MeshError.hpp"
+#include "MshReader.hpp"
 #include "ParachuteCaseWriter.hpp"
 #include "ParachuteGenerator.hpp"
 #include "app/cli/Command.hpp"
+#include "case/CaseSpec.hpp"
 #include "case/TomlDepth.hpp"
 #include "io/InputFile.hpp"
 
@@ -81,6 +83,21 @@ bool sameFile(const std::string& x, const std::string& y) {
   std::error_code ec;
   if (fs::weakly_canonical(x, ec) == fs::weakly_canonical(y, ec) && !ec) return true;
   return fs::exists(x, ec) && fs::exists(y, ec) && fs::equivalent(x, y, ec);
+}
+
+// Why `path` cannot be written as an output file ("" if it can): it must end in `extension`
+// (when given), not be a directory, and its directory must exist, so that a mistyped path is
+// refused before minutes of meshing rather than by the last write.
+std::string outputPathProblem(const std::string& path, const std::string& extension) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!extension.empty() && fs::path(path).extension() != extension)
+    return "'" + path + "': name a " + extension + " file";
+  if (fs::is_directory(path, ec)) return "'" + path + "' is a directory";
+  const fs::path parent = fs::path(path).parent_path();
+  if (!parent.empty() && !fs::is_directory(parent, ec))
+    return "'" + path + "': no directory " + parent.string();
+  return "";
 }
 
 }  // namespace
@@ -199,6 +216,15 @@ Command addMeshCommand(CLI::App& app) {
           fmt::print(stderr, "chute: mesh parachute: --out: give the .msh file to write\n");
           return kExitBadInput;
         }
+        if (const std::string bad = outputPathProblem(a->out, ".msh"); !bad.empty()) {
+          fmt::print(stderr, "chute: mesh parachute: --out: {}\n", bad);
+          return kExitBadInput;
+        }
+        if (!a->caseFile.empty())
+          if (const std::string bad = outputPathProblem(a->caseFile, ""); !bad.empty()) {
+            fmt::print(stderr, "chute: mesh parachute: --case: {}\n", bad);
+            return kExitBadInput;
+          }
         if (!a->caseFile.empty() && sameFile(a->caseFile, a->out)) {
           fmt::print(stderr, "chute: mesh parachute: --case: '{}' is the --out mesh file\n",
                      a->caseFile);
@@ -211,6 +237,13 @@ Command addMeshCommand(CLI::App& app) {
           return kExitBadInput;
         }
         if (!a->box.empty()) a->spec.payloadBox = {a->box[0], a->box[1], a->box[2]};
+        if (!a->caseFile.empty()) {
+          // The case must be one `chute run` takes with its default limits (docs/limits.md).
+          a->spec.caseLimits.maxNodes = mesh::MshLimits{}.maxNodes;
+          a->spec.caseLimits.maxElements = mesh::MshLimits{}.maxElements;
+          a->spec.caseLimits.maxEquations =
+              static_cast<std::size_t>(CaseSpec{}.solver.maxEquations);
+        }
         mesh::GeneratedParachute g;
         try {
           if (p->count("--pressure") && !std::isfinite(a->caseOptions.pressure))

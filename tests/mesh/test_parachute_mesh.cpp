@@ -6,9 +6,13 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <numbers>
+#include <string>
+#include <vector>
 
 #include "GmshMesh.hpp"
+#include "MshReader.hpp"
 #include "ParachuteCaseWriter.hpp"
 #include "ParachuteGenerator.hpp"
 #include "app/RunCase.hpp"
@@ -238,4 +242,139 @@ TEST(ParachuteMesh, GeneratedFoldedCaseRunsAFewSteps) {
   std::printf("generated folded 8-gore case: %s, %ld steps, %.2f Newton iterations/step\n",
               r.status.c_str(), r.steps, r.newtonPerStep());
   EXPECT_EQ(r.status, "completed");
+}
+
+namespace {
+// A small parachute with every feature (vent, slider, payload box on risers), folded.
+ParachuteSpec everything() {
+  ParachuteSpec s;
+  s.gores = 8;
+  s.diameter = 2.0;
+  s.ventDiameter = 0.4;
+  s.lineLength = 2.0;
+  s.lineElements = 4;
+  s.elementSize = 0.4;
+  s.sliderSide = 0.3;
+  s.payloadMass = 1.0;
+  s.payloadBox = {0.2, 0.2, 0.2};
+  s.riserLength = 0.5;
+  s.start = "folded";
+  return s;
+}
+}  // namespace
+
+// Every generator option over classes of values (tiny, subnormal, huge, near a bound, NaN, inf,
+// negative): each is refused by name before gmsh runs (std::invalid_argument starting with the
+// option), or yields a mesh and a case the reader takes. gmsh, given a vent ring 1e-9 wide,
+// threw inside an OpenMP region and aborted chute (exit 134); a slider of 1e-12 gave a case that
+// blew up at its first step.
+TEST(ParachuteMesh, ExtremeValuesOfEveryOptionAreRefusedByNameOrGiveACaseThatReads) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  const std::vector<double> common = {5e-324, 1e-300, 1e-12, 1e-9, -1.0, -0.0,
+                                      0.0,    1e6,    1e308, nan,  inf,  -inf};
+  struct Option {
+    const char* name;
+    double ParachuteSpec::*field;
+    std::vector<double> nearBounds;  // values near its bounds for this spec
+  };
+  const std::vector<Option> options = {
+      {"--diameter", &ParachuteSpec::diameter, {1e-6, 0.8, 3.999}},
+      {"--vent-diameter", &ParachuteSpec::ventDiameter, {1.999999999, 1.998, 0.002, 0.0019}},
+      {"--line-length", &ParachuteSpec::lineLength, {1.000000001, 1.0000005, 1.01}},
+      {"--element-size", &ParachuteSpec::elementSize, {1.0, 1.0000001, 0.01}},
+      {"--slider", &ParachuteSpec::sliderSide, {0.002, 0.0019, 1.5, 3.0}},
+      {"--payload-mass", &ParachuteSpec::payloadMass, {1e-6, 9e-7}},
+      {"--riser-length", &ParachuteSpec::riserLength, {0.1415, 0.1414, 0.002}},
+      {"--bundle-radius", &ParachuteSpec::bundleRadius, {0.999999, 0.002, 0.0019}},
+      {"--slider-drop", &ParachuteSpec::sliderDrop, {1.9999, 5.0, 0.002}},
+      {"--line-slack", &ParachuteSpec::lineSlack, {0.4999, 0.49}},
+      {"--inflated-ratio", &ParachuteSpec::inflatedRatio, {0.63662, 0.6367, 0.99999999}}};
+  int refused = 0, generated = 0;
+  std::vector<std::string> wrong;
+  const std::string msh = temp("extreme.msh"), toml = temp("extreme.toml");
+  for (const auto& o : options) {
+    std::vector<double> values = common;
+    values.insert(values.end(), o.nearBounds.begin(), o.nearBounds.end());
+    for (const double v : values) {
+      ParachuteSpec s = everything();
+      s.*o.field = v;
+      if (std::string(o.name) == "--inflated-ratio") s.start = "inflated";
+      s.caseLimits = {MshLimits{}.maxNodes, MshLimits{}.maxElements, 300000};
+      const std::string what = std::string(o.name) + " " + std::to_string(v);
+      try {
+        const auto g = generateParachute(s, msh);
+        writeParachuteCase(s, g, toml, msh, {});
+        readCase(toml);
+        ++generated;
+      } catch (const std::invalid_argument& e) {
+        ++refused;
+        // Named by an option (this one, or the one it conflicts with).
+        if (std::string(e.what()).rfind("--", 0) != 0) wrong.push_back(what + ": " + e.what());
+      } catch (const std::exception& e) {
+        wrong.push_back(what + ": " + e.what());
+      }
+    }
+  }
+  std::printf("%d values of %zu options: %d refused by name, %d generated a case that reads\n",
+              refused + generated + static_cast<int>(wrong.size()), options.size(), refused,
+              generated);
+  for (const auto& w : wrong) ADD_FAILURE() << w;
+  EXPECT_GT(generated, 10);
+}
+
+// Paths are written into the case as TOML strings with their quotes, backslashes and control
+// characters escaped: a quote or newline in --out ended the string and broke the case.
+TEST(ParachuteMesh, PathsWithQuotesBackslashesAndNewlinesReadBackAsThemselves) {
+  ParachuteSpec s = c9(0.5);
+  s.gores = 8;
+  s.elementSize = 2.0;
+  s.sliderSide = 0.0;
+  const std::filesystem::path dir = temp("odd paths");
+  std::filesystem::create_directories(dir);
+  for (const std::string name :
+       {"a\"b.msh", "back\\slash.msh", "new\nline.msh", "tab\tand \u00e9.msh"}) {
+    const std::string msh = (dir / name).string();
+    const std::string toml = (dir / ("case " + std::to_string(name.size()) + "\n\".toml")).string();
+    const auto g = generateParachute(s, msh);
+    writeParachuteCase(s, g, toml, msh, {});
+    const CaseSpec c = readCase(toml);
+    std::printf("mesh '%s': the case reads %d nodes (generated %zu), name '%s'\n", name.c_str(),
+                c.model.numNodes(), g.mesh.nodeTags.size(), c.name.c_str());
+    EXPECT_EQ(c.model.numNodes(), static_cast<int>(g.mesh.nodeTags.size()));
+  }
+  ParachuteCaseOptions o;
+  o.dt = 3.0;  // larger than t_end = 2
+  EXPECT_THROW(checkParachuteCaseOptions(o), std::invalid_argument);
+  o.dt = 1e-12;
+  o.tEnd = 1e6;  // 1e18 steps
+  EXPECT_THROW(checkParachuteCaseOptions(o), std::invalid_argument);
+  // A path that is not UTF-8 cannot be named in TOML: refused, not written.
+  const std::string bad = (dir / "\xff.msh").string();
+  EXPECT_THROW(writeParachuteCase(s, generateParachute(s, bad), (dir / "x.toml").string(), bad, {}),
+               std::invalid_argument);
+}
+
+// A case is written only for a mesh `chute run` takes with its default limits: 1000 slider
+// divisions (a million nodes, more than a case reads) are refused before gmsh runs.
+TEST(ParachuteMesh, ACaseBeyondTheRunsLimitsIsRefusedAtGeneration) {
+  ParachuteSpec s = everything();
+  s.sliderDivisions = 1000;
+  s.caseLimits = {MshLimits{}.maxNodes, MshLimits{}.maxElements, 300000};
+  try {
+    generateParachute(s, "");
+    FAIL() << "expected a refusal";
+  } catch (const std::invalid_argument& e) {
+    std::printf("%s\n", e.what());
+    EXPECT_NE(std::string(e.what()).find("--slider-divisions"), std::string::npos);
+  }
+  s.sliderDivisions = 200;  // 40,401 slider nodes: 121 k equations, within 300,000
+  s.caseLimits.maxEquations = 100000;
+  try {
+    generateParachute(s, "");
+    FAIL() << "expected a refusal";
+  } catch (const std::invalid_argument& e) {
+    std::printf("%s\n", e.what());
+    EXPECT_NE(std::string(e.what()).find("solver.max_equations"), std::string::npos);
+  }
 }
