@@ -102,8 +102,10 @@ void writeParachuteCase(const ParachuteSpec& spec, const GeneratedParachute& gen
   const fs::path dir = fs::absolute(caseFile).parent_path();
   const std::string mshRef = fs::relative(fs::absolute(msh), dir).generic_string();
   // The case's name (its default output directory) is a plain file name: the reader refuses
-  // control characters in it.
-  std::string name = commentText(fs::path(caseFile).stem().string());
+  // control characters and backslashes in it.
+  std::string name = fs::path(caseFile).stem().string();
+  for (char& ch : name)
+    if (static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f || ch == '\\') ch = '_';
   if (name.empty() || name == "." || name == "..") name = "parachute";
   const GmshMesh& mesh = generated.mesh;
   const bool si = o.units == "si";

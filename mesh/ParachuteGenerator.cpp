@@ -59,6 +59,17 @@ void ParachuteSpec::validate() const {
         "must exceed the canopy radius (the flat pattern's lines run from the "
         "skirt to the confluence on the axis, at least D/1000 below the canopy)");
   if (lineElements < 1) bad("--line-elements", "must be at least 1");
+  // Line, riser and slider elements at least a tenth of the canopy's: the explicit step is set
+  // by the shortest element (docs/explicit.md), and lines far finer than the canopy made the
+  // generated case take hours for a second of flight (3,000 elements a line of 2 ft: over a
+  // minute for 4 ms) or trip the energy monitor at its first steps (10,000).
+  auto fineness = [&](const char* option, double length, int elements) {
+    if (length / elements < 0.1 * elementSize)
+      bad(option, "elements of " + shortNumber(length / elements) +
+                      ", shorter than a tenth of --element-size (" + shortNumber(elementSize) +
+                      "): at most " +
+                      std::to_string(static_cast<long long>(10 * length / elementSize)) + " here");
+  };
   if (!(elementSize > 0.0) || elementSize > diameter / 2)
     bad("--element-size", "must be in (0, diameter / 2]");
   if (sliderSide < 0.0) bad("--slider", "the slider side must be positive");
@@ -72,6 +83,12 @@ void ParachuteSpec::validate() const {
       riserLength <= 0.5 * std::hypot(payloadBox[0], payloadBox[1]))
     bad("--riser-length", "must exceed half the diagonal of the box's top face");
   if (riserElements < 1) bad("--riser-elements", "must be at least 1");
+  if (elementSize > 0.0 && elementSize <= diameter / 2) {
+    fineness("--line-elements", lineLength, lineElements);
+    if (riserLength > 0.0) fineness("--riser-elements", riserLength, riserElements);
+    if (sliderSide > 0.0 && sliderDivisions >= 1)
+      fineness("--slider-divisions", sliderSide, sliderDivisions);
+  }
   if (start != "flat" && start != "folded" && start != "inflated")
     bad("--start", "expected flat, folded or inflated");
   if (!(inflatedRatio > 2.0 / std::numbers::pi && inflatedRatio < 1.0))

@@ -231,7 +231,8 @@ void plotProbes(const PlotOptions& o) {
     for (const auto& s : p.series) {
       vtkPlot* line = chart->AddPlot(vtkChart::LINE);
       line->SetInputData(s.table, 0, 1);
-      line->SetLabel(s.label);
+      // Two no-break spaces: VTK sizes the legend box to end at the longest label's last pixel.
+      line->SetLabel(s.label + "\u00a0\u00a0");
       const auto& rgb = kPalette[static_cast<size_t>(std::max(0, s.colour)) % kPalette.size()];
       line->SetColor(rgb[0], rgb[1], rgb[2], 255);
       line->SetWidth(s.reference ? 1.5f : 2.5f);

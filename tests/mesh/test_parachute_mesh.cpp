@@ -356,7 +356,10 @@ TEST(ParachuteMesh, PathsWithQuotesBackslashesAndNewlinesReadBackAsThemselves) {
 }
 
 // A case is written only for a mesh `chute run` takes with its default limits: 1000 slider
-// divisions (a million nodes, more than a case reads) are refused before gmsh runs.
+// divisions (a million nodes, more than a case reads) are refused before gmsh runs; a mesh
+// with more equations than a run takes, once meshed, before anything is written. Lines,
+// risers and slider quads finer than a tenth of the canopy's elements are refused (the explicit
+// step follows the shortest element: 3,000 elements a line took minutes for 4 ms).
 TEST(ParachuteMesh, ACaseBeyondTheRunsLimitsIsRefusedAtGeneration) {
   ParachuteSpec s = everything();
   s.sliderDivisions = 1000;
@@ -369,6 +372,7 @@ TEST(ParachuteMesh, ACaseBeyondTheRunsLimitsIsRefusedAtGeneration) {
     EXPECT_NE(std::string(e.what()).find("--slider-divisions"), std::string::npos);
   }
   s.sliderDivisions = 200;  // 40,401 slider nodes: 121 k equations, within 300,000
+  s.elementSize = 0.01;     // slider quads 1.5e-3 long: at least a tenth of the canopy's
   s.caseLimits.maxEquations = 100000;
   try {
     generateParachute(s, "");
@@ -376,5 +380,14 @@ TEST(ParachuteMesh, ACaseBeyondTheRunsLimitsIsRefusedAtGeneration) {
   } catch (const std::invalid_argument& e) {
     std::printf("%s\n", e.what());
     EXPECT_NE(std::string(e.what()).find("solver.max_equations"), std::string::npos);
+  }
+  s = everything();
+  s.lineElements = 3000;  // 6.7e-4 ft elements under a canopy of 0.4 ft
+  try {
+    generateParachute(s, "");
+    FAIL() << "expected a refusal";
+  } catch (const std::invalid_argument& e) {
+    std::printf("%s\n", e.what());
+    EXPECT_EQ(std::string(e.what()).rfind("--line-elements: ", 0), 0u);
   }
 }
