@@ -3,8 +3,8 @@
 // (VTK's chart module, off-screen), with an optional reference curve read from a CSV file whose
 // first column is t. One quantity per panel: the columns are grouped by what they measure
 // (render/Quantities.hpp), each group in a panel of its own, its axis titled with the quantity
-// and the unit of the case's `units` ("skirt radius [ft]"); the panels share the time axis
-// ("t [s]"). Each panel's legend stands outside its axes, on the right, where it covers no data.
+// and the unit of the case's `units` ("skirt radius (ft)"); the panels share the time axis
+// ("t (s)"). Each panel's legend stands outside its axes, on the right, where it covers no data.
 // The probes are streamed (render/ProbeCsv.hpp): memory does not grow with the file.
 #include <string>
 #include <vector>

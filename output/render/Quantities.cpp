@@ -139,7 +139,8 @@ std::string quantityName(Quantity q) {
 
 std::string withUnit(const std::string& title, Quantity q, const UnitSystem& u) {
   const std::string unit = unitOf(q, u);
-  return unit.empty() ? title : title + " [" + unit + "]";
+  // Parentheses: VTK 9.1's own font draws "[" and "]" as "(" and ")" anyway.
+  return unit.empty() ? title : title + " (" + unit + ")";
 }
 
 FieldInfo vtuField(const std::string& name) {

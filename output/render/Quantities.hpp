@@ -2,8 +2,8 @@
 // What a number in a picture or a plot is, and its unit: the case's `units` note ("ft, slug, s,
 // lbf", "m, kg, s, N, Pa") read into a unit system, and two tables -- the VTU fields (name ->
 // display name, kind of quantity, categories) and the probe columns (probe kind -> its columns'
-// quantities) -- so that a colour bar or an axis reads "membrane stress S1 [psf]" or
-// "skirt radius [m]". A new field or probe column is one line in Quantities.cpp.
+// quantities) -- so that a colour bar or an axis reads "membrane stress S1 (psf)" or
+// "skirt radius (m)". A new field or probe column is one line in Quantities.cpp.
 #include <optional>
 #include <string>
 #include <vector>
@@ -50,7 +50,7 @@ std::string unitOf(Quantity q, const UnitSystem& u);
 // measurements of one kind.
 std::string quantityName(Quantity q);
 
-// "title [unit]", or just the title when there is no unit.
+// "title (unit)", or just the title when there is no unit.
 std::string withUnit(const std::string& title, Quantity q, const UnitSystem& u);
 
 // One category of a categorical field: its code and its name.

@@ -54,7 +54,7 @@ TEST(Quantities, BothUnitSystemsChuteWritesGiveEveryUnit) {
     EXPECT_EQ(unitOf(r.q, siPa), r.si);
     EXPECT_EQ(unitOf(r.q, any), r.si);
   }
-  EXPECT_EQ(withUnit("membrane stress S1", Quantity::Stress, ft), "membrane stress S1 [psf]");
+  EXPECT_EQ(withUnit("membrane stress S1", Quantity::Stress, ft), "membrane stress S1 (psf)");
   // A note that names no unit: no unit shown rather than a wrong one.
   const UnitSystem none = parseUnits("consistent units");
   EXPECT_EQ(withUnit("line force", Quantity::Force, none), "line force");
@@ -91,7 +91,7 @@ TEST(Quantities, EveryProbeColumnHasItsQuantity) {
 TEST(Quantities, VtuFieldsAreNamedAndCategoricalOnesListTheirCategories) {
   const UnitSystem ft = parseUnits("ft, slug, s, lbf");
   EXPECT_EQ(withUnit(vtuField("axial_force").title, vtuField("axial_force").quantity, ft),
-            "line force [lbf]");
+            "line force (lbf)");
   EXPECT_EQ(vtuField("principal_stress").components.at(0), "S1");
   const FieldInfo w = vtuField("wrinkling_state");
   ASSERT_EQ(w.quantity, Quantity::Category);
