@@ -28,8 +28,8 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", versionText(),
                        "print chute's version, build, compiler and library versions and exit");
   app.require_subcommand(1);
-  const std::vector<Command> commands = {addRunCommand(app), addRenderCommand(app),
-                                         addPlotCommand(app), addCoupleCommand(app),
-                                         addMeshForwardCommand(app)};
+  const std::vector<Command> commands = {addRunCommand(app),           addRenderCommand(app),
+                                         addPlotCommand(app),          addCoupleCommand(app),
+                                         addIntersectionsCommand(app), addMeshForwardCommand(app)};
   return dispatch(app, commands, argc, argv);
 }

@@ -8,10 +8,12 @@
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 
+#include <array>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <map>
 #include <random>
 #include <regex>
 #include <sstream>
@@ -84,6 +86,43 @@ std::string expectSame(const GmshMesh& ours, const GmshMesh& gmshs, const std::s
   s << ours.nodeTags.size() << " nodes, " << ours.groups.size() << " groups, " << elements
     << " elements, " << ours.views.size() << " views";
   return s.str();
+}
+
+// `back` with its node tags mapped onto those of `original` by position (bit-equal coordinates):
+// gmsh renumbers the nodes of a mesh whose tags have gaps when it saves it as 2.2 (`chute mesh
+// cluster` writes such tags); the model is the same up to the nodes' numbers. Returns false if
+// the positions do not map one to one.
+bool renumberedLike(GmshMesh& back, const GmshMesh& original) {
+  if (back.nodeTags == original.nodeTags) return true;
+  if (back.nodeTags.size() != original.nodeTags.size()) return false;
+  std::map<std::array<double, 3>, std::size_t> byPosition;
+  for (size_t i = 0; i < original.nodeTags.size(); ++i)
+    if (!byPosition
+             .emplace(std::array<double, 3>{original.coords[i].x(), original.coords[i].y(),
+                                            original.coords[i].z()},
+                      original.nodeTags[i])
+             .second)
+      return false;
+  std::map<std::size_t, std::size_t> tagOf;
+  for (size_t i = 0; i < back.nodeTags.size(); ++i) {
+    const auto it = byPosition.find({back.coords[i].x(), back.coords[i].y(), back.coords[i].z()});
+    if (it == byPosition.end()) return false;
+    tagOf[back.nodeTags[i]] = it->second;
+  }
+  GmshMesh mapped = back;
+  mapped.nodeTags = original.nodeTags;
+  mapped.coords = original.coords;
+  for (auto& g : mapped.groups)
+    for (auto& e : g.elements)
+      for (auto& n : e) n = tagOf.at(n);
+  for (auto& [name, values] : mapped.views) {
+    NodeVectors renamed;
+    for (const auto& [tag, v] : values) renamed[tagOf.count(tag) ? tagOf.at(tag) : tag] = v;
+    values = renamed;
+  }
+  mapped.buildIndex();
+  back = mapped;
+  return false;
 }
 
 // A small 4.1 mesh: a unit square of two triangles and a quad, a line, a point, one view.
@@ -234,7 +273,9 @@ TEST(MshReader, SmallMeshesInBothVersionsGiveTheGroupsGmshGives) {
 // groups with the same elements in the same order, the same views. Format 2.2 writes an element
 // once per physical group of its entity: read as two elements, a line in the groups 'lines' and
 // 'line_0' made the case refuse the mesh ("group 'line_0' branches at node 326"). The originals
-// (4.1) and gmsh's 4.1 saves also read as gmsh's own reader reads them.
+// (4.1) and gmsh's 4.1 saves also read as gmsh's own reader reads them. A mesh whose node tags
+// have gaps (`chute mesh cluster`'s) gmsh renumbers when it saves it as 2.2: it reads back as
+// the same model up to the numbers of its nodes (compared by position).
 TEST(MshReader, ShippedAndGeneratedMeshesSavedByGmshIn22And41ReadBackUnchanged) {
   const std::string dir =
       chute::testing::freshTempDir("chute_", "msh_reader_formats", true).string();
@@ -274,9 +315,17 @@ TEST(MshReader, ShippedAndGeneratedMeshesSavedByGmshIn22And41ReadBackUnchanged) 
       const std::string to = dir + "/" + fs::path(file).stem().string() + "_" +
                              (version > 3 ? "41" : "22") + (binary ? "b" : "a") + ".msh";
       resave(file, to, version, binary);
-      const GmshMesh back = readMsh(to);
+      GmshMesh back = readMsh(to);
+      const GmshMesh asRead = back;
+      const bool sameTags = renumberedLike(back, original);
       const std::string summary = expectSame(back, original, to);
-      if (version > 3) expectSame(back, readMeshWithGmsh(to), to + " (gmsh's reader)");
+      if (!sameTags) {  // only a mesh with gaps in its node tags, saved as 2.2
+        EXPECT_TRUE(version < 3) << to;
+        EXPECT_NE(original.nodeTags.back(), original.nodeTags.size()) << to;
+        std::printf("%-32s gmsh renumbered its nodes (tags with gaps): compared by position\n",
+                    fs::path(to).filename().c_str());
+      }
+      if (version > 3) expectSame(asRead, readMeshWithGmsh(to), to + " (gmsh's reader)");
       ++compared;
       std::printf("%-32s %s: as the original\n", fs::path(to).filename().c_str(), summary.c_str());
     }

@@ -53,7 +53,7 @@ TEST(PointMassTerm, AMassOnANodeNoElementUsesFallsFreely) {
     const std::string file = chute::testing::writeCase("free_ball", kCase);
     const CaseSpec spec = readCase(file, {"solver.integrator=\"" + integrator + "\""});
     const RunResult r = runCase(spec, RunOptions{});
-    ASSERT_EQ(r.status, "completed") << integrator << ": " << r.reason;
+    ASSERT_EQ(r.status, RunStatus::Completed) << integrator << ": " << r.reason;
     int zColumn = -1;
     for (size_t k = 0; k < r.columns.size(); ++k)
       if (r.columns[k] == "ball.z") zColumn = static_cast<int>(k);
