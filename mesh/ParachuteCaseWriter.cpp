@@ -82,6 +82,21 @@ void checkParachuteCaseOptions(const ParachuteCaseOptions& o) {
   };
   if (!std::isnan(o.pressure) && !(std::isfinite(o.pressure) && std::abs(o.pressure) <= 1e6))
     bad("--pressure", "must be finite and at most 1e6");
+  // 0 (none) or within 1e-5 to 1e5 times the default (1e-6 to 1e4 psf, 4.8e-5 to 4.8e5 Pa; a
+  // 500-knot deployment at sea level is 850 psf): the explicit step of the generated case blew
+  // up at 1e5 psf, and at 1e-12 psf its energies were rounding noise the energy balance refused.
+  if (!std::isnan(o.pressure) && o.pressure != 0.0 && (o.units == "ft" || o.units == "si")) {
+    const double q = parachuteMaterials(o.units).defaultPressure;
+    auto g = [](double x) {
+      char b[32];
+      std::snprintf(b, sizeof b, "%g", x);
+      return std::string(b);
+    };
+    if (std::abs(o.pressure) < 1e-5 * q * (1 - 1e-12) ||
+        std::abs(o.pressure) > 1e5 * q * (1 + 1e-12))
+      bad("--pressure", "0 or between " + g(1e-5 * q) + " and " + g(1e5 * q) +
+                            " in magnitude (1e-5 to 1e5 times the default " + g(q) + ")");
+  }
   if (!(o.dt > 0.0 && o.dt <= 1e3)) bad("--dt", "must be in (0, 1e3]");
   if (!(o.tEnd > 0.0 && o.tEnd <= 1e6)) bad("--t-end", "must be in (0, 1e6]");
   // As the case reader's [solver] checks (docs/limits.md): one step at least, at most 1e9.

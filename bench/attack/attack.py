@@ -284,7 +284,8 @@ def parachute_inputs(ctx, rng, n):
             "--gores": ["3", "4", "1000", "1001"], "--line-elements": ["10000", "10001"],
             "--slider-divisions": ["999", "1000", "1001"], "--riser-elements": ["10001"],
             "--dt": ["2", "2.0000001", "1e-12"], "--t-end": ["0.002", "1e6"],
-            "--pressure": ["-1", "1e6", "0"], "--ramp-time": ["1e6", "0"]}
+            "--pressure": ["-1", "1e6", "0", "1e5", "1e4", "1e-6", "1e-12"],
+            "--ramp-time": ["1e6", "0"]}
     common = ["5e-324", "1e-300", "1e-12", "1e-9", "-1", "-0.0", "0", "1e6", "1e308", "nan",
               "inf", "-inf"]
     base = ["--gores", "8", "--diameter", "2", "--line-length", "2", "--element-size", "0.4",
@@ -460,7 +461,7 @@ def main():
             geo_inputs(ctx, rng) + csv_inputs(ctx, rng, int(100 * s)) +
             arg_inputs(ctx, rng, int(200 * s)) + checkpoint_inputs(ctx, rng, int(150 * s)) +
             capi_inputs(ctx, rng, int(60 * s)) + parachute_inputs(ctx, rng, int(250 * s)) +
-            mesh_damage_inputs(ctx, rng, int(150 * s)) + frame_inputs(ctx, rng, int(100 * s)) +
+            mesh_damage_inputs(ctx, rng, int(150 * s)) + frame_inputs(ctx, rng, int(300 * s)) +
             ([big_csv_input(ctx)] if a.big_csv else []))
     print("%d inputs, %s build" % (len(todo), "ASan/UBSan" if asan else "plain"), flush=True)
     start = time.time()

@@ -368,38 +368,41 @@ std::vector<std::string> renderSnapshots(const SnapshotOptions& o) {
                              "' and '" + runs[1].units.note +
                              "'): one colour would mean two values");
 
-  // Load the frames shown first: the camera is common to all images. The colour ranges are over
-  // every frame of every run, shown or not (render/ColourLayers.hpp).
-  std::vector<std::vector<vtkSmartPointer<vtkUnstructuredGrid>>> grids(runs.size());
-  std::vector<std::vector<double>> times(runs.size());
+  // The frames shown (for a compared run, the frames nearest to the first run's times); the
+  // camera is common to all images, over their bounds. The colour ranges are over every frame of
+  // every run, shown or not (render/ColourLayers.hpp). One pass over the frames, one frame in
+  // memory at a time; each shown frame is read again when it is drawn (`--all` over a long series
+  // of a large model held every frame).
   const auto picks = pickFrames(runs[0], o);
-  std::array<double, 6> bounds = {1e300, -1e300, 1e300, -1e300, 1e300, -1e300};
-  std::vector<ColourLayer> layers;
-  for (size_t r = 0; r < runs.size(); ++r) {
+  std::vector<std::vector<int>> shown(runs.size());
+  std::vector<std::vector<double>> times(runs.size());
+  for (size_t r = 0; r < runs.size(); ++r)
     for (int p : picks) {
-      // A compared run: the frame nearest to the first run's time.
-      const double t = runs[0].frames[p].t;
       int f = p;
       if (r > 0) {
         SnapshotOptions one = o;
         one.allFrames = false;
-        one.times = {t};
+        one.times = {runs[0].frames[p].t};
         f = pickFrames(runs[r], one)[0];
       }
-      auto g = load(runs[r], f);
+      shown[r].push_back(f);
+      times[r].push_back(runs[r].frames[f].t);
+    }
+  std::array<double, 6> bounds = {1e300, -1e300, 1e300, -1e300, 1e300, -1e300};
+  std::vector<ColourLayer> layers;
+  for (size_t r = 0; r < runs.size(); ++r)
+    for (size_t f = 0; f < runs[r].frames.size(); ++f) {
+      const auto g = load(runs[r], static_cast<int>(f));
+      if (layers.empty()) layers = colourLayers(o.color, g, runs[0].units);
+      widenRanges(layers, g);
+      if (std::find(shown[r].begin(), shown[r].end(), static_cast<int>(f)) == shown[r].end())
+        continue;
       double b[6];
       g->GetBounds(b);
       for (int k = 0; k < 3; ++k)
         bounds[2 * k] = std::min(bounds[2 * k], b[2 * k]),
                    bounds[2 * k + 1] = std::max(bounds[2 * k + 1], b[2 * k + 1]);
-      if (layers.empty()) layers = colourLayers(o.color, g, runs[0].units);
-      grids[r].push_back(g);
-      times[r].push_back(runs[r].frames[f].t);
     }
-  }
-  for (const auto& run : runs)
-    for (size_t f = 0; f < run.frames.size(); ++f)
-      widenRanges(layers, load(run, static_cast<int>(f)));
   finishRanges(layers);
 
   // Every image's file, checked before anything is drawn.
@@ -447,7 +450,8 @@ std::vector<std::string> renderSnapshots(const SnapshotOptions& o) {
           runs[r].name +
               (runs.size() > 1 ? " (" + fs::path(runs[r].dir).filename().string() + ")" : ""),
           timeStamp(times[r][i], runs[r]));
-      const Scene s = buildScene(grids[r][i], layers, luts, tube, text, fontSize);
+      const auto grid = load(runs[r], shown[r][i]);
+      const Scene s = buildScene(grid, layers, luts, tube, text, fontSize);
       for (const auto& actor : s.actors) ren->AddActor(actor);
       ren->AddActor2D(s.label);
       if (r + 1 == runs.size())

@@ -349,6 +349,17 @@ TEST(ParachuteMesh, PathsWithQuotesBackslashesAndNewlinesReadBackAsThemselves) {
   o.dt = 1e-12;
   o.tEnd = 1e6;  // 1e18 steps
   EXPECT_THROW(checkParachuteCaseOptions(o), std::invalid_argument);
+  // A canopy pressure the generated case cannot fly: 1e6 psf (its explicit step blew up) or
+  // 1e-12 psf (its energies are rounding noise); 0 is no pressure.
+  o = ParachuteCaseOptions{};
+  for (const double bad : {1e6, 1e-12, -1.01e4}) {
+    o.pressure = bad;
+    EXPECT_THROW(checkParachuteCaseOptions(o), std::invalid_argument) << bad;
+  }
+  for (const double fine : {0.0, 1e4, 1e-6, -0.5}) {
+    o.pressure = fine;
+    EXPECT_NO_THROW(checkParachuteCaseOptions(o)) << fine;
+  }
   // A path that is not UTF-8 cannot be named in TOML: refused, not written.
   const std::string bad = (dir / "\xff.msh").string();
   EXPECT_THROW(writeParachuteCase(s, generateParachute(s, bad), (dir / "x.toml").string(), bad, {}),
