@@ -605,3 +605,57 @@ TEST(Plot, TheTimeAsACurveAnImageBeyondTheBudgetOrAFifoOutIsRefused) {
   }
   EXPECT_FALSE(fs::exists(dir / "elsewhere.png"));
 }
+
+// A frame whose XML or appended-data headers VTK's reader would trust is refused before the
+// reader sees it (found by mutating real series: an unknown data type in <FieldData> and stray
+// text inside <Cells> crashed the reader, a changed byte count ran it out of memory or past the
+// end of the file).
+TEST(Render, FramesTheVtkReaderWouldTrustAreCheckedFirst) {
+  const auto dir = smallRun("trusted");
+  std::vector<fs::path> frames;
+  for (const auto& e : fs::directory_iterator(dir))
+    if (e.path().extension() == ".vtu") frames.push_back(e.path());
+  std::sort(frames.begin(), frames.end());
+  ASSERT_FALSE(frames.empty());
+  std::ifstream in(frames.back(), std::ios::binary);
+  const std::string good((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto underscore = good.find('_', good.find("<AppendedData"));
+  ASSERT_NE(underscore, std::string::npos);
+  struct Case {
+    std::string what, expect;
+    std::function<std::string(std::string)> damage;
+  };
+  const std::vector<Case> cases = {
+      {"an unknown data type", "a data type VTK's reader does not take",
+       [](std::string s) { return s.replace(s.find("Float64"), 7, "Float60"); }},
+      {"text inside <Cells>", "text in <Cells>",
+       [](std::string s) { return s.insert(s.find("<Cells>") + 7, "s"); }},
+      {"no '_' before the data", "does not start with '_'",
+       [&](std::string s) { return s.replace(underscore, 1, "L"); }},
+      {"a byte count of 2^31", "its header announces",
+       [&](std::string s) { return s.replace(underscore + 1, 4, std::string("\0\0\0\x80", 4)); }},
+      {"a count of points of 1e12", "NumberOfPoints or NumberOfCells", [](std::string s) {
+         const auto at = s.find("NumberOfPoints=\"") + 16;
+         return s.replace(at, s.find('"', at) - at, "1000000000000");
+       }}};
+  for (const auto& c : cases) {
+    const fs::path d = freshDir("trusted_" + std::to_string(&c - cases.data()));
+    fs::create_directories(d);
+    std::ofstream(d / "f.vtu", std::ios::binary) << c.damage(good);
+    std::ofstream(d / "s.pvd") << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" "
+                                  "version=\"0.1\"><Collection>\n<DataSet timestep=\"0\" "
+                                  "file=\"f.vtu\"/>\n</Collection></VTKFile>\n";
+    const auto [status, err] = runCaptured("render " + d.string() + " --out " + (d / "s").string());
+    std::printf("%-26s exit %d: %s", c.what.c_str(), status, err.c_str());
+    EXPECT_EQ(status, 2) << c.what;
+    EXPECT_NE(err.find(c.expect), std::string::npos) << err;
+  }
+  // The undamaged frame draws, its parts named in a categorical legend.
+  const fs::path d = freshDir("trusted_good");
+  fs::create_directories(d);
+  std::ofstream(d / "f.vtu", std::ios::binary) << good;
+  std::ofstream(d / "s.pvd") << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" "
+                                "version=\"0.1\"><Collection>\n<DataSet timestep=\"0\" "
+                                "file=\"f.vtu\"/>\n</Collection></VTKFile>\n";
+  EXPECT_EQ(runCaptured("render " + d.string() + " --color part --size 320x180").first, 0);
+}
