@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "ParachuteMaterials.hpp"
+#include "TomlText.hpp"
 
 namespace chute::mesh {
 
@@ -19,52 +20,6 @@ std::string num(double x) {
   std::snprintf(b, sizeof b, "%.6g", x);
   std::string s = b;
   if (s.find_first_of(".e") == std::string::npos) s += ".0";  // TOML: a float, not an integer
-  return s;
-}
-
-// Whether s is valid UTF-8 (TOML text must be; a path of other bytes cannot be named in a case).
-bool validUtf8(const std::string& s) {
-  for (size_t i = 0; i < s.size();) {
-    const auto c = static_cast<unsigned char>(s[i]);
-    const size_t extra = c < 0x80           ? 0
-                         : (c >> 5) == 0x6  ? 1
-                         : (c >> 4) == 0xe  ? 2
-                         : (c >> 3) == 0x1e ? 3
-                                            : 4;
-    if (extra == 4 || i + extra >= s.size()) return false;
-    for (size_t k = 1; k <= extra; ++k)
-      if ((static_cast<unsigned char>(s[i + k]) >> 6) != 0x2) return false;
-    i += 1 + extra;
-  }
-  return true;
-}
-
-// A TOML basic string of s: quotes, backslashes and control characters escaped, so a path or name
-// with a quote or a newline is the value it is, not the end of it (`option` names the source).
-std::string tomlString(const std::string& s, const std::string& option) {
-  if (!validUtf8(s))
-    throw std::invalid_argument(option + ": not UTF-8 text; a TOML case cannot name it");
-  std::string out = "\"";
-  for (const char ch : s) {
-    const auto c = static_cast<unsigned char>(ch);
-    if (ch == '"' || ch == '\\') {
-      out += '\\';
-      out += ch;
-    } else if (c < 0x20 || c == 0x7f) {
-      char esc[8];
-      std::snprintf(esc, sizeof esc, "\\u%04X", static_cast<unsigned>(c));
-      out += esc;
-    } else {
-      out += ch;
-    }
-  }
-  return out + "\"";
-}
-
-// Text for a comment line: control characters (a newline would end the comment) shown as '?'.
-std::string commentText(std::string s) {
-  for (char& ch : s)
-    if (static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f) ch = '?';
   return s;
 }
 
@@ -116,12 +71,7 @@ void writeParachuteCase(const ParachuteSpec& spec, const GeneratedParachute& gen
   namespace fs = std::filesystem;
   const fs::path dir = fs::absolute(caseFile).parent_path();
   const std::string mshRef = fs::relative(fs::absolute(msh), dir).generic_string();
-  // The case's name (its default output directory) is a plain file name: the reader refuses
-  // control characters and backslashes in it.
-  std::string name = fs::path(caseFile).stem().string();
-  for (char& ch : name)
-    if (static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f || ch == '\\') ch = '_';
-  if (name.empty() || name == "." || name == "..") name = "parachute";
+  const std::string name = caseNameOf(caseFile, "parachute");
   const GmshMesh& mesh = generated.mesh;
   const bool si = o.units == "si";
   const double p = std::isnan(o.pressure) ? mat.defaultPressure : o.pressure;

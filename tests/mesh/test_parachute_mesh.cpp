@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "ClusterCaseWriter.hpp"
+#include "ClusterGenerator.hpp"
 #include "GmshMesh.hpp"
 #include "MshReader.hpp"
 #include "ParachuteCaseWriter.hpp"
@@ -343,6 +345,20 @@ TEST(ParachuteMesh, PathsWithQuotesBackslashesAndNewlinesReadBackAsThemselves) {
                 c.model.numNodes(), g.mesh.nodeTags.size(), c.name.c_str());
     EXPECT_EQ(c.model.numNodes(), static_cast<int>(g.mesh.nodeTags.size()));
   }
+  // The cluster's case writer escapes alike.
+  ClusterSpec c;
+  c.canopies = 2;
+  c.parachute = s;
+  c.parachute.start = "folded";
+  c.payloadMass = 2.0;
+  const std::string msh = (dir / "clu\"ster\n.msh").string();
+  const std::string toml = (dir / "clu\"ster\\.toml").string();
+  writeClusterCase(c, generateCluster(c, msh), toml, msh, {});
+  const CaseSpec cluster = readCase(toml);
+  std::printf("cluster over '%s': the case reads %d nodes, name '%s'\n", msh.c_str(),
+              cluster.model.numNodes(), cluster.name.c_str());
+  EXPECT_GT(cluster.model.numNodes(), 0);
+
   ParachuteCaseOptions o;
   o.dt = 3.0;  // larger than t_end = 2
   EXPECT_THROW(checkParachuteCaseOptions(o), std::invalid_argument);
