@@ -11,6 +11,7 @@
 #include "kernels/LineElementTypes.hpp"
 #include "kernels/MembraneKernel.hpp"
 #include "kernels/SliderFriction.hpp"
+#include "model/ContactDef.hpp"
 
 namespace chute {
 
@@ -134,6 +135,7 @@ struct Model {
   std::vector<PressureLoadDef> pressures;
   std::vector<DragLoadDef> drags;
   std::vector<FaceDragLoadDef> faceDrags;
+  ContactDef contact;  // fabric contact ([contact]); enabled = false: none
 
   Vec3 gravity = Vec3::Zero();
   double massDamping = 0.0;  // Rayleigh mass-proportional damping C = alpha M (every mass)
