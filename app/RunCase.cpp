@@ -25,6 +25,7 @@
 #include "solver/StaticLoadStepper.hpp"
 #include "solver/TimeStepper.hpp"
 #include "terms/SlidingGroupTerm.hpp"
+#include "terms/contact/ContactTerm.hpp"
 #include "verification/HenckyReference.hpp"
 #include "verification/References.hpp"
 
@@ -140,6 +141,17 @@ ExplicitRunInfo explicitSummary(const CentralDifference& cd, const Model& m) {
   e.addedMass = cd.addedMass();
   e.totalAddedMass = cd.totalAddedMass();
   return e;
+}
+
+ContactRunInfo contactSummary(const ContactTerm& c, const Model& m) {
+  const auto& rec = c.record();
+  ContactRunInfo i;
+  i.thickness = m.contact.thickness;
+  i.builds = rec.builds, i.treeBuilds = rec.treeBuilds, i.candidates = rec.candidates;
+  i.largestActive = rec.largestActive, i.closest = rec.closest;
+  i.largestApproachPerStep = rec.largestApproachPerStep;
+  i.largestApproachEnergy = rec.largestApproachEnergy;
+  return i;
 }
 
 }  // namespace
@@ -304,6 +316,21 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
       r.steps = n.steps, r.rejectedSteps = n.rejectedSteps, r.eventRetries = n.eventRetries;
       r.newtonIterations = n.newtonIterations, r.maxNewtonInStep = n.maxNewtonInStep;
       if (explicitCd) r.explicitRun = explicitSummary(*explicitCd, m);
+      if (sys.contact()) {
+        r.contact = contactSummary(*sys.contact(), m);
+        if (r.contact->largestApproachPerStep > 0.5)
+          r.notes.push_back(fmt::format(
+              "contact: a pair closed {:.3g} contact thicknesses in one step (docs/contact.md "
+              "CT13): steps too long for the thickness; fabric may have passed through (shorten "
+              "solver.dt, or raise contact.thickness)",
+              r.contact->largestApproachPerStep));
+        if (r.contact->largestApproachEnergy > 1.0)
+          r.notes.push_back(fmt::format(
+              "contact: a pair in contact approached with {:.3g} times the energy the contact "
+              "stops (docs/contact.md CT13): fabric may have passed through; raise "
+              "contact.thickness or contact.stiffness_scale",
+              r.contact->largestApproachEnergy));
+      }
       r.balanceMax = monitor.largestBalance(), r.balanceScale = monitor.scale();
       r.externalWork = monitor.work();
     }
@@ -383,6 +410,8 @@ void writeSummary(const std::string& path, const CaseSpec& spec, const RunResult
                {"drag_kernels", w.drag},
                {"face_drag_kernels", w.faceDrag},
                {"slider_searches", w.sliderSearch},
+               {"contact_pair_kernels", w.contact},
+               {"contact_builds", w.contactLists},
                {"energy_evaluations", w.energy},
                {"scene_frames", w.sceneFrames},
                {"vtu_series", w.vtuSeries},
@@ -419,6 +448,17 @@ void writeSummary(const std::string& path, const CaseSpec& spec, const RunResult
                      {"stable_step_history", history},
                      {"added_mass", added},
                      {"added_mass_total", e.totalAddedMass}};
+  }
+  if (r.contact) {
+    const auto& c = *r.contact;
+    j["contact"] = {{"thickness", c.thickness},
+                    {"broad_phase_builds", c.builds},
+                    {"tree_builds", c.treeBuilds},
+                    {"candidates_at_end", c.candidates},
+                    {"most_pairs_in_contact", c.largestActive},
+                    {"closest_over_thickness", c.closest},
+                    {"largest_approach_per_step", c.largestApproachPerStep},
+                    {"largest_approach_energy", c.largestApproachEnergy}};
   }
   j["output"] = {
       {"probe_rows", r.times.size()}, {"vtu_frames", r.vtuFrames}, {"checkpoints", r.checkpoints}};

@@ -44,6 +44,13 @@ struct ExplicitRunInfo {
   double totalAddedMass = 0.0;
 };
 
+// What a run with fabric contact ([contact]) reports in summary.json (docs/contact.md CT13).
+struct ContactRunInfo {
+  double thickness = 0.0;
+  long builds = 0, treeBuilds = 0, candidates = 0, largestActive = 0;
+  double closest = 1.0, largestApproachPerStep = 0.0, largestApproachEnergy = 0.0;
+};
+
 struct RunResult {
   std::string status = "completed";  // or "diverged", "interrupted"
   std::string reason;
@@ -70,6 +77,7 @@ struct RunResult {
   std::vector<std::vector<double>> rows;
   std::optional<ReferenceError> reference;
   std::optional<ExplicitRunInfo> explicitRun;
+  std::optional<ContactRunInfo> contact;
   // An output interval shorter than solver.dt caps every implicit step (steps land on output
   // times): the cap (NaN: none) and a note saying so, on stderr and in summary.json.
   double outputStepCap = std::numeric_limits<double>::quiet_NaN();

@@ -9,7 +9,7 @@ namespace chute {
 struct ContactDef {
   bool enabled = false;
   double thickness = 0.0;         // dHat: the pairs closer than this push apart (CT4)
-  double stiffnessScale = 0.1;    // kappa of CT9: k = kappa m / dt_i^2 = kappa S_i / 4
+  double stiffnessScale = 0.01;   // kappa of CT9: k = kappa m / dt_i^2 = kappa S_i / 4
   double dampingRatio = 0.0;      // zeta of CT6: c = 2 zeta sqrt(k m)
   double friction = 0.0;          // Coulomb's mu (CT7)
   double slipSpeed = 0.0;         // eps_v of CT7 (speed units)

@@ -8,6 +8,7 @@
 #include "kernels/Regularisations.hpp"
 #include "solver/StableStep.hpp"
 #include "terms/SlidingGroupTerm.hpp"
+#include "terms/contact/ContactTerm.hpp"
 
 namespace chute {
 
@@ -208,7 +209,8 @@ void CentralDifference::computeAcceleration(StructuralState& s) {
 double CentralDifference::chooseStep(double lastStep, double maxStep, const Eigen::VectorXd& x,
                                      double t) {
   const Eigen::VectorXd& massEq = lumpedMass(x, t);
-  const auto S = nodalStiffnessBound(sys_->model(), membraneBound_, groupStates(), x, t);
+  auto S = nodalStiffnessBound(sys_->model(), membraneBound_, groupStates(), x, t);
+  if (const ContactTerm* contact = sys_->contact()) contact->addStiffnessBound(x, t, S);  // CT12
   const auto est = chute::stableStep(S, nodalMass(massEq), freeNode_);
   const double stable = settings_.safety * dampedStableStep(est.dt, settings_.stiffnessDamping);
   // EX5: the step changes only when the stable step leaves [step, 1.25 step], and then to 0.9

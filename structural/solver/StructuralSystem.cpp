@@ -12,6 +12,7 @@
 #include "terms/PointMassTerm.hpp"
 #include "terms/PressureTerm.hpp"
 #include "terms/SlidingGroupTerm.hpp"
+#include "terms/contact/ContactTerm.hpp"
 
 namespace chute {
 
@@ -39,10 +40,19 @@ StructuralSystem::StructuralSystem(const Model& model, SliderSearch search,
     terms_.push_back(std::make_unique<LineDragTerm>(model, states));
   }
   if (!model.faceDrags.empty()) terms_.push_back(std::make_unique<FaceDragTerm>(model));
+  if (model.contact.enabled) {
+    std::vector<const SlidingGroupState*> states;
+    for (auto* g : groups_) states.push_back(&g->state());
+    auto t = std::make_unique<ContactTerm>(model, states);
+    contact_ = t.get();
+    terms_.push_back(std::move(t));
+  }
   for (auto& t : extraTerms) terms_.push_back(std::move(t));
 
-  for (const auto& t : terms_)
+  for (const auto& t : terms_) {
     if (auto* e = t->events()) events_.push_back(e);
+    if (t->dynamicCouplings()) dynamicCouplings_.push_back(t.get());
+  }
 
   for (int d = 0; d < dofs_.numDofs(); ++d)
     if (dofs_.eqOfDof(d) < 0) constrainedDofs_.push_back(d);
@@ -126,8 +136,9 @@ void StructuralSystem::splitAssembly() {
 }
 
 const std::vector<std::string>& StructuralSystem::termKinds() {
-  static const std::vector<std::string> kinds{
-      "cables", "sliding_group", "point_masses", "membranes", "pressure", "drag", "face_drag"};
+  static const std::vector<std::string> kinds{"cables",    "sliding_group", "point_masses",
+                                              "membranes", "pressure",      "drag",
+                                              "face_drag", "contact"};
   return kinds;
 }
 
@@ -150,6 +161,16 @@ void StructuralSystem::assemble(const EvalPoint& p, bool wantMatrix,
                                 const std::function<void()>& alongside) {
   ScopedTimer timer(timings_.assembly);
   ++timings_.assemblies;
+  // Couplings that move (contact pairs): a pattern that no longer covers them is built again
+  // before the next matrix (and the linear solver analyses it afresh).
+  for (auto* t : dynamicCouplings_) patternStale_ |= t->updateCouplings(p.x);
+  if (wantMatrix && patternStale_) {
+    std::vector<std::vector<int>> cliques;
+    for (const auto& t : terms_) t->addCouplings(cliques);
+    assembler_.buildPattern(cliques);
+    if (!secondPart_.empty()) secondAssembler_.buildPattern({});
+    patternStale_ = false;
+  }
   assembler_.begin(wantMatrix);
   if (secondPart_.empty()) {
     for (const auto& t : terms_) t->assemble(p, assembler_);

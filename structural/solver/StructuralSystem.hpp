@@ -18,6 +18,7 @@ namespace chute {
 
 class SlidingGroupTerm;
 class MembraneTerm;
+class ContactTerm;
 
 class StructuralSystem {
  public:
@@ -107,6 +108,8 @@ class StructuralSystem {
   // The membrane term (nullptr without membranes).
   const MembraneTerm* membranes() const { return membranes_; }
   MembraneTerm* membranes() { return membranes_; }
+  // The contact term (nullptr without [contact]).
+  const ContactTerm* contact() const { return contact_; }
 
   // Work done so far, per kind of term (kernel evaluations, searches, energies, output frames).
   WorkCounters work() const {
@@ -127,6 +130,9 @@ class StructuralSystem {
   std::vector<EventSource*> events_;
   std::vector<SlidingGroupTerm*> groups_;
   MembraneTerm* membranes_ = nullptr;
+  ContactTerm* contact_ = nullptr;
+  std::vector<Term*> dynamicCouplings_;  // terms whose couplings move (contact)
+  bool patternStale_ = false;            // their couplings changed since the pattern was built
   SystemAssembler assembler_;
   // Assembly in two parts (docs/performance.md, "Two threads"): the terms split by an estimate
   // of their cost, the second part assembled into its own assembler on a second thread and then

@@ -21,6 +21,7 @@ void readPointMasses(Model& m, const MeshImport* mesh, TomlTable& top);
 void readBoundary(Model& m, TomlTable b);                       // [boundary]
 void readLoads(Model& m, const MeshImport* mesh, TomlTable l);  // [loads]
 void readEvents(Model& m, TomlTable& top);                      // [[events]]
+void readContact(Model& m, TomlTable c);                        // [contact]
 void readSolver(CaseSpec& c, TomlTable s);                      // [solver]
 void readOutput(CaseSpec& c, TomlTable o);                      // [output]
 void readReference(CaseSpec& c, TomlTable r);                   // [reference]
