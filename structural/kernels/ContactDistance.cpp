@@ -1,6 +1,7 @@
 #include "kernels/ContactDistance.hpp"
 
 #include <Eigen/Dense>
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 
@@ -193,6 +194,39 @@ SegmentParameters classifyEdgeEdge(const Vec3& a0, const Vec3& a1, const Vec3& b
     out.region = EdgeEdgeRegion::EndToEnd;
   }
   return out;
+}
+
+double pointTriangleSquaredDistance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  using R = PointTriangleRegion;
+  const auto onSegment = [&](const Vec3& u, const Vec3& w) {
+    const double t = segmentParameter(p, u, w);
+    return (p - (u + t * (w - u))).squaredNorm();
+  };
+  switch (classifyPointTriangle(p, a, b, c)) {
+    case R::VertexA:
+      return (p - a).squaredNorm();
+    case R::VertexB:
+      return (p - b).squaredNorm();
+    case R::VertexC:
+      return (p - c).squaredNorm();
+    case R::EdgeAB:
+      return onSegment(a, b);
+    case R::EdgeBC:
+      return onSegment(b, c);
+    case R::EdgeCA:
+      return onSegment(c, a);
+    case R::Face: {
+      const Vec3 n = (b - a).cross(c - a);
+      const double h = n.dot(p - a);
+      return h * h / n.squaredNorm();
+    }
+  }
+  return 0.0;
+}
+
+double edgeEdgeSquaredDistance(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1) {
+  const SegmentParameters sp = classifyEdgeEdge(a0, a1, b0, b1);
+  return (a0 + sp.s * (a1 - a0) - b0 - sp.t * (b1 - b0)).squaredNorm();
 }
 
 SquaredDistance pointTriangleDistance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c,

@@ -16,6 +16,7 @@
 // by a mollifier that vanishes there (CT5), and a configuration within kParallel of parallel is
 // classified into its end-point regions, where f_uu is well conditioned.
 #include <Eigen/Core>
+#include <algorithm>
 #include <array>
 
 namespace chute::kernels {
@@ -55,6 +56,10 @@ struct SegmentParameters {
 };
 SegmentParameters classifyEdgeEdge(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1);
 
+// The squared distance alone, without derivatives (the narrow phase's test of every candidate).
+double pointTriangleSquaredDistance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
+double edgeEdgeSquaredDistance(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1);
+
 SquaredDistance pointTriangleDistance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c,
                                       bool withHessian);
 SquaredDistance edgeEdgeDistance(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1,
@@ -72,5 +77,19 @@ struct Distance {
   Mat12 hessian = Mat12::Zero();  // set only withHessian
 };
 Distance unsignedDistance(const SquaredDistance& s, const Vec3& fallbackNormal, bool withHessian);
+
+// A cheap test that a pair is farther apart than r (CT10): the bounding boxes of its two
+// primitives (the point alone, or nodes 1-3 of a point-triangle pair; nodes 0-1 and 2-3 of an
+// edge pair) are more than r apart along some axis. false says nothing.
+inline bool boxesApart(bool pointTriangle, const std::array<Vec3, 4>& x, double r) {
+  const int split = pointTriangle ? 1 : 2;
+  for (int k = 0; k < 3; ++k) {
+    double lo0 = x[0][k], hi0 = x[0][k], lo1 = x[split][k], hi1 = x[split][k];
+    for (int i = 1; i < split; ++i) lo0 = std::min(lo0, x[i][k]), hi0 = std::max(hi0, x[i][k]);
+    for (int i = split + 1; i < 4; ++i) lo1 = std::min(lo1, x[i][k]), hi1 = std::max(hi1, x[i][k]);
+    if (lo0 - hi1 > r || lo1 - hi0 > r) return true;
+  }
+  return false;
+}
 
 }  // namespace chute::kernels

@@ -60,7 +60,13 @@ Distance pairDistance(ContactPairKind kind, const std::array<Vec3, 4>& x, bool w
   const SquaredDistance s = kind == ContactPairKind::PointTriangle
                                 ? pointTriangleDistance(x[0], x[1], x[2], x[3], withHessian)
                                 : edgeEdgeDistance(x[0], x[1], x[2], x[3], withHessian);
-  return unsignedDistance(s, fallbackNormal(kind, x), withHessian);
+  return unsignedDistance(s, s.value > 0.0 ? Vec3::Zero() : fallbackNormal(kind, x), withHessian);
+}
+
+double pairSquaredDistance(ContactPairKind kind, const std::array<Vec3, 4>& x) {
+  return kind == ContactPairKind::PointTriangle
+             ? pointTriangleSquaredDistance(x[0], x[1], x[2], x[3])
+             : edgeEdgeSquaredDistance(x[0], x[1], x[2], x[3]);
 }
 
 PairResponse contactPair(ContactPairKind kind, const std::array<Vec3, 4>& x,
@@ -71,7 +77,8 @@ PairResponse contactPair(ContactPairKind kind, const std::array<Vec3, 4>& x,
                                 ? pointTriangleDistance(x[0], x[1], x[2], x[3], withTangent)
                                 : edgeEdgeDistance(x[0], x[1], x[2], x[3], withTangent);
   if (!(s.value < law.thickness * law.thickness)) return out;
-  out.distance = unsignedDistance(s, fallbackNormal(kind, x), withTangent);
+  out.distance =
+      unsignedDistance(s, s.value > 0.0 ? Vec3::Zero() : fallbackNormal(kind, x), withTangent);
   const Distance& d = out.distance;
   const double delta = law.thickness - d.value;  // > 0
   out.active = true;

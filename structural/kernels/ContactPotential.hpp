@@ -59,5 +59,7 @@ PairResponse contactPair(ContactPairKind kind, const std::array<Vec3, 4>& x,
 
 // The distance alone (the broad phase's narrow check, the stable-step bound, output).
 Distance pairDistance(ContactPairKind kind, const std::array<Vec3, 4>& x, bool withHessian);
+// Its square alone, without derivatives: the cheap test of every candidate.
+double pairSquaredDistance(ContactPairKind kind, const std::array<Vec3, 4>& x);
 
 }  // namespace chute::kernels

@@ -15,8 +15,9 @@ struct Aabb {
   void add(const Eigen::Vector3d& p) { lo = lo.cwiseMin(p), hi = hi.cwiseMax(p); }
   void add(const Aabb& b) { lo = lo.cwiseMin(b.lo), hi = hi.cwiseMax(b.hi); }
   void inflate(double r) { lo.array() -= r, hi.array() += r; }
-  bool overlaps(const Aabb& b) const {
-    return (lo.array() <= b.hi.array()).all() && (b.lo.array() <= hi.array()).all();
+  bool overlaps(const Aabb& b) const {  // scalar: Eigen's all() took twice as long here
+    return lo[0] <= b.hi[0] && b.lo[0] <= hi[0] && lo[1] <= b.hi[1] && b.lo[1] <= hi[1] &&
+           lo[2] <= b.hi[2] && b.lo[2] <= hi[2];
   }
   double surfaceArea() const {
     const Eigen::Vector3d d = (hi - lo).cwiseMax(0.0);

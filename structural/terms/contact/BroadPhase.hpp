@@ -5,9 +5,9 @@
 // Every pair within dHat + skin at the build is a candidate, and while no node has moved more
 // than skin/2 since, no pair can have come within dHat without being one: the list stands, and a
 // step evaluates only the narrow phase over it. It is built again when a node has moved further
-// or a slider has moved to another element. Three trees (BoundingVolumeHierarchy) over the
-// triangles, fabric edges and line elements are refitted at each build and built afresh when a
-// refit has made them loose.
+// or a slider has moved to another element. Two trees (BoundingVolumeHierarchy) over the
+// triangles and the fabric edges are refitted at each build and built afresh when a refit has
+// made them loose; the points', edges' and line elements' boxes are queried against them.
 //
 // The candidate lists are sorted, so that they depend on the build positions alone (not on the
 // trees' shape): what a build depends on (its positions and sliders) is the history a restart
@@ -51,6 +51,11 @@ class BroadPhase {
 
   // Whether the last build still covers positions x with these sliders on the line elements.
   bool covers(const Eigen::VectorXd& x, const std::vector<int>& sliders) const;
+  // How far each node of the mesh has moved since the last build (entries of other nodes are
+  // left alone); returns the largest.
+  double displacements(const Eigen::VectorXd& x, std::vector<double>& moved) const;
+  // The positions of the last build, over all nodes of the model (zero at nodes not in the mesh).
+  Eigen::VectorXd buildPositions(int numNodes) const;
   // Builds the candidate lists at x (all dofs of the model).
   void build(const Eigen::VectorXd& x, const std::vector<int>& sliders);
   // The same from a saved build state (a restart, a reverted step).

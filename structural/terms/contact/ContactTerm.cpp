@@ -68,21 +68,62 @@ ContactTerm::ContactTerm(const Model& m, std::vector<const SlidingGroupState*> g
   nodeStiffness_.assign(m.numNodes(), 0.0);
   for (int n : mesh_->nodes()) nodeStiffness_[n] = 0.25 * def.stiffnessScale * S[n];
   nodeMass_ = lumpedNodeMass(m);
+  moved_.assign(m.numNodes(), 0.0);
 }
 
 ContactTerm::~ContactTerm() = default;
 
-std::vector<int> ContactTerm::slidersNow() const {
-  std::vector<int> s(mesh_->lines().size());
-  for (size_t i = 0; i < s.size(); ++i) s[i] = mesh_->sliderOn(mesh_->lines()[i], groups_);
-  return s;
+void ContactTerm::slidersNow(std::vector<int>& s) const {
+  const auto& lines = mesh_->lines();
+  s.resize(lines.size());
+  for (size_t i = 0; i < s.size(); ++i)
+    s[i] = lines[i].group < 0 ? -1 : mesh_->sliderOn(lines[i], groups_);
+}
+
+bool ContactTerm::covered(const Eigen::VectorXd& x, const std::vector<int>& sliders,
+                          std::vector<double>& moved) const {
+  if (!broadPhase_->built() || sliders != broadPhase_->state().sliders) return false;
+  return broadPhase_->displacements(x, moved) <= 0.5 * m_->contact.skin;
 }
 
 void ContactTerm::refresh(const Eigen::VectorXd& x) {
-  const std::vector<int> sliders = slidersNow();
-  if (broadPhase_->covers(x, sliders)) return;
+  std::vector<int>& sliders = slidersScratch_;
+  slidersNow(sliders);
+  if (covered(x, sliders, moved_)) return;
   broadPhase_->build(x, sliders);
+  nearList();
+  broadPhase_->displacements(x, moved_);
   couplingsChanged_ = true;
+}
+
+// CT10: the candidates' exact distances at the build. A pair farther than dHat + skin then
+// cannot come into contact before the next build (each node moves at most skin / 2); the others
+// keep their distance, from which the motion since the build is taken off at each evaluation.
+void ContactTerm::nearList() {
+  const Eigen::VectorXd xb = broadPhase_->buildPositions(m_->numNodes());
+  const double reach = m_->contact.thickness + m_->contact.skin;
+  near_.clear();
+  forEachPair(*broadPhase_, [&](const Pair& pair) {
+    const auto xs = gather(xb, pair.nodes);
+    if (kernels::boxesApart(pair.kind == ContactPairKind::PointTriangle, xs, reach)) return;
+    const double d2 = kernels::pairSquaredDistance(pair.kind, xs);
+    if (d2 <= reach * reach) near_.push_back({pair, std::sqrt(d2)});
+  });
+}
+
+template <class F>
+void ContactTerm::forEachNear(const std::vector<double>& moved, double reach, F&& f) const {
+  for (const auto& n : near_) {
+    const auto& k = n.pair.nodes;
+    double first = moved[k[0]], second;
+    if (n.pair.kind == ContactPairKind::PointTriangle) {
+      second = std::max({moved[k[1]], moved[k[2]], moved[k[3]]});
+    } else {
+      first = std::max(first, moved[k[1]]);
+      second = std::max(moved[k[2]], moved[k[3]]);
+    }
+    if (n.distance - first - second < reach) f(n.pair);
+  }
 }
 
 template <class F>
@@ -228,27 +269,15 @@ void ContactTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
     for (int n : nodes) most = std::max(most, lagShare_[n]);
     return most;
   };
-  forEachPair(*broadPhase_, [&](const Pair& pair) {
-    ++out.work().contact;
+  forEachNear(moved_, dHat, [&](const Pair& pair) {
     const auto x = gather(p.x, pair.nodes);
-    const kernels::Distance d = kernels::pairDistance(pair.kind, x, false);
-    const auto v = gather(p.v, pair.nodes);
+    ++out.work().contact;
+    if (!(kernels::pairSquaredDistance(pair.kind, x) < dHat * dHat)) return;
     const double k = pairStiffness(pair.nodes);
-    const double mass = pairMass(pair.kind, pair.nodes);
-    if (stepEvaluation && d.value < dHat + def.skin) {
-      // CT13: how far the pair closes in one step, and its approach's energy against CT4's.
-      double ddot = 0.0;
-      for (int i = 0; i < 4; ++i) ddot += d.weight[i] * d.normal.dot(v[i]);
-      if (ddot < 0.0) {
-        record_.largestApproachPerStep =
-            std::max(record_.largestApproachPerStep, -ddot * p.dt / dHat);
-        if (d.value < dHat && k > 0.0)
-          record_.largestApproachEnergy =
-              std::max(record_.largestApproachEnergy, mass * ddot * ddot / (k * dHat * dHat));
-      }
-    }
-    if (!(d.value < dHat) || !(k > 0.0)) return;
+    if (!(k > 0.0)) return;
     ++active;
+    const auto v = gather(p.v, pair.nodes);
+    const double mass = pairMass(pair.kind, pair.nodes);
     kernels::ContactLaw law{k, dHat, 0.0};
     if (def.dampingRatio > 0.0 && p.inertia) {
       law.damping = 2.0 * def.dampingRatio * std::sqrt(k * mass);  // CT6
@@ -257,6 +286,18 @@ void ContactTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
             std::min(law.damping, kExplicitViscosity * mass / (p.explicitStep * share(pair.nodes)));
     }
     const auto r = kernels::contactPair(pair.kind, x, v, law, mollifierThreshold(pair), wantJ);
+    if (stepEvaluation && r.active) {
+      // CT13: how far the pair closes in one step, and its approach's energy against CT4's.
+      const kernels::Distance& d = r.distance;
+      double ddot = 0.0;
+      for (int i = 0; i < 4; ++i) ddot += d.weight[i] * d.normal.dot(v[i]);
+      if (ddot < 0.0) {
+        record_.largestApproachPerStep =
+            std::max(record_.largestApproachPerStep, -ddot * p.dt / dHat);
+        record_.largestApproachEnergy =
+            std::max(record_.largestApproachEnergy, mass * ddot * ddot / (k * dHat * dHat));
+      }
+    }
     if (!r.active) return;
     if (stepEvaluation) {
       record_.closest = std::min(record_.closest, r.distance.value / dHat);
@@ -297,21 +338,31 @@ void ContactTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
   }
 }
 
-const BroadPhase& ContactTerm::coveringPhase(const Eigen::VectorXd& x) const {
-  const std::vector<int> sliders = slidersNow();
-  if (broadPhase_->covers(x, sliders)) return *broadPhase_;
-  if (!scratch_)
-    scratch_ = std::make_unique<BroadPhase>(*mesh_, m_->contact.thickness, m_->contact.skin);
-  if (!scratch_->covers(x, sliders)) scratch_->build(x, sliders);
-  return *scratch_;
+// f(pair) for every pair that may be within `reach` at x: the near list's, less those its motion
+// since the build cannot have brought that close; at positions the build does not cover (a
+// state never assembled), every candidate of a build of their own.
+template <class F>
+void ContactTerm::forEachPairWithin(const Eigen::VectorXd& x, double reach, F&& f) const {
+  std::vector<int> sliders;
+  slidersNow(sliders);
+  std::vector<double> moved(m_->numNodes(), 0.0);
+  if (covered(x, sliders, moved)) {
+    forEachNear(moved, reach, f);
+    return;
+  }
+  BroadPhase own(*mesh_, m_->contact.thickness, m_->contact.skin);
+  own.build(x, sliders);
+  forEachPair(own, f);
 }
 
 void ContactTerm::addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd&, double,
                             EnergyBreakdown& e) const {
   const double dHat = m_->contact.thickness;
   const std::array<Vec3, 4> still{Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
-  forEachPair(coveringPhase(x), [&](const Pair& pair) {
+  forEachPairWithin(x, dHat, [&](const Pair& pair) {
     const auto xs = gather(x, pair.nodes);
+    if (kernels::boxesApart(pair.kind == ContactPairKind::PointTriangle, xs, dHat)) return;
+    if (!(kernels::pairSquaredDistance(pair.kind, xs) < dHat * dHat)) return;
     const double k = pairStiffness(pair.nodes);
     if (!(k > 0.0)) return;
     const auto r =
@@ -323,11 +374,13 @@ void ContactTerm::addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd&, do
 void ContactTerm::addStiffnessBound(const Eigen::VectorXd& x, double,
                                     std::vector<double>& S) const {
   const double reach = m_->contact.thickness;
-  forEachPair(coveringPhase(x), [&](const Pair& pair) {
+  forEachPairWithin(x, reach, [&](const Pair& pair) {
+    const auto xs = gather(x, pair.nodes);
+    if (kernels::boxesApart(pair.kind == ContactPairKind::PointTriangle, xs, reach)) return;
+    if (!(kernels::pairSquaredDistance(pair.kind, xs) < reach * reach)) return;
     const double k = pairStiffness(pair.nodes);
     if (!(k > 0.0)) return;
-    const auto d = kernels::pairDistance(pair.kind, gather(x, pair.nodes), false);
-    if (!(d.value < reach)) return;
+    const auto d = kernels::pairDistance(pair.kind, xs, false);
     // K = k grad d grad d^T with grad d = (w_i n)_i: row sums k |w_i| sum_j |w_j| = 2 k |w_i|.
     for (int i = 0; i < 4; ++i) S[pair.nodes[i]] += 2.0 * k * std::abs(d.weight[i]);
   });
@@ -353,6 +406,7 @@ void ContactTerm::revert() {
       trial.positions == committedBuild_.positions)
     return;
   broadPhase_->build(committedBuild_);
+  nearList();
   couplingsChanged_ = true;
 }
 
@@ -416,7 +470,10 @@ void ContactTerm::load(HistoryReader& h) {
   committedBuild_.positions = positions;
   committedBuild_.sliders.assign(sliders.begin(), sliders.end());
   lag_ = trialLag_ = lag;
-  if (positions.size() != 0) broadPhase_->build(committedBuild_);
+  if (positions.size() != 0) {
+    broadPhase_->build(committedBuild_);
+    nearList();
+  }
   couplingsChanged_ = true;
 }
 

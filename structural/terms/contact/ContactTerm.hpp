@@ -84,8 +84,18 @@ class ContactTerm final : public Term {
     int list = 0, first = 0, second = 0;
     kernels::FrictionLag lag;
   };
-  std::vector<int> slidersNow() const;
+  // The slider node on each line element now (-1: none).
+  void slidersNow(std::vector<int>& sliders) const;
+  // Whether the last build covers x (every node within skin / 2 of it, the same sliders); fills
+  // `moved` with each node's motion since the build.
+  bool covered(const Eigen::VectorXd& x, const std::vector<int>& sliders,
+               std::vector<double>& moved) const;
   void refresh(const Eigen::VectorXd& x);
+  void nearList();
+  template <class F>
+  void forEachNear(const std::vector<double>& moved, double reach, F&& f) const;
+  template <class F>
+  void forEachPairWithin(const Eigen::VectorXd& x, double reach, F&& f) const;
   // f(pair) for every candidate pair of `bp` (line elements bent at a slider as their two
   // segments), in the lists' order.
   template <class F>
@@ -93,14 +103,19 @@ class ContactTerm final : public Term {
   double pairStiffness(const std::array<int, 4>& n) const;
   double pairMass(kernels::ContactPairKind kind, const std::array<int, 4>& n) const;
   double mollifierThreshold(const Pair& p) const;
-  const contact::BroadPhase& coveringPhase(const Eigen::VectorXd& x) const;
   bool lagCovered(const std::vector<Lag>& lag) const;
 
   const Model* m_;
   std::vector<const SlidingGroupState*> groups_;
   std::unique_ptr<contact::ContactMesh> mesh_;
   std::unique_ptr<contact::BroadPhase> broadPhase_;
-  mutable std::unique_ptr<contact::BroadPhase> scratch_;  // energy at positions not covered
+  struct Near {
+    Pair pair;
+    double distance;  // at the build
+  };
+  std::vector<Near> near_;     // the candidates within dHat + skin at the build (CT10)
+  std::vector<double> moved_;  // per node: motion since the build, at the last refresh
+  std::vector<int> slidersScratch_;
   std::vector<double> nodeStiffness_, nodeMass_;
   contact::BuildState committedBuild_;
   std::vector<Lag> lag_, trialLag_;

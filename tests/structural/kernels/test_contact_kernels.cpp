@@ -125,6 +125,9 @@ TEST(ContactDistance, PointTriangleMatchesEnumerationInEveryRegion) {
     const auto s = pointTriangleDistance(x[0], x[1], x[2], x[3], false);
     const double ref = referencePointTriangle2(x[0], x[1], x[2], x[3]);
     worst = std::max(worst, std::abs(s.value - ref) / std::max(ref, 1e-12));
+    // The value-only path (the narrow phase's test) gives the same squared distance.
+    worst = std::max(worst, std::abs(pointTriangleSquaredDistance(x[0], x[1], x[2], x[3]) - ref) /
+                                std::max(ref, 1e-12));
     ++counts[static_cast<int>(classifyPointTriangle(x[0], x[1], x[2], x[3]))];
     // The closest point (sum of the triangle's weights times its nodes) is on the triangle.
     EXPECT_NEAR(s.weight[0], 1.0, 1e-12);
@@ -151,6 +154,8 @@ TEST(ContactDistance, EdgeEdgeMatchesEnumerationInEveryRegion) {
     const auto s = edgeEdgeDistance(x[0], x[1], x[2], x[3], false);
     const double ref = referenceEdgeEdge2(x[0], x[1], x[2], x[3]);
     worst = std::max(worst, std::abs(s.value - ref) / std::max(ref, 1e-12));
+    worst = std::max(worst, std::abs(edgeEdgeSquaredDistance(x[0], x[1], x[2], x[3]) - ref) /
+                                std::max(ref, 1e-12));
     ++counts[static_cast<int>(classifyEdgeEdge(x[0], x[1], x[2], x[3]).region)];
   }
   std::printf(
