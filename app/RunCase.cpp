@@ -19,13 +19,11 @@
 #include "app/RunOutput.hpp"
 #include "app/StopSignals.hpp"
 #include "case/SolverSetup.hpp"
-#include "solver/CentralDifference.hpp"
 #include "solver/EnergyMonitor.hpp"
-#include "solver/GeneralizedAlpha.hpp"
 #include "solver/StaticLoadStepper.hpp"
 #include "solver/TimeStepper.hpp"
-#include "terms/SlidingGroupTerm.hpp"
 #include "terms/contact/ContactTerm.hpp"
+#include "terms/sliding/SlidingGroupTerm.hpp"
 #include "verification/HenckyReference.hpp"
 #include "verification/References.hpp"
 
@@ -38,7 +36,7 @@ std::map<std::string, std::string> settingsOfEveryScheme(const SolverSpec& sv, c
   return {{"solver.dt", fmt::format("{}", sv.dt)},
           {"solver.dt_min", fmt::format("{}", sv.dtMin)},
           {"solver.rho_inf", fmt::format("{}", sv.rhoInf)},
-          {"solver.integrator", sv.integrator},
+          {"solver.integrator", std::string(integratorName(sv.integrator))},
           {"solver.max_newton", fmt::format("{}", sv.maxNewton)},
           {"solver.tolerance", fmt::format("{}", sv.tolDisplacement)},
           {"solver.slack_events", sv.slackTautEvents ? "true" : "false"},
@@ -55,7 +53,7 @@ std::map<std::string, std::string> settingsOfEveryScheme(const SolverSpec& sv, c
 // energy_momentum's dissipation joins them (absent from other runs' checkpoints).
 std::map<std::string, std::string> solverSettings(const SolverSpec& sv, const Model& m) {
   auto out = settingsOfEveryScheme(sv, m);
-  if (sv.integrator == "energy_momentum") {
+  if (sv.integrator == IntegratorKind::EnergyMomentum) {
     out["solver.em_dissipation"] = fmt::format("{}", sv.emDissipation);
     if (sv.emOrder != 2) out["solver.em_order"] = fmt::format("{}", sv.emOrder);
   }
@@ -70,32 +68,32 @@ std::optional<ReferenceError> compareWithReference(const CaseSpec& spec, const R
   const int node = probes.probes()[ref.probe].node;
   const int off = probes.columnOffset(ref.probe);
   std::vector<Vec3> expected;
-  if (ref.kind == "pulley") {
+  if (ref.kind == ReferenceKind::Pulley) {
     const Vec3 d = m.X[node] - m.X[ref.pulley];
     verification::PulleyReference p{ref.ropeLength, d.norm(), m.gravity.norm(), m.X[ref.pulley],
                                     d.normalized()};
     for (double t : r.times) expected.push_back(p.endPosition(t));
-  } else if (ref.kind == "hencky") {
+  } else if (ref.kind == ReferenceKind::Hencky) {
     // Static: the final state against the Foeppl-Hencky centre deflection.
     const verification::HenckyReference h{ref.E, ref.nu, ref.thickness, std::abs(ref.pressure),
                                           ref.radius};
     const double w0 = h.centreDeflection();
     const Vec3 d = (ref.pressure > 0 ? 1.0 : -1.0) * ref.direction;
     ReferenceError e;
-    e.kind = ref.kind;
+    e.kind = std::string(referenceKindName(ref.kind));
     e.probe = probes.probes()[ref.probe].name;
     const auto& last = r.rows.back();
     e.maxError = (Vec3(last[off], last[off + 1], last[off + 2]) - (m.X[node] + w0 * d)).norm();
     e.motionSize = w0;
     return e;
-  } else if (ref.kind == "free_fall") {
+  } else if (ref.kind == ReferenceKind::FreeFall) {
     for (double t : r.times) expected.push_back(m.X[node] + 0.5 * t * t * m.gravity);
   } else {
     verification::BeadEllipseReference b(m.X[ref.anchor1], m.X[ref.anchor2], m.X[node], m.gravity);
     expected = b.positions(r.times);
   }
   ReferenceError e;
-  e.kind = ref.kind;
+  e.kind = std::string(referenceKindName(ref.kind));
   e.probe = probes.probes()[ref.probe].name;
   for (size_t k = 0; k < r.times.size(); ++k) {
     const Vec3 x(r.rows[k][off], r.rows[k][off + 1], r.rows[k][off + 2]);
@@ -128,9 +126,8 @@ class Progress {
   std::chrono::steady_clock::time_point last_{};
 };
 
-ExplicitRunInfo explicitSummary(const CentralDifference& cd, const Model& m) {
+ExplicitRunInfo explicitSummary(const StableStepRecord& rec, const Model& m) {
   ExplicitRunInfo e;
-  const auto& rec = cd.record();
   e.leastStep = rec.least;
   e.largestStep = rec.largest;
   if (rec.limitingNode >= 0)
@@ -138,23 +135,237 @@ ExplicitRunInfo explicitSummary(const CentralDifference& cd, const Model& m) {
                          ? "node " + std::to_string(rec.limitingNode + 1)
                          : m.nodeName[rec.limitingNode];
   e.stepHistory = rec.history;
-  e.addedMass = cd.addedMass();
-  e.totalAddedMass = cd.totalAddedMass();
+  e.addedMass = rec.addedMass;
+  e.totalAddedMass = rec.totalAddedMass;
   return e;
 }
 
-ContactRunInfo contactSummary(const ContactTerm& c, const Model& m) {
+// What fabric contact met (docs/contact.md CT13), and a note when it met more than it holds.
+void noteContact(const ContactTerm& c, const Model& m, RunResult& r) {
   const auto& rec = c.record();
-  ContactRunInfo i;
+  ContactRunInfo& i = r.contact.emplace();
   i.thickness = m.contact.thickness;
   i.builds = rec.builds, i.treeBuilds = rec.treeBuilds, i.candidates = rec.candidates;
   i.largestActive = rec.largestActive, i.closest = rec.closest;
   i.largestApproachPerStep = rec.largestApproachPerStep;
   i.largestApproachEnergy = rec.largestApproachEnergy;
-  return i;
+  if (i.largestApproachPerStep > 0.5)
+    r.notes.push_back(fmt::format(
+        "contact: a pair closed {:.3g} contact thicknesses in one step (docs/contact.md CT13): "
+        "steps too long for the thickness; fabric may have passed through (shorten solver.dt, "
+        "or raise contact.thickness)",
+        i.largestApproachPerStep));
+  if (i.largestApproachEnergy > 1.0)
+    r.notes.push_back(fmt::format(
+        "contact: a pair in contact approached with {:.3g} times the energy the contact stops "
+        "(docs/contact.md CT13): fabric may have passed through; raise contact.thickness or "
+        "contact.stiffness_scale",
+        i.largestApproachEnergy));
+}
+
+// Output times are stops every step lands on (TimeStepper::advanceTo), so an output interval
+// shorter than solver.dt caps the step of an integrator that takes the case's dt: chute says so
+// rather than shrink dt silently (landing on output times keeps the rows at computed states, not
+// interpolated ones; docs/output.md).
+void noteOutputStepCap(const CaseSpec& spec, RunResult& r) {
+  double cap = std::numeric_limits<double>::infinity();
+  std::string key;
+  if (spec.output.interval > 0.0 && spec.output.interval < cap)
+    cap = spec.output.interval, key = "output.interval";
+  if (spec.output.vtu.write && spec.output.vtu.interval > 0.0 && spec.output.vtu.interval < cap)
+    cap = spec.output.vtu.interval, key = "output.vtu.interval";
+  if (cap < spec.solver.dt) {
+    r.outputStepCap = cap;
+    r.notes.push_back(fmt::format(
+        "{} = {:.6g} is shorter than solver.dt = {:.6g}: steps land on output times, so no "
+        "step is longer than {:.6g}",
+        key, cap, spec.solver.dt, cap));
+  }
+}
+
+// A checkpoint to continue from, read and validated whole (file, fields, every term's history)
+// before any output is cut; the state it holds is restored into the stepper.
+Checkpoint readRestart(const std::string& file, const CaseSpec& spec, std::uint64_t hash,
+                       TimeStepper& stepper, StructuralState& state) {
+  Checkpoint restart = readCheckpoint(file);
+  if (restart.caseName != spec.name || restart.modelHash != hash)
+    throw std::runtime_error(file + ": a checkpoint of another case or model");
+  for (const auto& [key, value] : solverSettings(spec.solver, spec.model)) {
+    const auto it = restart.solverSettings.find(key);
+    if (it == restart.solverSettings.end() || it->second != value)
+      throw std::runtime_error(
+          file + ": " + key + " is " + value + " here but " +
+          (it == restart.solverSettings.end() ? std::string("absent") : it->second) +
+          " in the checkpoint: a restart continues the run with its own "
+          "settings");
+  }
+  try {
+    state = stepper.resume(restart.stepping);
+  } catch (const HistoryError& e) {
+    throw std::runtime_error(file + ": not a valid chute checkpoint (" + e.what() + ")");
+  }
+  return restart;
+}
+
+// A static run: the load stepped to equilibrium from the model's positions.
+void runStatics(const CaseSpec& spec, StructuralSystem& sys, const RunOptions& options,
+                RunOutput& out, StructuralState& state, RunResult& r) {
+  const SolverSpec& sv = spec.solver;
+  if (options.handleSignals) endAtOnceOnStop();
+  NewtonSettings ns = newtonSettings(sv, spec.model);
+  ns.verbose = options.verboseNewton;
+  Newton newton(sys, ns);
+  state = sys.initialState();
+  StaticLoadStepper statics(sys, newton);
+  const auto rep = statics.solveFromStart(state, sv.loadSteps, sv.initialLoadFactor);
+  r.newtonIterations = rep.iterations;
+  r.maxNewtonInStep = statics.maxIterationsInStep();
+  r.steps = sv.loadSteps;
+  if (!rep.converged) r.status = RunStatus::Diverged, r.reason = rep.failure;
+  r.symbolicAnalyses = newton.linearSolver().analyses();
+  r.linearSolver = newton.linearSolver().kindName();
+  out.record(state);
+  out.frame(state);
+}
+
+// What a dynamic run needs besides its system: the integrator, the loop, the output, the energy
+// balance and the checkpoints.
+struct DynamicRun {
+  const CaseSpec& spec;
+  const RunOptions& options;
+  StructuralSystem& sys;
+  TimeIntegrator& integrator;
+  TimeStepper& stepper;
+  RunOutput& out;
+  EnergyMonitor& monitor;
+  std::uint64_t hash;
+  bool restarted;
+  RunResult& r;
+
+  bool writes() const { return !options.outDir.empty(); }
+
+  void checkpoint(const StructuralState& state) {
+    if (!writes()) return;
+    ScopedTimer timer(sys.timings().output);
+    out.flush();  // the frames up to the checkpoint are on disk before it is
+    Checkpoint c;
+    c.caseName = spec.name;
+    c.modelHash = hash;
+    c.solverSettings = solverSettings(spec.solver, spec.model);
+    c.stepping = stepper.save(state);
+    c.output = out.mark();
+    writeCheckpoint(options.outDir + "/checkpoint.cbor", c);
+    ++r.checkpoints;
+  }
+
+  void run(StructuralState& state) {
+    if (!restarted) state = stepper.start();
+    // A restarted run's balance starts afresh from the restored state (docs/output.md).
+    monitor.start(state, integrator.equilibrium(state));
+    out.setEnergyMonitor(&monitor);
+    if (!restarted) {
+      out.record(state);
+      out.frame(state);
+    }
+    StructuralState previous = state;  // the state the balance was last taken at, for the work
+    // The balance (a residual of the loads and an energy of the whole model) is taken every
+    // integrator.balanceStride() steps, and at every probe row and the last step (EB1,
+    // docs/explicit.md): the work of a window is f . (x_end - x_start), the same rectangle rule
+    // an implicit step of that length gets.
+    const long stride = integrator.balanceStride();
+    long stepsSinceBalance = 0;
+    Progress progress(options.progress);
+    const double tEnd = spec.solver.tEnd;
+    const auto result = stepper.advanceTo(
+        state, tEnd, [&](double) { return out.nextStop(); },
+        [&](const StructuralState& s, int newton) {
+          const auto& n = stepper.counters();
+          const bool last = stepper.reached(s.t, tEnd);
+          if (++stepsSinceBalance >= stride || last || out.recordsAt(s.t, n.steps)) {
+            stepsSinceBalance = 0;
+            const bool balanced =
+                monitor.afterStep(previous, s, integrator.equilibrium(s), s.t - previous.t);
+            previous = s;
+            if (!balanced) {
+              r.status = RunStatus::Unstable;
+              r.reason = monitor.reason();
+              return false;
+            }
+          }
+          out.afterStep(s, n.steps, last);
+          if (options.checkpointEvery > 0 && n.steps % options.checkpointEvery == 0 && !last)
+            checkpoint(s);
+          progress.update(n.steps, s.t, tEnd, s.control.dt, newton, n.newtonPerStep(),
+                          n.rejectedSteps);
+          if (options.handleSignals && stopRequested() && !last) {
+            r.status = RunStatus::Interrupted;
+            r.reason = fmt::format("stopped by a signal at t = {:.9g}; restart with --restart {}",
+                                   s.t, writes() ? options.outDir + "/checkpoint.cbor" : "(none)");
+            // The checkpoint is the state the output ends with: a restart cuts the output back
+            // to it (RunOutput), so rows written after it never reach the restarted run.
+            return false;
+          }
+          return true;
+        });
+    if (result.outcome == TimeStepper::Outcome::BelowMinimum) {
+      r.status = RunStatus::Diverged;
+      r.reason = result.reason;
+    }
+    if (r.status == RunStatus::Completed && !monitor.finish()) {
+      r.status = RunStatus::Unstable;
+      r.reason = monitor.reason();
+    }
+    if (r.status == RunStatus::Interrupted) checkpoint(state);
+    const auto& n = stepper.counters();
+    progress.update(n.steps, state.t, tEnd, state.control.dt, 0, n.newtonPerStep(), n.rejectedSteps,
+                    true);
+    progress.finish();
+    if (r.status != RunStatus::Completed) out.lastGoodState(state);
+    r.steps = n.steps, r.rejectedSteps = n.rejectedSteps, r.eventRetries = n.eventRetries;
+    r.newtonIterations = n.newtonIterations, r.maxNewtonInStep = n.maxNewtonInStep;
+    if (const auto* rec = integrator.stableSteps())
+      r.explicitRun = explicitSummary(*rec, spec.model);
+    if (const ContactTerm* c = sys.termList().contact()) noteContact(*c, spec.model, r);
+    r.balanceMax = monitor.largestBalance(), r.balanceScale = monitor.scale();
+    r.externalWork = monitor.work();
+    // Central differences solve no linear system.
+    const LinearSolver* ls = integrator.linearSolver();
+    r.linearSolver = ls ? ls->kindName() : "none";
+    r.symbolicAnalyses = ls ? ls->analyses() : 0;
+  }
+};
+
+// What the run did, from the system once it has ended.
+void reportSystem(StructuralSystem& sys, RunResult& r) {
+  r.timings = sys.timings();
+  r.work = sys.work();
+  r.equations = sys.numEquations();
+  r.nonZeros = sys.matrix().nonZeros();
+  r.concurrentAssemblies = sys.concurrentAssemblies();
+  r.serialAssemblies = sys.serialAssemblies();
+  for (const auto* g : sys.termList().slidingGroups())
+    r.handovers.push_back(g->state().committedHandovers());
 }
 
 }  // namespace
+
+std::string_view runStatusName(RunStatus s) {
+  switch (s) {
+    case RunStatus::Completed:
+      return "completed";
+    case RunStatus::Diverged:
+      return "diverged";
+    case RunStatus::Unstable:
+      return "unstable";
+    case RunStatus::Interrupted:
+      return "interrupted";
+  }
+  return "unknown";
+}
+
+std::ostream& operator<<(std::ostream& out, RunStatus s) {
+  return out << runStatusName(s);
+}
 
 RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
   const auto wall0 = std::chrono::steady_clock::now();
@@ -162,35 +373,13 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
   const Model& m = spec.model;
   const SolverSpec& sv = spec.solver;
   StructuralSystem sys(m, sv.search);
-  NewtonSettings ns = newtonSettings(sv, m);
-  ns.verbose = options.verboseNewton;
-  GeneralizedAlpha integrator(sys, sv.rhoInf, alphaScheme(sv), ns, sv.emDissipation, sv.emOrder);
-  TimeStepper stepper(sys, integrator, sv.dt, sv.dtMin);
-  const bool dynamic = sv.type != "static";
-  std::optional<CentralDifference> explicitCd;
-  if (dynamic && sv.integrator == "central_difference") {
-    explicitCd.emplace(sys, ExplicitSettings{sv.safetyFactor, sv.targetDt, sv.stiffnessDamping},
-                       integrator.initialState().x);
-    stepper.useExplicit(*explicitCd);
-  }
-
-  // Output times are stops every step lands on (TimeStepper::advanceTo), so an output interval
-  // shorter than solver.dt caps the step: chute says so rather than shrink dt silently (landing
-  // on output times keeps the rows at computed states, not interpolated ones; docs/output.md).
-  if (dynamic && !explicitCd) {
-    double cap = std::numeric_limits<double>::infinity();
-    std::string key;
-    if (spec.output.interval > 0.0 && spec.output.interval < cap)
-      cap = spec.output.interval, key = "output.interval";
-    if (spec.output.vtu.write && spec.output.vtu.interval > 0.0 && spec.output.vtu.interval < cap)
-      cap = spec.output.vtu.interval, key = "output.vtu.interval";
-    if (cap < sv.dt) {
-      r.outputStepCap = cap;
-      r.notes.push_back(fmt::format(
-          "{} = {:.6g} is shorter than solver.dt = {:.6g}: steps land on output times, so no "
-          "step is longer than {:.6g}",
-          key, cap, sv.dt, cap));
-    }
+  const bool dynamic = sv.type == AnalysisType::Dynamic;
+  std::unique_ptr<TimeIntegrator> integrator;
+  std::optional<TimeStepper> stepper;
+  if (dynamic) {
+    integrator = makeIntegrator(sys, sv, m, options.verboseNewton);
+    stepper.emplace(sys, *integrator, sv.dt);
+    if (integrator->takesNominalStep()) noteOutputStepCap(spec, r);
   }
 
   // The model's fingerprint: checked against a restart file and written into every checkpoint.
@@ -199,140 +388,20 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
   std::optional<Checkpoint> restart;
   if (!options.restartFile.empty()) {
     if (!dynamic) throw std::runtime_error("static runs cannot be restarted");
-    // Read and validated whole (file, fields, every term's history) before any output is cut.
-    restart = readCheckpoint(options.restartFile);
-    if (restart->caseName != spec.name || restart->modelHash != hash)
-      throw std::runtime_error(options.restartFile + ": a checkpoint of another case or model");
-    for (const auto& [key, value] : solverSettings(sv, m)) {
-      const auto it = restart->solverSettings.find(key);
-      if (it == restart->solverSettings.end() || it->second != value)
-        throw std::runtime_error(
-            options.restartFile + ": " + key + " is " + value + " here but " +
-            (it == restart->solverSettings.end() ? std::string("absent") : it->second) +
-            " in the checkpoint: a restart continues the run with its own settings");
-    }
-    try {
-      state = stepper.resume(restart->stepping);
-    } catch (const HistoryError& e) {
-      throw std::runtime_error(options.restartFile + ": not a valid chute checkpoint (" + e.what() +
-                               ")");
-    }
+    restart = readRestart(options.restartFile, spec, hash, *stepper, state);
   }
-  const bool write = !options.outDir.empty();
   RunOutput out(spec, sys, options.outDir, restart ? &restart->output : nullptr, r);
-  out.setEquilibrium([&](const StructuralState& s) { return integrator.equilibrium(s); });
+  if (integrator)
+    out.setEquilibrium([&](const StructuralState& s) { return integrator->equilibrium(s); });
   EnergyMonitor monitor(sys, sv.energyTolerance);
 
-  Progress progress(options.progress);
   try {
     if (!dynamic) {
-      if (options.handleSignals) endAtOnceOnStop();
-      state = integrator.initialState();
-      StaticLoadStepper statics(sys, integrator.newton());
-      const auto rep = statics.solveFromStart(state, sv.loadSteps, sv.initialLoadFactor);
-      r.newtonIterations = rep.iterations;
-      r.maxNewtonInStep = statics.maxIterationsInStep();
-      r.steps = sv.loadSteps;
-      if (!rep.converged) r.status = "diverged", r.reason = rep.failure;
-      out.record(state);
-      out.frame(state);
+      runStatics(spec, sys, options, out, state, r);
     } else {
-      if (!restart) state = stepper.start();
-      // A restarted run's balance starts afresh from the restored state (docs/output.md).
-      monitor.start(state, integrator.equilibrium(state));
-      out.setEnergyMonitor(&monitor);
-      if (!restart) {
-        out.record(state);
-        out.frame(state);
-      }
-      StructuralState previous = state;  // the state the balance was last taken at, for the work
-      // Explicit steps are 10-100x shorter than implicit ones: the balance (a residual of the
-      // loads and an energy of the whole model, as dear as the step itself) is taken over
-      // windows of kExplicitBalanceStride steps, and at every probe row and the last step (EB1,
-      // docs/explicit.md): the work of a window is f . (x_end - x_start), the same rectangle
-      // rule an implicit step of that length gets.
-      constexpr long kExplicitBalanceStride = 10;
-      const long stride = sv.integrator == "central_difference" ? kExplicitBalanceStride : 1;
-      long stepsSinceBalance = 0;
-      auto checkpoint = [&] {
-        if (!write) return;
-        ScopedTimer timer(sys.timings().output);
-        out.flush();  // the frames up to the checkpoint are on disk before it is
-        Checkpoint c;
-        c.caseName = spec.name;
-        c.modelHash = hash;
-        c.solverSettings = solverSettings(sv, m);
-        c.stepping = stepper.save(state);
-        c.output = out.mark();
-        writeCheckpoint(options.outDir + "/checkpoint.cbor", c);
-        ++r.checkpoints;
-      };
-      const double tEnd = sv.tEnd;
-      const auto result = stepper.advanceTo(
-          state, tEnd, [&](double) { return out.nextStop(); },
-          [&](const StructuralState& s, int newton) {
-            const auto& n = stepper.counters();
-            const bool last = stepper.reached(s.t, tEnd);
-            if (++stepsSinceBalance >= stride || last || out.recordsAt(s.t, n.steps)) {
-              stepsSinceBalance = 0;
-              const bool balanced =
-                  monitor.afterStep(previous, s, integrator.equilibrium(s), s.t - previous.t);
-              previous = s;
-              if (!balanced) {
-                r.status = "unstable";
-                r.reason = monitor.reason();
-                return false;
-              }
-            }
-            out.afterStep(s, n.steps, last);
-            if (options.checkpointEvery > 0 && n.steps % options.checkpointEvery == 0 && !last)
-              checkpoint();
-            progress.update(n.steps, s.t, tEnd, s.control.dt, newton, n.newtonPerStep(),
-                            n.rejectedSteps);
-            if (options.handleSignals && stopRequested() && !last) {
-              r.status = "interrupted";
-              r.reason = fmt::format("stopped by a signal at t = {:.9g}; restart with --restart {}",
-                                     s.t, write ? options.outDir + "/checkpoint.cbor" : "(none)");
-              // The checkpoint is the state the output ends with: a restart cuts the output back
-              // to it (RunOutput), so rows written after it never reach the restarted run.
-              return false;
-            }
-            return true;
-          });
-      if (result.outcome == TimeStepper::Outcome::BelowMinimum) {
-        r.status = "diverged";
-        r.reason = result.reason;
-      }
-      if (r.status == "completed" && !monitor.finish()) {
-        r.status = "unstable";
-        r.reason = monitor.reason();
-      }
-      if (r.status == "interrupted") checkpoint();
-      const auto& n = stepper.counters();
-      progress.update(n.steps, state.t, tEnd, state.control.dt, 0, n.newtonPerStep(),
-                      n.rejectedSteps, true);
-      progress.finish();
-      if (r.status != "completed") out.lastGoodState(state);
-      r.steps = n.steps, r.rejectedSteps = n.rejectedSteps, r.eventRetries = n.eventRetries;
-      r.newtonIterations = n.newtonIterations, r.maxNewtonInStep = n.maxNewtonInStep;
-      if (explicitCd) r.explicitRun = explicitSummary(*explicitCd, m);
-      if (sys.contact()) {
-        r.contact = contactSummary(*sys.contact(), m);
-        if (r.contact->largestApproachPerStep > 0.5)
-          r.notes.push_back(fmt::format(
-              "contact: a pair closed {:.3g} contact thicknesses in one step (docs/contact.md "
-              "CT13): steps too long for the thickness; fabric may have passed through (shorten "
-              "solver.dt, or raise contact.thickness)",
-              r.contact->largestApproachPerStep));
-        if (r.contact->largestApproachEnergy > 1.0)
-          r.notes.push_back(fmt::format(
-              "contact: a pair in contact approached with {:.3g} times the energy the contact "
-              "stops (docs/contact.md CT13): fabric may have passed through; raise "
-              "contact.thickness or contact.stiffness_scale",
-              r.contact->largestApproachEnergy));
-      }
-      r.balanceMax = monitor.largestBalance(), r.balanceScale = monitor.scale();
-      r.externalWork = monitor.work();
+      DynamicRun run{spec, options, sys,  *integrator,         *stepper,
+                     out,  monitor, hash, restart.has_value(), r};
+      run.run(state);
     }
   } catch (const OutputError& e) {
     // A full disk or a removed directory: the rows and frames before the failed write are whole.
@@ -346,18 +415,9 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
   out.flush();
   sys.timings().outputBackground = out.backgroundSeconds();
   r.vtuFrames = out.vtuFrames();
-  r.timings = sys.timings();
-  r.work = sys.work();
-  r.work.vtuSeries = spec.output.vtu.write && write ? 1 : 0;
+  reportSystem(sys, r);
+  r.work.vtuSeries = spec.output.vtu.write && !options.outDir.empty() ? 1 : 0;
   r.work.vtuFrames = r.vtuFrames;
-  // Central differences solve no linear system.
-  r.linearSolver = explicitCd ? "none" : integrator.linearSolver().kindName();
-  r.symbolicAnalyses = integrator.linearSolver().analyses();
-  r.equations = sys.numEquations();
-  r.nonZeros = sys.matrix().nonZeros();
-  r.concurrentAssemblies = sys.concurrentAssemblies();
-  r.serialAssemblies = sys.serialAssemblies();
-  for (const auto* g : sys.slidingGroups()) r.handovers.push_back(g->state().committedHandovers());
   r.wallTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   {
     // The reference is not part of the run: timed apart, not in wall_time.total.
@@ -366,7 +426,7 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
     r.referenceTime =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - ref0).count();
   }
-  if (write) writeSummary(options.outDir + "/summary.json", spec, r);
+  if (!options.outDir.empty()) writeSummary(options.outDir + "/summary.json", spec, r);
   return r;
 }
 
@@ -376,7 +436,7 @@ void writeSummary(const std::string& path, const CaseSpec& spec, const RunResult
   json j;
   j["case"] = spec.name;
   j["case_file"] = spec.file;
-  j["status"] = r.status;
+  j["status"] = runStatusName(r.status);
   if (!r.reason.empty()) j["reason"] = r.reason;
   j["steps"] = r.steps;
   j["rejected_steps"] = r.rejectedSteps;
@@ -422,10 +482,10 @@ void writeSummary(const std::string& path, const CaseSpec& spec, const RunResult
                  {"assemblies_on_two_threads", r.concurrentAssemblies},
                  {"assemblies_split_on_one_thread", r.serialAssemblies}};
   j["solver"] = {
-      {"type", spec.solver.type},
+      {"type", analysisName(spec.solver.type)},
       {"dt", spec.solver.dt},
       {"rho_inf", spec.solver.rhoInf},
-      {"integrator", spec.solver.integrator},
+      {"integrator", integratorName(spec.solver.integrator)},
       {"slack_events", spec.solver.slackTautEvents},
       {"mass", spec.model.massKind == kernels::MassKind::Lumped ? "lumped" : "consistent"},
       {"search", spec.solver.search == SliderSearch::NearestLength ? "nearest_length"

@@ -3,7 +3,9 @@
 // reference, summary.json. Used by `chute run` and by the case tests.
 #include <limits>
 #include <optional>
+#include <ostream>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -44,6 +46,16 @@ struct ExplicitRunInfo {
   double totalAddedMass = 0.0;
 };
 
+// How a run ended (summary.json "status"; docs/exit-codes.md).
+enum class RunStatus {
+  Completed,    // reached t_end (or the static load)
+  Diverged,     // a step failed and could not be retried: the last good state is written
+  Unstable,     // the energy balance grew past its tolerance: the last good state is written
+  Interrupted,  // a signal: a checkpoint and valid output are written
+};
+std::string_view runStatusName(RunStatus s);
+std::ostream& operator<<(std::ostream& out, RunStatus s);  // its name (test messages)
+
 // What a run with fabric contact ([contact]) reports in summary.json (docs/contact.md CT13).
 struct ContactRunInfo {
   double thickness = 0.0;
@@ -52,7 +64,7 @@ struct ContactRunInfo {
 };
 
 struct RunResult {
-  std::string status = "completed";  // or "diverged", "interrupted"
+  RunStatus status = RunStatus::Completed;
   std::string reason;
   long steps = 0, rejectedSteps = 0, eventRetries = 0, newtonIterations = 0;
   int maxNewtonInStep = 0;

@@ -63,7 +63,7 @@ RunOutput::RunOutput(const CaseSpec& spec, StructuralSystem& sys, const std::str
       sys_(&sys),
       r_(&r),
       probes_(spec.model, spec.output.probes),
-      inertia_(spec.solver.type != "static"),
+      inertia_(spec.solver.type != AnalysisType::Static),
       probeClock_{true, spec.output.everySteps, spec.output.interval},
       vtuClock_{false, spec.output.vtu.everySteps, spec.output.vtu.interval} {
   r.columns = probes_.columns();

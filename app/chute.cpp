@@ -25,8 +25,8 @@ int main(int argc, char** argv) {
   vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
   CLI::App app{"chute: structural finite elements for parachute systems"};
   app.require_subcommand(1);
-  const std::vector<Command> commands = {addRunCommand(app), addRenderCommand(app),
-                                         addPlotCommand(app), addCoupleCommand(app),
-                                         addMeshForwardCommand(app)};
+  const std::vector<Command> commands = {addRunCommand(app),           addRenderCommand(app),
+                                         addPlotCommand(app),          addCoupleCommand(app),
+                                         addIntersectionsCommand(app), addMeshForwardCommand(app)};
   return dispatch(app, commands, argc, argv);
 }

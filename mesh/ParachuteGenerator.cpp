@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "GmshSession.hpp"
+#include "PackedStart.hpp"
 #include "ParachuteStart.hpp"
 
 namespace chute::mesh {
@@ -40,15 +41,19 @@ void ParachuteSpec::validate() const {
       riserLength <= 0.5 * std::hypot(payloadBox[0], payloadBox[1]))
     bad("--riser-length", "must exceed half the diagonal of the box's top face");
   if (riserElements < 1) bad("--riser-elements", "must be at least 1");
-  if (start != "flat" && start != "folded" && start != "inflated")
-    bad("--start", "expected flat, folded or inflated");
+  if (start != "flat" && start != "folded" && start != "inflated" && start != "packed")
+    bad("--start", "expected flat, folded, inflated or packed");
   if (!(inflatedRatio > 2.0 / std::numbers::pi && inflatedRatio < 1.0))
     bad("--inflated-ratio", "must be in (2/pi, 1): a cap no deeper than a hemisphere");
   if (bundleRadius < 0.0 || bundleRadius >= diameter / 2)
     bad("--bundle-radius", "must be in [0, diameter / 2)");
   if (sliderDrop < 0.0) bad("--slider-drop", "must not be negative");
   if (lineSlack < 0.0 || lineSlack >= 0.5) bad("--line-slack", "must be in [0, 0.5)");
+  if (packLength < 0.0) bad("--pack-length", "must not be negative");
+  if (packDiameter < 0.0) bad("--pack-diameter", "must not be negative");
+  if (packGap < 0.0) bad("--pack-gap", "must not be negative");
   checkLimits();
+  if (start == "packed") packLayout(*this);  // throws naming the --pack-* option
 }
 
 void ParachuteSpec::checkFinite() const {
@@ -65,6 +70,9 @@ void ParachuteSpec::checkFinite() const {
                                   {"--bundle-radius", bundleRadius},
                                   {"--slider-drop", sliderDrop},
                                   {"--line-slack", lineSlack},
+                                  {"--pack-length", packLength},
+                                  {"--pack-diameter", packDiameter},
+                                  {"--pack-gap", packGap},
                                   {"--payload-box", payloadBox[0]},
                                   {"--payload-box", payloadBox[1]},
                                   {"--payload-box", payloadBox[2]}})
@@ -120,24 +128,47 @@ GeneratedParachute generateParachute(const ParachuteSpec& spec, const std::strin
     const double H = std::sqrt(L * L - R * R), h = spec.elementSize;
     const double dTheta = 2.0 * std::numbers::pi / n;
 
-    // Canopy: gore k between the radial seams at angles k dTheta and (k + 1) dTheta.
+    // Canopy: gore k between the radial seams at angles k dTheta and (k + 1) dTheta, in bands
+    // between hoop circles where a packed start creases it (outermost band first).
+    const std::vector<double> rings =
+        spec.start == "packed" ? packLayout(spec).foldRadii : std::vector<double>{};
+    const int nr = static_cast<int>(rings.size());
     const int centre = geo::addPoint(0.0, 0.0, H, h);
-    std::vector<int> skirtPt(n), ventPt(n), seam(n), skirtArc(n), ventArc(n), gore(n);
+    std::vector<int> skirtPt(n), ventPt(n), skirtArc(n), ventArc(n), seamPieces;
+    std::vector<std::vector<int>> ringPt(nr, std::vector<int>(n)), ringArc(nr, std::vector<int>(n));
+    std::vector<std::vector<int>> gore(n);
     for (int k = 0; k < n; ++k) {
       const double c = std::cos(k * dTheta), s = std::sin(k * dTheta);
       skirtPt[k] = geo::addPoint(R * c, R * s, H, h);
       ventPt[k] = r > 0.0 ? geo::addPoint(r * c, r * s, H, h) : centre;
+      for (int i = 0; i < nr; ++i) ringPt[i][k] = geo::addPoint(rings[i] * c, rings[i] * s, H, h);
     }
+    // piece[k][b]: seam k across band b, from its inner to its outer circle.
+    std::vector<std::vector<int>> piece(n, std::vector<int>(nr + 1));
     for (int k = 0; k < n; ++k) {
-      seam[k] = geo::addLine(ventPt[k], skirtPt[k]);
+      for (int b = 0; b <= nr; ++b) {
+        const int outer = b == 0 ? skirtPt[k] : ringPt[b - 1][k];
+        const int inner = b == nr ? ventPt[k] : ringPt[b][k];
+        piece[k][b] = geo::addLine(inner, outer);
+        seamPieces.push_back(piece[k][b]);
+      }
       skirtArc[k] = geo::addCircleArc(skirtPt[k], centre, skirtPt[(k + 1) % n]);
       if (r > 0.0) ventArc[k] = geo::addCircleArc(ventPt[k], centre, ventPt[(k + 1) % n]);
+      for (int i = 0; i < nr; ++i)
+        ringArc[i][k] = geo::addCircleArc(ringPt[i][k], centre, ringPt[i][(k + 1) % n]);
     }
-    for (int k = 0; k < n; ++k) {
-      std::vector<int> loop = {seam[k], skirtArc[k], -seam[(k + 1) % n]};
-      if (r > 0.0) loop.push_back(-ventArc[k]);
-      gore[k] = geo::addPlaneSurface({geo::addCurveLoop(loop)});
-    }
+    std::vector<int> allGores;
+    for (int k = 0; k < n; ++k)
+      for (int b = 0; b <= nr; ++b) {
+        const int outerArc = b == 0 ? skirtArc[k] : ringArc[b - 1][k];
+        std::vector<int> loop = {piece[k][b], outerArc, -piece[(k + 1) % n][b]};
+        if (b < nr)
+          loop.push_back(-ringArc[b][k]);
+        else if (r > 0.0)
+          loop.push_back(-ventArc[k]);
+        gore[k].push_back(geo::addPlaneSurface({geo::addCurveLoop(loop)}));
+        allGores.push_back(gore[k].back());
+      }
 
     // Suspension lines: skirt point j to the confluence at the origin.
     const int confluence = geo::addPoint(0.0, 0.0, 0.0, h);
@@ -204,9 +235,9 @@ GeneratedParachute generateParachute(const ParachuteSpec& spec, const std::strin
     for (int c : boxBars) geo::mesh::setTransfiniteCurve(c, 2);
     geo::synchronize();
 
-    physical(2, gore, "canopy");
-    for (int k = 0; k < n; ++k) physical(2, {gore[k]}, "gore_" + std::to_string(k));
-    physical(1, seam, "radial_seams");
+    physical(2, allGores, "canopy");
+    for (int k = 0; k < n; ++k) physical(2, gore[k], "gore_" + std::to_string(k));
+    physical(1, seamPieces, "radial_seams");
     physical(1, skirtArc, "skirt_band");
     if (r > 0.0) physical(1, ventArc, "vent_band");
     physical(1, line, "lines");

@@ -3,8 +3,8 @@
 // gmsh API. Reference geometry (the stress-free state): the flat cutting pattern in the plane
 // z = H at radius R = diameter / 2 about the z axis, the lines straight from the skirt to the
 // confluence at the origin (H = sqrt(L^2 - R^2)), the slider a flat square centred on the axis.
-// The start configuration (flat or folded, ParachuteStart.hpp) is written into the .msh as the
-// NodeData view "initial_displacement".
+// The start configuration (ParachuteStart.hpp) is written into the .msh as the NodeData view
+// "initial_displacement"; a packed start also meshes the gores with hoop circles at its creases.
 //
 // Physical groups (0-, 1-, 2-D):
 //   canopy, gore_<k> (2-D, k = 0..gores-1); radial_seams, skirt_band, vent_band (1-D, gore edges);
@@ -35,11 +35,14 @@ struct ParachuteSpec {
   std::array<double, 3> payloadBox{0.0, 0.0, 0.0};  // > 0: a box of trusses, mass at its corners
   double riserLength = 0.0;  // confluence to the payload point (box: to each top corner)
   int riserElements = 1;
-  std::string start = "flat";  // start configuration: "flat", "folded" or "inflated"
+  std::string start = "flat";  // start configuration: "flat", "folded", "inflated" or "packed"
   double inflatedRatio = 0.7;  // inflated: projected (skirt) diameter / D
   double bundleRadius = 0.0;   // folded: radius of the packed canopy at the skirt (0: D / 40)
   double sliderDrop = 0.0;     // slider below the skirt at the start (0: line length / 20)
   double lineSlack = 0.005;    // the longest line starts this fraction shorter than its length
+  double packLength = 0.0;     // packed (PackedStart.hpp): bag length (0: D / 12)
+  double packDiameter = 0.0;   // packed: bag diameter (0: D / 25)
+  double packGap = 0.0;        // packed: least gap between layers (0: D / 8500, ~1 mm on a C-9)
 
   bool hasSlider() const { return sliderSide > 0.0; }
   bool hasBox() const { return payloadBox[0] > 0.0; }

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "PackedStart.hpp"
+
 namespace chute::mesh {
 
 namespace {
@@ -40,6 +42,9 @@ StartConfiguration parachuteStart(const ParachuteSpec& spec, const GmshMesh& m) 
   const double R = spec.diameter / 2, L = spec.lineLength, H = std::sqrt(L * L - R * R);
   const bool folded = spec.start == "folded";
   const bool inflated = spec.start == "inflated";
+  const bool packed = spec.start == "packed";
+  const PackLayout pack = packed ? packLayout(spec) : PackLayout{};
+  const bool mapped = folded || inflated || packed;  // the canopy moves
   // Inflated: the pattern radius rho becomes arc length lambda rho along the meridians of a
   // spherical cap of radius Rs (Rs sin(R / Rs) = ratio R: the skirt at the projected radius),
   // the skirt at height H. Meridians keep (lambda = 1) or lose length, hoops shorten: the fabric
@@ -69,11 +74,12 @@ StartConfiguration parachuteStart(const ParachuteSpec& spec, const GmshMesh& m) 
       return Vec3(Rs * std::sin(phi) * std::cos(theta), Rs * std::sin(phi) * std::sin(theta),
                   H + Rs * (std::cos(phi) - std::cos(phiR)));
     }
+    if (packed) return packedPoint(pack, X, c);
     if (!folded) return X;
     const double rho = std::hypot(X.x(), X.y());
     return Vec3(eps * X.x(), eps * X.y(), H + c * (R - rho));
   };
-  double c = inflated ? 1.0 : 0.999 * std::sqrt(1.0 - eps * eps);
+  double c = inflated ? 1.0 : packed ? 0.98 : 0.999 * std::sqrt(1.0 - eps * eps);
   for (int attempt = 0;; ++attempt) {
     double worst = 0.0;
     auto tri = [&](std::size_t a, std::size_t b, std::size_t d) {
@@ -84,12 +90,12 @@ StartConfiguration parachuteStart(const ParachuteSpec& spec, const GmshMesh& m) 
       tri(e[0], e[1], e[2]);
       if (e.size() == 4) tri(e[0], e[2], e[3]);
     }
-    out.maxStretch = folded || inflated ? worst : 1.0;  // flat: the identity (round-off about 1)
-    if (worst <= 1.0 || !(folded || inflated)) break;
+    out.maxStretch = mapped ? worst : 1.0;  // flat: the identity (round-off about 1)
+    if (worst <= 1.0 || !mapped) break;
     if (attempt > 200) throw std::runtime_error(spec.start + " start: could not shape the canopy");
     c *= 0.995;
   }
-  out.axialFactor = folded || inflated ? c : 1.0;
+  out.axialFactor = mapped ? c : 1.0;
   for (std::size_t t : canopyNodes) u[t] = fold(m.at(t), c) - m.at(t);
 
   // Slider: a rigid drop to sliderDrop below the skirt (which stays at height H).

@@ -16,6 +16,9 @@
 //         (lowered until no element stretches): meridians exact, hoops shorter (wrinkled);
 //         lines straight (slackened by lineSlack); the whole start moved rigidly so that the
 //         confluence stays at its reference point, the origin.
+// packed: the canopy pleated along its gores and S-folded into a bag above the skirt
+//         (PackedStart.hpp), runs compressed by c (lowered from 0.98 until no element stretches);
+//         slider and lines as for flat (the lines straight below the bag: line stretch).
 #include "GmshMesh.hpp"
 #include "ParachuteGenerator.hpp"
 
@@ -24,7 +27,7 @@ namespace chute::mesh {
 struct StartConfiguration {
   NodeVectors displacement;  // node tag -> start minus reference
   double maxStretch = 0.0;   // largest principal stretch of a canopy triangle (<= 1)
-  double axialFactor = 1.0;  // c of the folded / inflated map
+  double axialFactor = 1.0;  // c of the folded / inflated / packed map
 };
 
 StartConfiguration parachuteStart(const ParachuteSpec& spec, const GmshMesh& mesh);

@@ -16,7 +16,7 @@
 #include "kernels/CableKernel.hpp"
 #include "kernels/SliderFriction.hpp"
 #include "terms/MembraneTerm.hpp"
-#include "terms/SlidingGroupTerm.hpp"
+#include "terms/sliding/SlidingGroupTerm.hpp"
 
 namespace chute {
 
@@ -58,7 +58,7 @@ std::pair<double, double> lineForce(const Model& m, const StructuralSystem& sys,
     const auto& def = m.groups[g];
     if (def.set != set) continue;
     // Active elements with friction: part 1 (end 1 -> slider); see slider_friction for both.
-    const auto parts = sys.slidingGroups()[g]->activeParts(element, x);
+    const auto parts = sys.termList().slidingGroups()[g]->activeParts(element, x);
     return {parts.N1, parts.strain1};
   }
   throw std::logic_error("line_force probe: element not found");
@@ -93,19 +93,19 @@ std::vector<double> ProbeSet::evaluate(const StructuralSystem& sys, const Struct
                                        const ProbeBalance& balance) const {
   std::vector<double> out;
   for (const auto& p : probes_) {
-    if (p.kind == "node_position" || p.kind == "node_velocity") {
-      const Eigen::VectorXd& v = p.kind == "node_position" ? s.x : s.v;
+    if (p.kind == ProbeKind::NodePosition || p.kind == ProbeKind::NodeVelocity) {
+      const Eigen::VectorXd& v = p.kind == ProbeKind::NodePosition ? s.x : s.v;
       for (int k = 0; k < 3; ++k) out.push_back(v[3 * p.node + k]);
-    } else if (p.kind == "slider") {
-      const auto& st = sys.slidingGroups()[p.group]->state();
+    } else if (p.kind == ProbeKind::Slider) {
+      const auto& st = sys.termList().slidingGroups()[p.group]->state();
       out.push_back(st.materialCoordinate(p.slider, s.x));
       out.push_back(st.activeElement(p.slider));
-    } else if (p.kind == "slider_friction") {
+    } else if (p.kind == ProbeKind::SliderFriction) {
       // Committed friction state (docs/friction.md); a frictionless slider reads as stuck-free:
       // state 0, slip rate 0, its (equal) part forces, and the wrap angle of its geometry (FR3).
-      const auto& st = sys.slidingGroups()[p.group]->state();
+      const auto& st = sys.termList().slidingGroups()[p.group]->state();
       const auto parts =
-          sys.slidingGroups()[p.group]->activeParts(st.activeElement(p.slider), eq.x);
+          sys.termList().slidingGroups()[p.group]->activeParts(st.activeElement(p.slider), eq.x);
       const auto& f = st.friction(p.slider);
       const bool fr = st.hasFriction(p.slider);
       out.push_back(fr ? static_cast<double>(f.state) : 0.0);
@@ -123,14 +123,14 @@ std::vector<double> ProbeSet::evaluate(const StructuralSystem& sys, const Struct
       }
       out.push_back(parts.N1);
       out.push_back(parts.N2);
-    } else if (p.kind == "energy") {
+    } else if (p.kind == ProbeKind::Energy) {
       out.insert(out.end(), {e.kinetic, e.strain, e.gravity, e.total()});
-    } else if (p.kind == "energy_balance") {
+    } else if (p.kind == ProbeKind::EnergyBalance) {
       out.insert(out.end(), {balance.work, balance.balance});
-    } else if (p.kind == "membrane_stress") {
+    } else if (p.kind == ProbeKind::MembraneStress) {
       // Principal second Piola-Kirchhoff stresses averaged over the elements at the node.
       Eigen::Vector2d S = Eigen::Vector2d::Zero();
-      const auto* mt = sys.membranes();
+      const auto* mt = sys.termList().membranes();
       if (mt) {
         const auto around = mt->elementsAt(p.node);
         for (int k : around) S += mt->elementStates()[k].principalStress;
@@ -138,14 +138,14 @@ std::vector<double> ProbeSet::evaluate(const StructuralSystem& sys, const Struct
       }
       out.push_back(S[0]);
       out.push_back(S[1]);
-    } else if (p.kind == "wrinkling") {
+    } else if (p.kind == ProbeKind::Wrinkling) {
       // Fractions of the membrane elements taut, wrinkled and slack.
       double count[3] = {0, 0, 0};
-      if (const auto* mt = sys.membranes())
+      if (const auto* mt = sys.termList().membranes())
         for (const auto& st : mt->elementStates()) count[static_cast<int>(st.state)] += 1.0;
       const double n = std::max(1.0, count[0] + count[1] + count[2]);
       for (double c : count) out.push_back(c / n);
-    } else if (p.kind == "edge_angle") {
+    } else if (p.kind == ProbeKind::EdgeAngle) {
       // Angle in degrees between the edge node -> node2 and the upward vertical (against gravity;
       // +z without gravity): 0 when node2 is straight above node, 90 when the edge is level.
       const Model& m = *model_;
@@ -153,11 +153,11 @@ std::vector<double> ProbeSet::evaluate(const StructuralSystem& sys, const Struct
       const Vec3 d = s.x.segment<3>(3 * p.node2) - s.x.segment<3>(3 * p.node);
       const double c = std::clamp(d.dot(up) / std::max(d.norm(), 1e-300), -1.0, 1.0);
       out.push_back(std::acos(c) * 180.0 / M_PI);
-    } else if (p.kind == "line_force") {
+    } else if (p.kind == ProbeKind::LineForce) {
       const auto [N, eps] = lineForce(*model_, sys, p.lineSet, p.element, eq.x, s.t);
       out.push_back(N);
       out.push_back(eps);
-    } else if (p.kind == "skirt_radius") {
+    } else if (p.kind == ProbeKind::SkirtRadius) {
       const auto r = radiusAboutAxis(p, s.x);
       out.insert(out.end(), r.begin(), r.end());
     }

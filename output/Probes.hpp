@@ -8,7 +8,8 @@
 
 #include "OutputError.hpp"
 #include "case/CaseSpec.hpp"
-#include "solver/GeneralizedAlpha.hpp"
+#include "solver/EquilibriumPoint.hpp"
+#include "solver/StructuralSystem.hpp"
 
 namespace chute {
 

@@ -7,7 +7,7 @@
 #include "case/CaseSpec.hpp"
 #include "kernels/CableKernel.hpp"
 #include "terms/MembraneTerm.hpp"
-#include "terms/SlidingGroupTerm.hpp"
+#include "terms/sliding/SlidingGroupTerm.hpp"
 
 namespace chute {
 
@@ -125,7 +125,7 @@ SceneFrame buildFrame(StructuralSystem& sys, const StructuralState& s, const Equ
   }
   for (size_t g = 0; g < m.groups.size(); ++g) {
     const auto& def = m.groups[g];
-    const auto& st = sys.slidingGroups()[g]->state();
+    const auto& st = sys.termList().slidingGroups()[g]->state();
     const auto& mat = m.materials[def.material];
     for (int k = 0; k < def.numElements(); ++k) {
       const int a = def.chain[k], b = def.chain[k + 1];
@@ -138,7 +138,7 @@ SceneFrame buildFrame(StructuralSystem& sys, const StructuralState& s, const Equ
         continue;
       }
       const int node = def.sliders[sl];
-      const auto parts = sys.slidingGroups()[g]->activeParts(k, eq.x);
+      const auto parts = sys.termList().slidingGroups()[g]->activeParts(k, eq.x);
       const double sMat = st.materialCoordinate(sl, s.x);
       const bool friction = st.hasFriction(sl);
       const double stick = friction ? static_cast<double>(st.friction(sl).state) : kNaN;
@@ -163,7 +163,7 @@ SceneFrame buildFrame(StructuralSystem& sys, const StructuralState& s, const Equ
         ++k;
       }
     }
-    const auto* mt = sys.membranes();
+    const auto* mt = sys.termList().membranes();
     for (size_t e = 0; e < m.membranes.size(); ++e) {
       const auto& el = m.membranes[e];
       if (el.numNodes == 3)

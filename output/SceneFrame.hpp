@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "solver/GeneralizedAlpha.hpp"
+#include "solver/EquilibriumPoint.hpp"
 #include "solver/StructuralSystem.hpp"
 
 namespace chute {

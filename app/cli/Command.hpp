@@ -8,11 +8,12 @@
 namespace chute::cli {
 
 // Exit statuses, documented in docs/exit-codes.md.
-constexpr int kExitInternal = 1;      // an unexpected error or out of memory: a one-line message
-constexpr int kExitBadInput = 2;      // case file, mesh or command line wrong: nothing written
-constexpr int kExitRunFailed = 3;     // the run stopped early: last good state written
-constexpr int kExitInterrupted = 4;   // SIGINT/SIGTERM: checkpoint and valid output written
-constexpr int kExitOutputFailed = 5;  // a write failed (disk full): output whole up to a time
+constexpr int kExitInternal = 1;       // an unexpected error or out of memory: a one-line message
+constexpr int kExitBadInput = 2;       // case file, mesh or command line wrong: nothing written
+constexpr int kExitRunFailed = 3;      // the run stopped early: last good state written
+constexpr int kExitInterrupted = 4;    // SIGINT/SIGTERM: checkpoint and valid output written
+constexpr int kExitOutputFailed = 5;   // a write failed (disk full): output whole up to a time
+constexpr int kExitIntersections = 6;  // `chute intersections --expect-none` found some
 
 struct Command {
   CLI::App* sub = nullptr;   // the CLI11 subcommand (owned by the application)
@@ -23,6 +24,7 @@ Command addRunCommand(CLI::App& app);
 Command addRenderCommand(CLI::App& app);
 Command addPlotCommand(CLI::App& app);
 Command addCoupleCommand(CLI::App& app);
+Command addIntersectionsCommand(CLI::App& app);
 Command addMeshCommand(CLI::App& app);                   // in the gmsh plugin
 std::function<int()> addMeshGeoCommand(CLI::App& mesh);  // `chute mesh geo`, in the plugin
 Command addMeshForwardCommand(CLI::App& app);            // in `chute`: forwards to the plugin

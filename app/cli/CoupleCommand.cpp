@@ -1,9 +1,11 @@
 // `chute couple CASE [--scheme explicit|implicit] [--relaxation constant|aitken] ...`: the coupled
 // demo. The case's structure (CouplingInterface) and a quasi-steady flow model (a separate
 // participant that sees only the interface data) exchange pressure and motion every time window;
-// one line per window shows the sub-iterations and the final relative residual.
+// one line per window shows the sub-iterations and the final relative residual. It writes what
+// `chute run` writes (probes, VTU series, summary), with any integrator the case names.
 #include <fmt/core.h>
 
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -11,6 +13,9 @@
 #include <string>
 #include <vector>
 
+#include "OutputError.hpp"
+#include "app/RunCase.hpp"
+#include "app/RunOutput.hpp"
 #include "app/cli/Command.hpp"
 #include "case/CaseError.hpp"
 #include "case/CaseSpec.hpp"
@@ -29,8 +34,15 @@ struct CoupleArgs {
   bool quiet = false;
 };
 
+// What a coupled run reports in summary.json beside a run's figures.
+void countWindows(const coupling::CouplingReport& rep, RunResult& r) {
+  r.notes.push_back(fmt::format("coupled run: {} windows, {} structural solves ({:.2f} per window)",
+                                rep.windows.size(), rep.iterations(), rep.iterationsPerWindow()));
+}
+
 int couple(const CoupleArgs& a) {
   using namespace chute::coupling;
+  const auto wall0 = std::chrono::steady_clock::now();
   CaseSpec spec;
   try {
     spec = readCase(a.caseFile, a.sets);
@@ -41,7 +53,7 @@ int couple(const CoupleArgs& a) {
   std::unique_ptr<CouplingInterface> structure;
   try {
     structure = std::make_unique<CouplingInterface>(spec, a.surface);
-  } catch (const std::invalid_argument& e) {
+  } catch (const std::exception& e) {  // a static case, an unknown set, massless explicit nodes
     fmt::print(stderr, "chute: {}: {}\n", a.caseFile, e.what());
     return kExitBadInput;
   }
@@ -55,41 +67,71 @@ int couple(const CoupleArgs& a) {
   cs.relaxation = a.relaxation == "constant" ? Relaxation::Constant : Relaxation::Aitken;
   cs.omega = a.omega, cs.tolerance = a.tolerance, cs.maxIterations = a.maxIterations;
   cs.window = a.window, cs.tEnd = a.tEnd;
+  const double tEnd = a.tEnd > 0.0 ? a.tEnd : spec.solver.tEnd;
+
+  // The output of `chute run` (probes, VTU series, summary), written at the ends of the accepted
+  // windows that reach an output time (docs/coupling.md).
+  const std::string outDir = a.outDir.empty() ? "out/" + spec.name : a.outDir;
+  RunResult r;
+  std::unique_ptr<RunOutput> out;
+  std::unique_ptr<std::ofstream> csv;
+  try {
+    std::filesystem::create_directories(outDir);
+    out = std::make_unique<RunOutput>(structure->spec(), structure->system(), outDir, nullptr, r);
+    out->setEquilibrium(
+        [&](const StructuralState& s) { return structure->integrator().equilibrium(s); });
+    // The flow's loads on the start act from t = 0 (initial data), then the start is written.
+    structure->setFacePressures(flow.facePressures(writeInterfaceData(*structure)));
+    structure->initializeWithLoads();
+    out->record(structure->state());
+    out->frame(structure->state());
+    csv = std::make_unique<std::ofstream>(outDir + "/coupling.csv");
+    *csv << "t,iterations,residual,apex_z,mean_pressure\n";
+  } catch (const OutputError& e) {
+    fmt::print(stderr, "chute: couple: {}\n", e.what());
+    return kExitOutputFailed;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "chute: {}\n", e.what());
+    return kExitBadInput;
+  }
 
   // The apex: the wet vertex farthest from the rim's plane at the end, reported per window.
   const int apexNode = spec.model.nodeByName.count("canopy.center")
                            ? spec.model.nodeId("canopy.center")
                            : structure->surface().node[structure->numVertices() / 2];
-  std::unique_ptr<std::ofstream> csv;
-  if (!a.outDir.empty()) {
-    std::filesystem::create_directories(a.outDir);
-    csv = std::make_unique<std::ofstream>(a.outDir + "/coupling.csv");
-    *csv << "t,iterations,residual,apex_z,mean_pressure\n";
-  }
   const double mass =
       spec.model.membraneMaterials.empty()
           ? 0.0
           : spec.model.membraneMaterials[0].density * spec.model.membraneMaterials[0].thickness;
   if (!a.quiet)
     fmt::print(
-        "{}: {} coupling, {} relaxation (omega {}), {} faces, {} vertices; flow: q = {} Pa, "
+        "{}: {} coupling, {} relaxation (omega {}), {} faces, {} vertices, {}; flow: q = {} Pa, "
         "rho_air = {}, C_n = {}, added mass rho_air L_a = {:.3g} kg/m^2 (fabric {:.3g} kg/m^2)\n",
         spec.name, a.scheme, a.relaxation, a.omega, structure->numFaces(), structure->numVertices(),
-        a.q, a.airDensity, a.cn, a.airDensity * a.addedMass, mass);
+        structure->integrator().name(), a.q, a.airDensity, a.cn, a.airDensity * a.addedMass, mass);
   long windows = 0;
-  const auto rep = runCoupled(
-      *structure, [&](const InterfaceData& d) { return flow.facePressures(d); }, cs,
-      [&](const WindowReport& w) {
-        ++windows;
-        const double z = structure->state().x[3 * apexNode + 2] - spec.model.X[apexNode].z();
-        const double pm = structure->loads().facePressures().mean();
-        if (!a.quiet)
-          fmt::print(
-              "  window {:4d}  t = {:.5f}  sub-iterations {:3d}  residual {:.3e}  "
-              "apex {:+.5f} m  mean p {:.3f} Pa\n",
-              windows, w.t, w.iterations, w.residual, z, pm);
-        if (csv) *csv << fmt::format("{},{},{},{},{}\n", w.t, w.iterations, w.residual, z, pm);
-      });
+  coupling::CouplingReport rep;
+  try {
+    rep = runCoupled(
+        *structure, [&](const InterfaceData& d) { return flow.facePressures(d); }, cs,
+        [&](const WindowReport& w) {
+          ++windows;
+          const double z = structure->state().x[3 * apexNode + 2] - spec.model.X[apexNode].z();
+          const double pm = structure->loads().facePressures().mean();
+          if (!a.quiet)
+            fmt::print(
+                "  window {:4d}  t = {:.5f}  sub-iterations {:3d}  residual {:.3e}  "
+                "apex {:+.5f} m  mean p {:.3f} Pa\n",
+                windows, w.t, w.iterations, w.residual, z, pm);
+          *csv << fmt::format("{},{},{},{},{}\n", w.t, w.iterations, w.residual, z, pm);
+          if (w.accepted)
+            out->afterStep(structure->state(), structure->counters().steps,
+                           structure->stepper().reached(w.t, tEnd));
+        });
+  } catch (const OutputError& e) {
+    fmt::print(stderr, "chute: couple: {}\n", e.what());
+    return kExitOutputFailed;
+  }
   const auto& c = structure->counters();
   if (!a.quiet)
     fmt::print(
@@ -97,6 +139,29 @@ int couple(const CoupleArgs& a) {
         "iterations, {} rejected steps\n",
         rep.converged ? "completed" : "failed", rep.windows.size(), rep.iterations(),
         rep.iterationsPerWindow(), c.steps, c.newtonIterations, c.rejectedSteps);
+  if (!rep.converged) {
+    r.status = RunStatus::Diverged;
+    r.reason = rep.failure;
+    out->lastGoodState(structure->state());
+  }
+  countWindows(rep, r);
+  r.finalTime = structure->time();
+  r.steps = c.steps, r.rejectedSteps = c.rejectedSteps, r.eventRetries = c.eventRetries;
+  r.newtonIterations = c.newtonIterations;
+  out->flush();
+  r.vtuFrames = out->vtuFrames();
+  r.timings = structure->system().timings();
+  r.work = structure->system().work();
+  r.equations = structure->system().numEquations();
+  const LinearSolver* ls = structure->integrator().linearSolver();
+  r.linearSolver = ls ? ls->kindName() : "none";
+  r.wallTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  try {
+    writeSummary(outDir + "/summary.json", structure->spec(), r);
+  } catch (const OutputError& e) {
+    fmt::print(stderr, "chute: couple: {}\n", e.what());
+    return kExitOutputFailed;
+  }
   if (!rep.converged) {
     fmt::print(stderr, "chute: {}: {}\n", spec.name, rep.failure);
     return kExitRunFailed;
@@ -139,7 +204,9 @@ Command addCoupleCommand(CLI::App& app) {
   cmd->add_option("--wind", a->wind, "flow: air velocity w (3 numbers)")->expected(3);
   cmd->add_option("--set", a->sets, "override a scalar of the case, e.g. solver.dt=1e-4")
       ->take_all();
-  cmd->add_option("--out", a->outDir, "write OUT/coupling.csv (one row per window)");
+  cmd->add_option("--out", a->outDir,
+                  "output directory (default out/<case name>): probes.csv, the VTU series, "
+                  "summary.json, and coupling.csv (one row per window)");
   cmd->add_flag("--quiet", a->quiet, "no report on the terminal");
   return {cmd, [a] { return couple(*a); }};
 }

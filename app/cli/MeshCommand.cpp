@@ -3,6 +3,9 @@
 //  a,b,c] [--riser-length l] [--start flat|folded|inflated] [--case FILE.toml]
 //  [--units ft|si] [--pressure p] [--ramp-time s] [--dt s] [--t-end s] [--config PARAMS.toml]`:
 // a flat circular canopy with lines, slider and payload meshed with gmsh (docs/meshing.md).
+// `chute mesh cluster --canopies 2|3 [the geometry and case options of mesh parachute]
+//  [--spacing s] [--riser-length l] [--riser-elements n] [--payload-mass m]`: a cluster of
+// parachutes on risers to one payload (ClusterGenerator.hpp).
 // `chute mesh geo SCRIPT.geo --out FILE.msh [--timeout s] [--max-memory MiB]`: runs a gmsh script
 // (which can run commands) and writes its mesh (GeoScript.hpp); the only way chute runs a .geo.
 #include <fmt/core.h>
@@ -11,12 +14,15 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <numbers>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <toml.hpp>
 #include <vector>
 
+#include "ClusterCaseWriter.hpp"
+#include "ClusterGenerator.hpp"
 #include "GeoScript.hpp"
 #include "GmshSession.hpp"
 #include "MeshError.hpp"
@@ -122,22 +128,11 @@ std::function<int()> addMeshGeoCommand(CLI::App& mesh) {
   };
 }
 
-Command addMeshCommand(CLI::App& app) {
-  struct Args {
-    mesh::ParachuteSpec spec;
-    mesh::ParachuteCaseOptions caseOptions;
-    std::vector<double> box;
-    std::string out, caseFile, config;
-    bool quiet = false;
-  };
-  auto a = std::make_shared<Args>();
-  auto* mesh = app.add_subcommand("mesh", "build meshes with gmsh");
-  mesh->require_subcommand(1);
-  const auto geoRun = addMeshGeoCommand(*mesh);
-  auto* p = mesh->add_subcommand("parachute", "flat circular canopy, lines, slider and payload");
-  p->add_option("--config", a->config,
-                "parameter file (TOML): option = value, names without '--'; the command line wins");
-  auto& s = a->spec;
+namespace {
+
+// The options of one parachute's geometry and start (shared by `mesh parachute` and `mesh
+// cluster`).
+void addGeometryOptions(CLI::App* p, mesh::ParachuteSpec& s) {
   p->add_option("--gores", s.gores, "number of gores (and suspension lines)");
   p->add_option("--diameter", s.diameter, "nominal (flat) diameter of the canopy");
   p->add_option("--vent-diameter", s.ventDiameter, "vent diameter (0: none)")->default_val(0.0);
@@ -153,16 +148,7 @@ Command addMeshCommand(CLI::App& app) {
   p->add_option("--slider", s.sliderSide, "slider: side of the square (grommets at the corners)");
   p->add_option("--slider-divisions", s.sliderDivisions, "quads along a slider edge")
       ->default_val(1);
-  p->add_option("--payload-mass", s.payloadMass,
-                "payload mass (at the confluence, the riser's "
-                "end or the box corners)");
-  p->add_option("--payload-box", a->box, "payload box edge lengths a,b,c (braced trusses)")
-      ->delimiter(',')
-      ->expected(3);
-  p->add_option("--riser-length", s.riserLength,
-                "confluence to payload point (box: to each top corner)");
-  p->add_option("--riser-elements", s.riserElements, "elements per riser")->default_val(1);
-  p->add_option("--start", s.start, "start configuration: flat, folded or inflated")
+  p->add_option("--start", s.start, "start configuration: flat, folded, inflated or packed")
       ->default_val("flat");
   p->add_option("--inflated-ratio", s.inflatedRatio,
                 "inflated: projected diameter / D of the spherical-cap start")
@@ -172,73 +158,176 @@ Command addMeshCommand(CLI::App& app) {
                 "slider below the skirt at the start (default L/20)");
   p->add_option("--line-slack", s.lineSlack, "start slack of the longest line (fraction)")
       ->default_val(0.005);
-  p->add_option("--out", a->out, "output mesh (.msh, format 4.1)");
-  p->add_option("--case", a->caseFile, "also write a case file that runs the mesh");
-  p->add_option("--units", a->caseOptions.units,
+  p->add_option("--pack-length", s.packLength, "packed: length of the bag (default D/12)");
+  p->add_option("--pack-diameter", s.packDiameter, "packed: diameter of the bag (default D/25)");
+  p->add_option("--pack-gap", s.packGap,
+                "packed: least gap between layers of cloth (default 1 mm in the --units)");
+}
+
+struct Outputs {
+  mesh::ParachuteCaseOptions caseOptions;
+  std::string out, caseFile, config;
+  bool quiet = false;
+};
+
+void addOutputOptions(CLI::App* p, Outputs& o) {
+  p->add_option("--config", o.config,
+                "parameter file (TOML): option = value, names without '--'; the command line wins");
+  p->add_option("--out", o.out, "output mesh (.msh, format 4.1)");
+  p->add_option("--case", o.caseFile, "also write a case file that runs the mesh");
+  p->add_option("--units", o.caseOptions.units,
                 "case: ft (ft, slug, s, lbf) or si (m, kg, s, N); the mesh's lengths are in them")
       ->default_val("ft")
       ->check(CLI::IsMember({"ft", "si"}));
-  p->add_option("--pressure", a->caseOptions.pressure,
+  p->add_option("--pressure", o.caseOptions.pressure,
                 "case: canopy pressure, the dynamic pressure of the descent (default 0.1 psf or "
                 "4.79 Pa; 0: none)");
-  p->add_option("--ramp-time", a->caseOptions.rampTime, "case: pressure ramp time")
+  p->add_option("--ramp-time", o.caseOptions.rampTime, "case: pressure ramp time")
       ->default_val(0.1);
-  p->add_option("--t-end", a->caseOptions.tEnd, "case: end time")->default_val(2.0);
-  p->add_option("--dt", a->caseOptions.dt, "case: time step")->default_val(2e-3);
-  p->add_flag("--quiet", a->quiet, "print nothing");
-  return {
-      mesh, [a, p, geoRun] {
-        if (!*p) return geoRun();
-        if (!a->config.empty()) {
-          if (const std::string e = applyParameterFile(*p, a->config); !e.empty()) {
-            fmt::print(stderr, "chute: mesh parachute: {}\n", e);
-            return kExitBadInput;
-          }
-        }
-        if (a->out.empty()) {
-          fmt::print(stderr, "chute: mesh parachute: --out: give the .msh file to write\n");
-          return kExitBadInput;
-        }
-        if (!a->caseFile.empty() && sameFile(a->caseFile, a->out)) {
-          fmt::print(stderr, "chute: mesh parachute: --case: '{}' is the --out mesh file\n",
-                     a->caseFile);
-          return kExitBadInput;
-        }
-        if (!a->config.empty() && (sameFile(a->config, a->out) ||
-                                   (!a->caseFile.empty() && sameFile(a->config, a->caseFile)))) {
-          fmt::print(stderr, "chute: mesh parachute: --config: '{}' is an output file\n",
-                     a->config);
-          return kExitBadInput;
-        }
-        if (!a->box.empty()) a->spec.payloadBox = {a->box[0], a->box[1], a->box[2]};
-        mesh::GeneratedParachute g;
-        try {
-          if (p->count("--pressure") && !std::isfinite(a->caseOptions.pressure))
-            throw std::invalid_argument("--pressure: must be finite");
-          if (!a->caseFile.empty()) mesh::checkParachuteCaseOptions(a->caseOptions);
-          g = mesh::generateParachute(a->spec, a->out);
-          if (!a->caseFile.empty()) {
-            mesh::writeParachuteCase(a->spec, g, a->caseFile, a->out, a->caseOptions);
-          }
-        } catch (const std::invalid_argument& e) {
-          fmt::print(stderr, "chute: mesh parachute: {}\n", e.what());
-          return kExitBadInput;
-        } catch (const std::runtime_error& e) {  // gmsh, folding, unwritable files
-          fmt::print(stderr, "chute: mesh parachute: {}\n", e.what());
-          return kExitRunFailed;
-        }
-        if (!a->quiet) {
-          fmt::print("{}: {} nodes, {} canopy triangles, {} groups, meshed in {:.2f} s\n", a->out,
-                     g.mesh.nodeTags.size(), g.triangles, g.mesh.groups.size(), g.meshSeconds);
-          fmt::print(
-              "  canopy area {:.6g} (flat pattern {:.6g}, {:+.3f} %), line length error "
-              "{:.2e}, start stretch <= {:.6f}\n",
-              g.canopyArea, g.flatArea, 100 * (g.canopyArea / g.flatArea - 1), g.maxLineLengthError,
-              g.maxStartStretch);
-          if (!a->caseFile.empty()) fmt::print("  case: {}\n", a->caseFile);
-        }
-        return 0;
-      }};
+  p->add_option("--t-end", o.caseOptions.tEnd, "case: end time")->default_val(2.0);
+  p->add_option("--dt", o.caseOptions.dt, "case: time step")->default_val(2e-3);
+  p->add_flag("--quiet", o.quiet, "print nothing");
+}
+
+// The checks before meshing common to both verbs: the parameter file, the output names, the
+// default gap of a packed start. Returns an exit status, or -1 to go on.
+int prepare(CLI::App* p, Outputs& o, mesh::ParachuteSpec& spec, const std::string& verb) {
+  if (!o.config.empty()) {
+    if (const std::string e = applyParameterFile(*p, o.config); !e.empty()) {
+      fmt::print(stderr, "chute: mesh {}: {}\n", verb, e);
+      return kExitBadInput;
+    }
+  }
+  if (o.out.empty()) {
+    fmt::print(stderr, "chute: mesh {}: --out: give the .msh file to write\n", verb);
+    return kExitBadInput;
+  }
+  if (!o.caseFile.empty() && sameFile(o.caseFile, o.out)) {
+    fmt::print(stderr, "chute: mesh {}: --case: '{}' is the --out mesh file\n", verb, o.caseFile);
+    return kExitBadInput;
+  }
+  if (!o.config.empty() &&
+      (sameFile(o.config, o.out) || (!o.caseFile.empty() && sameFile(o.config, o.caseFile)))) {
+    fmt::print(stderr, "chute: mesh {}: --config: '{}' is an output file\n", verb, o.config);
+    return kExitBadInput;
+  }
+  if (p->count("--pressure") && !std::isfinite(o.caseOptions.pressure)) {
+    fmt::print(stderr, "chute: mesh {}: --pressure: must be finite\n", verb);
+    return kExitBadInput;
+  }
+  // 1 mm: of the order of a contact thickness for cloth (docs/meshing.md, "Packed start").
+  if (!p->count("--pack-gap")) spec.packGap = o.caseOptions.units == "si" ? 1e-3 : 1e-3 / 0.3048;
+  return -1;
+}
+
+void printSingle(const mesh::GeneratedParachute& g, const std::string& what) {
+  fmt::print(
+      "  {}canopy area {:.6g} (flat pattern {:.6g}, {:+.3f} %), line length error {:.2e}, start "
+      "stretch <= {:.6f}\n",
+      what, g.canopyArea, g.flatArea, 100 * (g.canopyArea / g.flatArea - 1), g.maxLineLengthError,
+      g.maxStartStretch);
+}
+
+std::function<int()> addMeshClusterCommand(CLI::App& mesh) {
+  struct Args {
+    mesh::ClusterSpec spec;
+    Outputs o;
+  };
+  auto a = std::make_shared<Args>();
+  auto* c = mesh.add_subcommand(
+      "cluster", "two or three parachutes on risers to one payload (docs/meshing.md)");
+  addGeometryOptions(c, a->spec.parachute);
+  c->add_option("--canopies", a->spec.canopies, "2 or 3 canopies")->default_val(3);
+  c->add_option("--spacing", a->spec.spacing,
+                "canopy centres apart at the skirts (default 0.7 D: inflated canopies touch)");
+  c->add_option("--riser-length", a->spec.riserLength,
+                "payload to each confluence (default a third of the line length)");
+  c->add_option("--riser-elements", a->spec.riserElements, "elements per riser")->default_val(4);
+  c->add_option("--payload-mass", a->spec.payloadMass, "payload mass at the risers' meeting");
+  addOutputOptions(c, a->o);
+  return [a, c] {
+    if (const int status = prepare(c, a->o, a->spec.parachute, "cluster"); status >= 0)
+      return status;
+    mesh::GeneratedCluster g;
+    try {
+      if (!a->o.caseFile.empty()) mesh::checkParachuteCaseOptions(a->o.caseOptions);
+      g = mesh::generateCluster(a->spec, a->o.out);
+      if (!a->o.caseFile.empty())
+        mesh::writeClusterCase(a->spec, g, a->o.caseFile, a->o.out, a->o.caseOptions);
+    } catch (const std::invalid_argument& e) {
+      fmt::print(stderr, "chute: mesh cluster: {}\n", e.what());
+      return kExitBadInput;
+    } catch (const std::runtime_error& e) {
+      fmt::print(stderr, "chute: mesh cluster: {}\n", e.what());
+      return kExitRunFailed;
+    }
+    if (!a->o.quiet) {
+      fmt::print(
+          "{}: {} canopies, {} nodes, {} groups; centres {:.4g} apart, axes tilted {:.2f} "
+          "deg, risers {:.4g}\n",
+          a->o.out, a->spec.canopies, g.mesh.nodeTags.size(), g.mesh.groups.size(), g.spacing,
+          g.tilt * 180 / std::numbers::pi, g.riserLength);
+      printSingle(g.single, "each: " + std::to_string(g.single.triangles) + " triangles, ");
+      if (!a->o.caseFile.empty()) fmt::print("  case: {}\n", a->o.caseFile);
+    }
+    return 0;
+  };
+}
+
+}  // namespace
+
+Command addMeshCommand(CLI::App& app) {
+  struct Args {
+    mesh::ParachuteSpec spec;
+    Outputs o;
+    std::vector<double> box;
+  };
+  auto a = std::make_shared<Args>();
+  auto* mesh = app.add_subcommand("mesh", "build meshes with gmsh");
+  mesh->require_subcommand(1);
+  const auto geoRun = addMeshGeoCommand(*mesh);
+  const auto clusterRun = addMeshClusterCommand(*mesh);
+  auto* p = mesh->add_subcommand("parachute", "flat circular canopy, lines, slider and payload");
+  auto& s = a->spec;
+  addGeometryOptions(p, s);
+  p->add_option("--payload-mass", s.payloadMass,
+                "payload mass (at the confluence, the riser's "
+                "end or the box corners)");
+  p->add_option("--payload-box", a->box, "payload box edge lengths a,b,c (braced trusses)")
+      ->delimiter(',')
+      ->expected(3);
+  p->add_option("--riser-length", s.riserLength,
+                "confluence to payload point (box: to each top corner)");
+  p->add_option("--riser-elements", s.riserElements, "elements per riser")->default_val(1);
+  addOutputOptions(p, a->o);
+  return {mesh, [a, p, geoRun, clusterRun, mesh] {
+            if (mesh->got_subcommand("geo")) return geoRun();
+            if (mesh->got_subcommand("cluster")) return clusterRun();
+            if (const int status = prepare(p, a->o, a->spec, "parachute"); status >= 0)
+              return status;
+            if (!a->box.empty()) a->spec.payloadBox = {a->box[0], a->box[1], a->box[2]};
+            mesh::GeneratedParachute g;
+            try {
+              if (!a->o.caseFile.empty()) mesh::checkParachuteCaseOptions(a->o.caseOptions);
+              g = mesh::generateParachute(a->spec, a->o.out);
+              if (!a->o.caseFile.empty())
+                mesh::writeParachuteCase(a->spec, g, a->o.caseFile, a->o.out, a->o.caseOptions);
+            } catch (const std::invalid_argument& e) {
+              fmt::print(stderr, "chute: mesh parachute: {}\n", e.what());
+              return kExitBadInput;
+            } catch (const std::runtime_error& e) {  // gmsh, folding, unwritable files
+              fmt::print(stderr, "chute: mesh parachute: {}\n", e.what());
+              return kExitRunFailed;
+            }
+            if (!a->o.quiet) {
+              fmt::print("{}: {} nodes, {} canopy triangles, {} groups, meshed in {:.2f} s\n",
+                         a->o.out, g.mesh.nodeTags.size(), g.triangles, g.mesh.groups.size(),
+                         g.meshSeconds);
+              printSingle(g, "");
+              if (!a->o.caseFile.empty()) fmt::print("  case: {}\n", a->o.caseFile);
+            }
+            return 0;
+          }};
 }
 
 }  // namespace chute::cli

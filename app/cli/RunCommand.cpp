@@ -53,16 +53,17 @@ int runCase(const RunArgs& a) {
     fmt::print(
         "{}: {} at t = {:.6g}: {} steps, {} rejected, {:.2f} Newton iterations/step, "
         "{:.3f} s wall\n",
-        spec.name, r.status, r.finalTime, r.steps, r.rejectedSteps, r.newtonPerStep(), r.wallTime);
+        spec.name, runStatusName(r.status), r.finalTime, r.steps, r.rejectedSteps,
+        r.newtonPerStep(), r.wallTime);
     if (r.reference)
       fmt::print("  reference {} ({}): max error {:.3e}, {:.4f} % of the motion ({:.4g})\n",
                  r.reference->kind, r.reference->probe, r.reference->maxError,
                  100 * r.reference->relative(), r.reference->motionSize);
     fmt::print("  output in {}\n", opt.outDir);
   }
-  if (r.status != "completed") {
+  if (r.status != RunStatus::Completed) {
     fmt::print(stderr, "chute: {}: {}\n", spec.name, r.reason);
-    return r.status == "interrupted" ? kExitInterrupted : kExitRunFailed;
+    return r.status == RunStatus::Interrupted ? kExitInterrupted : kExitRunFailed;
   }
   return 0;
 }

@@ -17,8 +17,8 @@
 #include <vector>
 
 #include "case/CaseSpec.hpp"
-#include "model/SlidingGroupState.hpp"
 #include "terms/contact/BroadPhase.hpp"
+#include "terms/sliding/SlidingGroupState.hpp"
 
 using namespace chute;
 

@@ -12,10 +12,10 @@
 #include <vector>
 
 #include "case/CaseSpec.hpp"
-#include "model/SlidingGroupState.hpp"
 #include "support/Intersections.hpp"
 #include "support/VisitRun.hpp"
-#include "terms/SlidingGroupTerm.hpp"
+#include "terms/sliding/SlidingGroupState.hpp"
+#include "terms/sliding/SlidingGroupTerm.hpp"
 
 using namespace chute;
 
@@ -51,7 +51,7 @@ int main(int argc, char** argv) {
         std::vector<testing::Seg> segs;
         for (const auto& c : m.cables)
           if (!m.lineSets[c.set].goneAt(s.t)) segs.push_back({c.a, c.b});
-        for (const auto* g : sys.slidingGroups()) {
+        for (const auto* g : sys.termList().slidingGroups()) {
           const auto& st = g->state();
           const auto& def = st.def();
           for (int k = 0; k < def.numElements(); ++k) {

@@ -139,18 +139,18 @@ PeerProblem buildPeerProblem(const PeerParams& p) {
   m.pressures.push_back(pl);
   m.massKind = kernels::MassKind::Consistent;  // CalculiX's implicit dynamics: consistent mass
 
-  s.solver.type = "dynamic";
+  s.solver.type = AnalysisType::Dynamic;
   s.solver.dt = p.dt;
   s.solver.tEnd = p.dt * p.steps;
   s.solver.rhoInf = p.rhoInf;
-  s.solver.integrator = p.integrator;
+  s.solver.integrator = *integratorFromName(p.integrator);
   s.output.everySteps = 1;
   for (auto [name, node] : {std::pair<const char*, int>{"apex", out.probes.apex},
                             {"rim", out.probes.rim},
                             {"line_mid", out.probes.lineMid}}) {
     ProbeSpec pr;
     pr.name = name;
-    pr.kind = "node_position";
+    pr.kind = ProbeKind::NodePosition;
     pr.node = node;
     s.output.probes.push_back(pr);
   }

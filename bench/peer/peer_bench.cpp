@@ -75,7 +75,7 @@ int main(int argc, char** argv) {
     walls.push_back(r.wallTime);
   }
   if (runs > 0) {
-    out["status"] = r.status;
+    out["status"] = runStatusName(r.status);
     out["equations"] = r.equations;
     out["steps"] = r.steps;
     out["rejected_steps"] = r.rejectedSteps;
@@ -106,5 +106,5 @@ int main(int argc, char** argv) {
     }
   }
   std::cout << out.dump() << std::endl;
-  return r.status == "completed" || runs == 0 ? 0 : 3;
+  return r.status == RunStatus::Completed || runs == 0 ? 0 : 3;
 }

@@ -34,6 +34,13 @@ class EventSource {
   // updateState, and `to` may be adjusted to the new state. Returns how many changes were noted.
   virtual bool drivesKinks() const { return false; }
   virtual int crossDriven(const Eigen::VectorXd& /*from*/, Eigen::VectorXd& /*to*/) { return 0; }
+  // Explicit steps, which have no iterations that would land a kink on a step's end (EX3): the
+  // step moved the positions from x by `motion` to xEnd (xEnd = x + motion up to round-off).
+  // A source notes the kinks passed, for the next updateState, and may move xEnd by a negligible
+  // amount onto a kink reached. Only sources that say they watch the motion are asked.
+  virtual bool watchesExplicitMotion() const { return false; }
+  virtual void afterExplicitMotion(const Eigen::VectorXd& /*x*/, const Eigen::VectorXd& /*motion*/,
+                                   Eigen::VectorXd& /*xEnd*/) {}
   // Round-off floor of a Newton update at the last assembly (length units): a very short, stiff
   // part (a slider with friction next to a node, docs/friction.md FR16) computes its force from
   // positions that carry round-off, so no update resolves positions finer than this. 0: none.

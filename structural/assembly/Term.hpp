@@ -12,7 +12,16 @@
 
 namespace chute {
 
+// Where the terms are evaluated: positions, velocities and accelerations, the time, the
+// integrator's derivatives (cx, cv, ca) and what each kind of evaluation asks of the terms. Made
+// only by the named constructors below, one per use, so that no caller fills its fields by
+// position; the fields are read by the terms.
 struct EvalPoint {
+  // The integrator's derivatives of (x, v, a) with respect to the unknown positions.
+  struct Derivatives {
+    double cx = 1.0, cv = 0.0, ca = 0.0;
+  };
+
   const Eigen::VectorXd& x;  // positions of all dofs at the evaluation point
   const Eigen::VectorXd& v;  // velocities
   const Eigen::VectorXd& a;  // accelerations entering the inertia forces
@@ -24,12 +33,11 @@ struct EvalPoint {
   // Energy-momentum steps (docs/formulation.md EM1-EM2): the positions x_n the step started
   // from; x is then the midpoint (x_n + x_{n+1}) / 2 and cx = 1/2. Terms with a strain energy
   // use the discrete gradient between x_n and x_{n+1} = 2 x - x_n, their Jacobian with respect to
-  // x_{n+1} being 2 cx d r / d x_{n+1}; others are evaluated at the midpoint. nullptr otherwise.
+  // x_{n+1} being 2 cx d r / d x_{n+1}: others are evaluated at the midpoint. nullptr otherwise.
   const Eigen::VectorXd* xStart = nullptr;
   double emDissipation = 0.0;  // EM8: energy-decaying parameter chi (0: energy conserving)
-  // Only the inertia M(x) a, nothing else (no internal, external or damping force): the explicit
-  // path's lumped mass of sliding elements, M(x) 1 (EX2). Honoured by the sliding group term,
-  // the only term whose mass moves with x; the others are never asked.
+  // Only the inertia M(x) a of the terms whose mass moves with the positions
+  // (Term::massMovesWithPositions), nothing else: the explicit path's lumped mass M(x) 1 (EX2).
   bool inertiaOnly = false;
   // > 0: an explicit step of this length evaluates the forces (velocity-dependent forces too
   // stiff for it cap themselves, RG8); 0 in implicit steps and statics.
@@ -37,6 +45,89 @@ struct EvalPoint {
   // a is zero at every dof (the explicit step evaluates its forces at a = 0, EX2): the terms skip
   // the inertia M a without gathering a at every element. Set only by the caller that made a.
   bool zeroAcceleration = false;
+
+  // The state (x, v, a) at t as it is: residual r(x, v, a, t), Jacobian dr/dx (output, the
+  // energy balance, checks).
+  static EvalPoint state(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
+                         const Eigen::VectorXd& a, double t) {
+    return EvalPoint(x, v, a, t);
+  }
+  // An implicit step of length dt (generalized-alpha): Jacobian cx dr/dx + cv dr/dv + ca dr/da.
+  static EvalPoint implicitStep(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
+                                const Eigen::VectorXd& a, double t, Derivatives d, double dt) {
+    EvalPoint p(x, v, a, t);
+    p.cx = d.cx, p.cv = d.cv, p.ca = d.ca, p.dt = dt;
+    return p;
+  }
+  // An energy-momentum step (EM1-EM2) from positions xStart: (x, v) the midpoint, a the step's
+  // mean acceleration, chi the energy-decaying parameter (EM8).
+  static EvalPoint energyMomentumStep(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
+                                      const Eigen::VectorXd& a, double t, Derivatives d, double dt,
+                                      const Eigen::VectorXd& xStart, double chi) {
+    EvalPoint p = implicitStep(x, v, a, t, d, dt);
+    p.xStart = &xStart;
+    p.emDissipation = chi;
+    return p;
+  }
+  // The forces of an explicit step of length dt at a = 0 (EX2; zeroA must be zero at every dof),
+  // residual only; dt = 0 for the forces of a start or after a cut.
+  static EvalPoint explicitForces(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
+                                  const Eigen::VectorXd& zeroA, double t, double dt) {
+    EvalPoint p(x, v, zeroA, t);
+    p.cx = p.cv = p.ca = 0.0;
+    p.dt = dt;
+    p.explicitStep = dt;
+    p.zeroAcceleration = true;
+    return p;
+  }
+  // The residual at a = zeroA = 0 with the mass matrix as Jacobian (cx = cv = 0, ca = 1): the
+  // consistent acceleration of an implicit start, M a = -r.
+  static EvalPoint massMatrix(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
+                              const Eigen::VectorXd& zeroA, double t) {
+    EvalPoint p(x, v, zeroA, t);
+    p.cx = 0.0, p.cv = 0.0, p.ca = 1.0;
+    return p;
+  }
+  // M a without loads (load factor 0), residual only: the lumped mass as r(a = 1) - r(a = 0)
+  // (EX2). movingMassOnly: only the terms whose mass moves with x, and only their M(x) a.
+  static EvalPoint inertiaOf(const Eigen::VectorXd& x, const Eigen::VectorXd& zeroV,
+                             const Eigen::VectorXd& a, double t, bool movingMassOnly) {
+    EvalPoint p(x, zeroV, a, t);
+    p.cx = p.cv = p.ca = 0.0;
+    p.loadFactor = 0.0;
+    p.inertiaOnly = movingMassOnly;
+    return p;
+  }
+  // Statics: no velocity, no inertia, the loads scaled by loadFactor; Jacobian dr/dx.
+  static EvalPoint statics(const Eigen::VectorXd& x, const Eigen::VectorXd& zero, double t,
+                           double loadFactor) {
+    EvalPoint p(x, zero, zero, t);
+    p.inertia = false;
+    p.loadFactor = loadFactor;
+    return p;
+  }
+  // The same point with other loads (the part of the residual scaled by the load factor), with or
+  // without inertia, or for a step of length h (rate-dependent history).
+  EvalPoint withLoadFactor(double f) const {
+    EvalPoint p = *this;
+    p.loadFactor = f;
+    return p;
+  }
+  EvalPoint withInertia(bool on) const {
+    EvalPoint p = *this;
+    p.inertia = on;
+    return p;
+  }
+  EvalPoint withStep(double h) const {
+    EvalPoint p = *this;
+    p.dt = h;
+    return p;
+  }
+
+ private:
+  EvalPoint(const Eigen::VectorXd& x_, const Eigen::VectorXd& v_, const Eigen::VectorXd& a_,
+            double t_)
+      : x(x_), v(v_), a(a_), t(t_) {}
 };
 
 // A converged step, as its terms commit it: the end positions, the end time, the step length
@@ -47,6 +138,13 @@ struct CommitPoint {
   double t = 0.0;
   double dt = 0.0;
   double tForces = 0.0;
+};
+
+// What a term may adapt to the integrator that steps it, told once before the first step
+// (Term::prepareFor).
+struct IntegrationTraits {
+  bool explicitSteps = false;      // central differences: residual-only steps, a stable step (EX5)
+  bool discreteGradients = false;  // energy-momentum: strain energies by discrete gradients (EM5)
 };
 
 struct EnergyBreakdown {
@@ -71,6 +169,9 @@ class Term {
   // Updates configuration-dependent state (e.g. the active sliding elements) for trial positions
   // x; returns how many discrete changes were made.
   virtual int updateState(const Eigen::VectorXd& /*x*/) { return 0; }
+  // How many searches one updateState() makes (0: it has no configuration-dependent state), for
+  // the work counters; a system without any skips the updates.
+  virtual long searchesPerUpdate() const { return 0; }
   virtual void assemble(const EvalPoint& p, SystemAssembler& out) = 0;
   // Energy of the state (x, v) at time t (after any event at t: a set cut at t is gone).
   virtual void addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v, double t,
@@ -87,6 +188,27 @@ class Term {
   // Kinks of the energy crossed by the motion (sliders at nodes, slack / taut): nullptr for
   // terms without any.
   virtual EventSource* events() { return nullptr; }
+
+  // ---- what the integrators ask of every term (the defaults: a term without such a part) ----
+  // Told once, before the first step, which kind of integrator steps the system.
+  virtual void prepareFor(const IntegrationTraits& /*traits*/) {}
+  // Whether the term's mass matrix changes with the positions (a sliding element's follows its
+  // slider, F10): the explicit path evaluates the lumped mass of such terms at every step's
+  // positions (EvalPoint::inertiaOf with movingMassOnly, which only they honour) and that of the
+  // others once (EX2).
+  virtual bool massMovesWithPositions() const { return false; }
+  // Adds to S, per node, the row sum of this term's stiffness at positions x and time t that
+  // bounds the explicit step's highest frequency, omega^2 <= max_i S_i / m_i (EX5-EX6); free[i]
+  // says whether node i has a free dof (rows of fixed nodes are not part of the free system).
+  virtual void addStiffnessBound(const Eigen::VectorXd& /*x*/, double /*t*/,
+                                 const std::vector<char>& /*free*/,
+                                 std::vector<double>& /*S*/) const {}
+  // The cost of one residual assembly, in units of a membrane triangle's (the two-part split of
+  // the assembly, docs/performance.md "Two threads"); 0: negligible or unknown.
+  virtual double assemblyCost() const { return 0.0; }
+  // Whether assemble() reads only the model and this term's own state (not another term's), so
+  // that it may run on the assembly's second thread.
+  virtual bool assemblesApart() const { return false; }
 
   // ---- history (model/History.hpp) ----
   // commit(): the converged step becomes the state later steps start from; revert(): the trial

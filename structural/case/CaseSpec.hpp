@@ -3,16 +3,42 @@
 // reference the run is compared with.
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "model/Model.hpp"
-#include "model/SlidingGroupState.hpp"
+#include "model/SliderSearch.hpp"
+#include "solver/IntegratorKind.hpp"
 
 namespace chute {
 
+// The kinds of probe ([[output.probes]] kind), parsed once by the reader.
+enum class ProbeKind {
+  NodePosition,
+  NodeVelocity,
+  Slider,
+  Energy,
+  EnergyBalance,
+  LineForce,
+  MembraneStress,
+  Wrinkling,
+  SliderFriction,
+  SkirtRadius,
+  EdgeAngle,
+};
+// Each kind's case-file name and the quantities its columns carry ("<probe>.<quantity>"), in
+// the order the reader lists them.
+struct ProbeKindInfo {
+  ProbeKind kind;
+  const char* name;
+  std::vector<const char*> quantities;
+};
+const std::vector<ProbeKindInfo>& probeKinds();
+const ProbeKindInfo& probeKindInfo(ProbeKind k);
+
 struct ProbeSpec {
   std::string name;
-  std::string kind;  // node_position, node_velocity, slider, energy, line_force, edge_angle, ...
+  ProbeKind kind = ProbeKind::NodePosition;
   int node = -1;
   int node2 = -1;                  // edge_angle: the edge runs node -> node2
   int group = -1, slider = -1;     // slider probes
@@ -22,10 +48,14 @@ struct ProbeSpec {
   std::vector<std::string> columns() const;  // "<name>.<quantity>"
 };
 
+// The analytical solutions a run may be compared with ([reference] kind).
+enum class ReferenceKind { Pulley, BeadEllipse, FreeFall, Hencky };
+std::string_view referenceKindName(ReferenceKind k);
+
 struct ReferenceSpec {
-  std::string kind;  // "pulley" (F13) or "bead_ellipse"
-  int probe = -1;    // index of the node_position probe compared
-  int pulley = -1;   // pulley: the fixed slider node
+  ReferenceKind kind = ReferenceKind::Pulley;  // pulley (F13), bead_ellipse, free_fall, hencky
+  int probe = -1;                              // index of the node_position probe compared
+  int pulley = -1;                             // pulley: the fixed slider node
   double ropeLength = 0.0;
   int anchor1 = -1, anchor2 = -1;  // bead_ellipse: the rope's fixed ends
   // hencky: the disk's material, thickness, pressure, radius and the pressure's direction
@@ -34,7 +64,7 @@ struct ReferenceSpec {
 };
 
 struct SolverSpec {
-  std::string type = "dynamic";  // or "static"
+  AnalysisType type = AnalysisType::Dynamic;
   double dt = 1e-3, tEnd = 1.0, dtMin = 0.0, rhoInf = 0.9;
   int maxNewton = 25;
   // Most equations a run may have before it starts (docs/limits.md): a model within the node
@@ -46,8 +76,7 @@ struct SolverSpec {
   SliderSearch search = SliderSearch::MaterialCoordinate;
   bool reuseTangent = false;         // modified Newton within a step (NewtonSettings)
   bool symmetricPartSolver = false;  // linear_solver = "symmetric_part" (LinearSolver)
-  // or "generalized_alpha" (Chung-Hulbert), "energy_momentum", "central_difference"
-  std::string integrator = "bossak";
+  IntegratorKind integrator = IntegratorKind::Bossak;
   double emDissipation = 0.0;  // energy_momentum's energy-decaying parameter chi (EM8)
   int emOrder = 2;             // energy_momentum: 2, or 4 by a symmetric composition (EM14)
   // central_difference only: fraction of the stable step taken, mass scaling to a target step

@@ -1,6 +1,11 @@
 #include "case/SolverSetup.hpp"
 
 #include <algorithm>
+#include <stdexcept>
+
+#include "solver/CentralDifference.hpp"
+#include "solver/EnergyMomentum.hpp"
+#include "solver/GeneralizedAlpha.hpp"
 
 namespace chute {
 
@@ -26,12 +31,25 @@ NewtonSettings newtonSettings(const SolverSpec& sv, const Model& m) {
   return ns;
 }
 
-AlphaScheme alphaScheme(const SolverSpec& sv) {
-  if (sv.integrator == "energy_momentum") return AlphaScheme::EnergyMomentum;
-  if (sv.integrator == "generalized_alpha") return AlphaScheme::ChungHulbert;
-  // Bossak, and central_difference: the explicit path uses the implicit integrator only for the
-  // start; its forces, like Bossak's, hold at the step's end (TI5: equilibrium point = state).
-  return AlphaScheme::Bossak;
+std::unique_ptr<TimeIntegrator> makeIntegrator(StructuralSystem& sys, const SolverSpec& sv,
+                                               const Model& m, bool verboseNewton) {
+  NewtonSettings ns = newtonSettings(sv, m);
+  ns.verbose = verboseNewton;
+  switch (sv.integrator) {
+    case IntegratorKind::Bossak:
+      return std::make_unique<GeneralizedAlpha>(sys, sv.rhoInf, AlphaScheme::Bossak, ns, sv.dt,
+                                                sv.dtMin);
+    case IntegratorKind::GeneralizedAlpha:
+      return std::make_unique<GeneralizedAlpha>(sys, sv.rhoInf, AlphaScheme::ChungHulbert, ns,
+                                                sv.dt, sv.dtMin);
+    case IntegratorKind::EnergyMomentum:
+      return std::make_unique<EnergyMomentum>(sys, ns, sv.dt, sv.dtMin, sv.emDissipation,
+                                              sv.emOrder);
+    case IntegratorKind::CentralDifference:
+      return std::make_unique<CentralDifference>(
+          sys, ExplicitSettings{sv.safetyFactor, sv.targetDt, sv.stiffnessDamping}, sv.dt);
+  }
+  throw std::logic_error("makeIntegrator: unknown integrator");
 }
 
 }  // namespace chute

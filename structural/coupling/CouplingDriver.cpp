@@ -34,6 +34,11 @@ CouplingReport runCoupled(CouplingInterface& s, const FlowParticipant& flow,
   const double tEnd = cs.tEnd > 0.0 ? cs.tEnd : s.endTime();
   // The first window's loads: the flow's answer to the initial state.
   Eigen::VectorXd p = flow(writeInterfaceData(s));
+  // They act from t = 0: the start's acceleration is taken under them (initial data).
+  if (s.time() == 0.0 && s.counters().steps == 0) {
+    s.setFacePressures(p);
+    s.initializeWithLoads();
+  }
   while (s.time() < tEnd - 1e-9 * window) {
     const double dt = std::min(window, tEnd - s.time());
     WindowReport w;
@@ -84,6 +89,7 @@ CouplingReport runCoupled(CouplingInterface& s, const FlowParticipant& flow,
       rep.failure = e.what();
     }
     w.t = s.time();
+    w.accepted = rep.converged;
     rep.windows.push_back(w);
     if (onWindow) onWindow(w);
     if (!rep.converged) break;

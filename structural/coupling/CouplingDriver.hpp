@@ -32,6 +32,7 @@ struct WindowReport {
   int iterations = 0;          // structural solves of the window (1 for explicit)
   double residual = 0.0;       // final relative residual (explicit: the change over the window)
   std::vector<double> omegas;  // relaxation factors used
+  bool accepted = true;        // the window converged: its state is final (output may use it)
 };
 
 struct CouplingReport {

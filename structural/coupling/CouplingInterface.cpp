@@ -7,7 +7,6 @@
 #include <string>
 
 #include "case/SolverSetup.hpp"
-#include "terms/SlidingGroupTerm.hpp"
 
 namespace chute::coupling {
 
@@ -37,14 +36,8 @@ CaseSpec withoutWetPressure(CaseSpec spec, const WetSurface& w) {
 
 CouplingInterface::CouplingInterface(CaseSpec spec, const std::vector<std::string>& surfaceSets)
     : spec_(std::move(spec)), surface_(WetSurface::fromModel(spec_.model, surfaceSets)) {
-  if (spec_.solver.type == "static")
-    throw std::invalid_argument(spec_.file + ": a coupled run needs a dynamic case (solver.type)");
-  // The explicit path steps inside `chute run` only; coupling it would silently run the implicit
-  // scheme instead.
-  if (spec_.solver.integrator == "central_difference")
-    throw std::invalid_argument(spec_.file +
-                                ": solver.integrator = \"central_difference\" is not available "
-                                "to a coupled run (chute run only)");
+  if (spec_.solver.type == AnalysisType::Static)
+    throw std::invalid_argument("a coupled run needs a dynamic case (solver.type)");
   spec_ = withoutWetPressure(std::move(spec_), surface_);
   const Model& m = spec_.model;
   const SolverSpec& sv = spec_.solver;
@@ -53,9 +46,8 @@ CouplingInterface::CouplingInterface(CaseSpec spec, const std::vector<std::strin
   loads_ = loads.get();
   extra.push_back(std::move(loads));
   sys_ = std::make_unique<StructuralSystem>(m, sv.search, std::move(extra));
-  integrator_ = std::make_unique<GeneralizedAlpha>(
-      *sys_, sv.rhoInf, alphaScheme(sv), newtonSettings(sv, m), sv.emDissipation, sv.emOrder);
-  stepper_ = std::make_unique<TimeStepper>(*sys_, *integrator_, sv.dt, sv.dtMin);
+  integrator_ = makeIntegrator(*sys_, sv, m);
+  stepper_ = std::make_unique<TimeStepper>(*sys_, *integrator_, sv.dt);
   // preCICE initialize(): the initial state at rest (or moving as the case prescribes), its
   // consistent acceleration under the loads known now (none from the flow yet).
   state_ = stepper_->start();
@@ -104,6 +96,12 @@ Eigen::VectorXd CouplingInterface::faceCentres() const {
   return surface_.faceMeans(currentCoordinates());
 }
 
+void CouplingInterface::initializeWithLoads() {
+  if (stepper_->counters().steps > 0 || state_.t != 0.0)
+    throw CouplingError("initializeWithLoads: only before the first advance");
+  state_ = stepper_->start();
+}
+
 double CouplingInterface::advance(double dt) {
   if (!(dt > 0.0) || !std::isfinite(dt))
     throw CouplingError("advance: the time step must be positive, got " + num(dt));
@@ -122,7 +120,10 @@ double CouplingInterface::advance(double dt) {
   const auto before = stepper_->counters();
   const auto result = stepper_->advanceTo(
       state_, target, [](double) { return std::numeric_limits<double>::infinity(); },
-      [](const StructuralState&, int) { return true; });
+      [this](const StructuralState& s, int) {
+        if (stepObserver_) stepObserver_(s);
+        return true;
+      });
   const auto& after = stepper_->counters();
   counters_.steps += after.steps - before.steps;
   counters_.rejectedSteps += after.rejectedSteps - before.rejectedSteps;

@@ -1,7 +1,8 @@
 #pragma once
 // chute as the structural participant of a partitioned fluid-structure simulation, over a case
-// file's model and its generalized-alpha integrator. Shaped after preCICE's participant API so
-// that a preCICE adapter is a thin file; each method names the preCICE call it sits next to:
+// file's model and the integrator it names (any of them: solver/TimeIntegrator.hpp). Shaped after
+// preCICE's participant API so that a preCICE adapter is a thin file; each method names the preCICE
+// call it sits next to:
 //
 //   preCICE (adapter)                          chute::coupling::CouplingInterface
 //   setMeshVertices(mesh, coords, ids)         referenceCoordinates(), numVertices()
@@ -22,6 +23,7 @@
 // wet membrane sets are dropped (those on other sets, and all other loads, stay). Without a
 // coupling interface nothing changes: `chute run` uses the case file's pressure.
 #include <Eigen/Core>
+#include <functional>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -30,7 +32,7 @@
 #include "case/CaseSpec.hpp"
 #include "coupling/ExternalLoadTerm.hpp"
 #include "coupling/WetSurface.hpp"
-#include "solver/GeneralizedAlpha.hpp"
+#include "solver/TimeIntegrator.hpp"
 #include "solver/TimeStepper.hpp"
 #include "terms/MembraneTerm.hpp"
 
@@ -86,6 +88,13 @@ class CouplingInterface {
   void setVertexForces(const Eigen::VectorXd& f) { loads_->setVertexForces(f); }
   const ExternalLoadTerm& loads() const { return *loads_; }
 
+  // preCICE's initial data: before the first advance, the loads set now act at t = 0, and the
+  // start's acceleration is recomputed under them (the constructor's is without any). Without
+  // it an integrator that carries the acceleration (Bossak, generalized-alpha, central
+  // differences) starts its first step from the unloaded one. Throws CouplingError after the
+  // first advance.
+  void initializeWithLoads();
+
   // ---- time (getMaxTimeStepSize, advance) ----
   double time() const { return state_.t; }
   double endTime() const { return spec_.solver.tEnd; }
@@ -103,6 +112,14 @@ class CouplingInterface {
 
   const StructuralState& state() const { return state_; }
   const StructuralSystem& system() const { return *sys_; }
+  StructuralSystem& system() { return *sys_; }
+  const TimeIntegrator& integrator() const { return *integrator_; }
+  const TimeStepper& stepper() const { return *stepper_; }
+  // Called after every accepted step inside advance() (output of a coupled run: only the steps of
+  // accepted windows are final; see CouplingDriver). Unset: nothing.
+  void setStepObserver(std::function<void(const StructuralState&)> f) {
+    stepObserver_ = std::move(f);
+  }
   const CaseSpec& spec() const { return spec_; }
   const StructuralCounters& counters() const { return counters_; }
 
@@ -111,11 +128,12 @@ class CouplingInterface {
   WetSurface surface_;
   ExternalLoadTerm* loads_ = nullptr;  // owned by sys_
   std::unique_ptr<StructuralSystem> sys_;
-  std::unique_ptr<GeneralizedAlpha> integrator_;
+  std::unique_ptr<TimeIntegrator> integrator_;
   std::unique_ptr<TimeStepper> stepper_;
   StructuralState state_;
   StructuralCounters counters_;
   std::unique_ptr<WindowCheckpoint> checkpoint_;
+  std::function<void(const StructuralState&)> stepObserver_;
 };
 
 }  // namespace chute::coupling

@@ -18,6 +18,10 @@ inline constexpr double kApexFraction = 1e-9;
 // is handed over. Event location lands within it in one or two retries.
 inline constexpr double kArrivalFraction = 1e-6;
 
+// EX3: the arrival radius of explicit hand-overs, a fraction of the element's reference length
+// (a slider whose approach stalls short of the node, the node pulled along by the short part).
+inline constexpr double kExplicitArrivalFraction = 1e-6;
+
 // RG3: node and slider are left this far apart after a hand-over (10 apex radii): the strains of
 // the two elements change by 1e-8, and the new short part has its direction along the cable.
 inline constexpr double kSeparationFraction = 10 * kApexFraction;

@@ -6,6 +6,31 @@
 
 namespace chute {
 
+std::vector<std::string> nodePartNames(const Model& m) {
+  std::vector<std::string> part(m.numNodes());
+  for (const auto& e : m.membranes)
+    for (int i = 0; i < e.numNodes; ++i)
+      if (part[e.nodes[i]].empty()) part[e.nodes[i]] = m.membraneSets[e.set].name;
+  for (const auto& c : m.cables)
+    for (int n : {c.a, c.b})
+      if (part[n].empty()) part[n] = m.lineSets[c.set].name;
+  for (const auto& g : m.groups) {
+    for (int n : g.chain)
+      if (part[n].empty()) part[n] = m.lineSets[g.set].name;
+    for (int n : g.sliders)
+      if (part[n].empty()) part[n] = m.lineSets[g.set].name;
+  }
+  for (auto& p : part)
+    if (p.empty()) p = "point masses";
+  return part;
+}
+
+int Model::membranesInSet(int set) const {
+  int n = 0;
+  for (const auto& e : membranes) n += e.set == set ? 1 : 0;
+  return n;
+}
+
 namespace {
 constexpr double kTwoPi = 6.283185307179586;
 }

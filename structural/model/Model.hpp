@@ -148,8 +148,13 @@ struct Model {
   double totalLineMass() const;  // sum of rho A0 L over all line elements
   // The first time a set is cut after t (infinity if none): where a run must land a step.
   double nextCutAfter(double t) const;
-  bool hasCutAt(double t) const;  // a set is cut exactly at t
+  bool hasCutAt(double t) const;      // a set is cut exactly at t
+  int membranesInSet(int set) const;  // membrane elements of a set
 };
+
+// The part each node belongs to, for reports (the mass added by mass scaling): its first membrane
+// set, line set or sliding group, else "point masses".
+std::vector<std::string> nodePartNames(const Model& m);
 
 // Equation numbering of the free dofs; constrained dofs map to -1.
 class DofMap {

@@ -4,42 +4,14 @@
 #include <cmath>
 #include <limits>
 #include <map>
-
-#include "kernels/Regularisations.hpp"
-#include "solver/StableStep.hpp"
-#include "terms/SlidingGroupTerm.hpp"
-#include "terms/contact/ContactTerm.hpp"
+#include <sstream>
 
 namespace chute {
 
 namespace {
 
-// Arrival radius of explicit hand-overs, a fraction of the element's reference length (EX3).
-constexpr double kExplicitArrival = 1e-6;
-
 std::string nodeLabel(const Model& m, int n) {
   return m.nodeName[n].empty() ? "node " + std::to_string(n + 1) : m.nodeName[n];
-}
-
-// The part a node belongs to, for the mass-scaling report: its first membrane set, line set or
-// sliding group, else "point masses".
-std::vector<std::string> partOfNode(const Model& m) {
-  std::vector<std::string> part(m.numNodes());
-  for (const auto& e : m.membranes)
-    for (int i = 0; i < e.numNodes; ++i)
-      if (part[e.nodes[i]].empty()) part[e.nodes[i]] = m.membraneSets[e.set].name;
-  for (const auto& c : m.cables)
-    for (int n : {c.a, c.b})
-      if (part[n].empty()) part[n] = m.lineSets[c.set].name;
-  for (const auto& g : m.groups) {
-    for (int n : g.chain)
-      if (part[n].empty()) part[n] = m.lineSets[g.set].name;
-    for (int n : g.sliders)
-      if (part[n].empty()) part[n] = m.lineSets[g.set].name;
-  }
-  for (auto& p : part)
-    if (p.empty()) p = "point masses";
-  return part;
 }
 
 // Whether every entry is finite: x * 0 is 0 for finite x and NaN for an infinity or a NaN, so
@@ -52,30 +24,26 @@ bool finite(const Eigen::VectorXd& x) {
 }  // namespace
 
 CentralDifference::CentralDifference(StructuralSystem& sys, ExplicitSettings settings,
-                                     const Eigen::VectorXd& x0)
-    : sys_(&sys),
-      settings_(settings),
-      massAssembler_(sys.dofs()),
-      membraneBound_(membraneBoundData(sys.model())) {
+                                     double maxStep)
+    : sys_(&sys), settings_(settings), maxStep_(maxStep), massAssembler_(sys.dofs()) {
+  sys.prepareFor(IntegrationTraits{true, false});
   massAssembler_.buildPattern({});
-  for (const auto& t : sys.terms()) {
-    const bool sliding = dynamic_cast<const SlidingGroupTerm*>(t.get()) != nullptr;
-    (sliding ? slidingTerms_ : fixedMassTerms_).push_back(t.get());
-  }
+  for (const auto& t : sys.terms())
+    (t->massMovesWithPositions() ? movingMassTerms_ : fixedMassTerms_).push_back(t.get());
   const Model& m = sys.model();
   freeNode_.assign(m.numNodes(), 0);
   for (int d = 0; d < sys.dofs().numDofs(); ++d)
     if (sys.dofs().eqOfDof(d) >= 0) freeNode_[d / 3] = 1;
   addedEq_.setZero(sys.numEquations());
-  x0_ = x0;
+  x0_ = sys.initialState().x;
   if (settings_.targetStep > 0.0) {
     // EX8: the least nodal mass for which the node's bound S_i / m_i allows the target step
     // with the safety factor, m_i >= S_i (target / (2 safety))^2, from the start positions.
-    const Eigen::VectorXd massEq = lumpedMass(x0, 0.0, false);  // before the added mass
-    const auto S = nodalStiffnessBound(m, membraneBound_, groupStates(), x0, 0.0);
+    const Eigen::VectorXd massEq = lumpedMass(x0_, 0.0, false);  // before the added mass
+    const auto S = sys.stiffnessBound(x0_, 0.0);
     const auto mass = nodalMass(massEq);
     const double r = settings_.targetStep / (2.0 * settings_.safety);
-    const auto part = partOfNode(m);
+    const auto part = nodePartNames(m);
     std::map<std::string, double> byPart;
     for (int n = 0; n < m.numNodes(); ++n) {
       if (!freeNode_[n]) continue;
@@ -85,22 +53,11 @@ CentralDifference::CentralDifference(StructuralSystem& sys, ExplicitSettings set
       for (int k = 0; k < 3; ++k)
         if (const int e = sys.dofs().eq(n, k); e >= 0) addedEq_[e] = add;
     }
-    addedByPart_.assign(byPart.begin(), byPart.end());
+    record_.addedMass.assign(byPart.begin(), byPart.end());
+    for (const auto& [name, added] : record_.addedMass) record_.totalAddedMass += added;
     cachedX_.resize(0);  // the mass evaluated above is without the added mass
   }
-  if (sys.numEquations() > 0) lumpedMass(x0, 0.0);  // refuses massless nodes at the start
-}
-
-double CentralDifference::totalAddedMass() const {
-  double sum = 0.0;
-  for (const auto& [part, mass] : addedByPart_) sum += mass;
-  return sum;
-}
-
-std::vector<const SlidingGroupState*> CentralDifference::groupStates() const {
-  std::vector<const SlidingGroupState*> out;
-  for (const auto* g : sys_->slidingGroups()) out.push_back(&g->state());
-  return out;
+  if (sys.numEquations() > 0) lumpedMass(x0_, 0.0);  // refuses massless nodes at the start
 }
 
 Eigen::VectorXd CentralDifference::massOf(const std::vector<Term*>& terms, const Eigen::VectorXd& x,
@@ -110,7 +67,7 @@ Eigen::VectorXd CentralDifference::massOf(const std::vector<Term*>& terms, const
   // Residual-only evaluations (no Jacobian): the inertia M a is the only part linear in a, so
   // r(a = 1) - r(a = 0) is M 1, the row sums of the mass (EX2).
   auto residualWith = [&](const Eigen::VectorXd& a) {
-    const EvalPoint p{x, zero, a, t, 0.0, 0.0, 0.0, true, 0.0, 0.0};
+    const EvalPoint p = EvalPoint::inertiaOf(x, zero, a, t, false);
     massAssembler_.begin(false);
     for (auto* term : terms) term->assemble(p, massAssembler_);
     return Eigen::VectorXd(massAssembler_.residual());
@@ -139,14 +96,13 @@ const Eigen::VectorXd& CentralDifference::lumpedMass(const Eigen::VectorXd& x, d
   // step's end positions are the next step's start: evaluated once for both).
   if (!(cachedT_ == t && cachedX_.size() == x.size() && cachedX_ == x)) {
     cachedMass_ = fixedMass_ + addedEq_;
-    if (!slidingTerms_.empty()) {
-      // M(x) 1 directly: the sliding group term evaluates only its inertia when asked.
+    if (!movingMassTerms_.empty()) {
+      // M(x) 1 directly: the terms whose mass moves evaluate only their inertia when asked.
       if (zeroDofs_.size() != x.size()) zeroDofs_ = Eigen::VectorXd::Zero(x.size());
       if (onesDofs_.size() != x.size()) onesDofs_ = Eigen::VectorXd::Ones(x.size());
-      EvalPoint p{x, zeroDofs_, onesDofs_, t, 0.0, 0.0, 0.0, true, 0.0, 0.0};
-      p.inertiaOnly = true;
+      const EvalPoint p = EvalPoint::inertiaOf(x, zeroDofs_, onesDofs_, t, true);
       massAssembler_.begin(false);
-      for (auto* term : slidingTerms_) term->assemble(p, massAssembler_);
+      for (auto* term : movingMassTerms_) term->assemble(p, massAssembler_);
       cachedMass_ += massAssembler_.residual();
     }
     cachedX_ = x;
@@ -197,8 +153,7 @@ void CentralDifference::computeAcceleration(StructuralState& s) {
   if (sys_->numEquations() == 0) return;
   sys_->updateState(s.x);
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(s.x.size());
-  EvalPoint p{s.x, s.v, zero, s.t, 0.0, 0.0, 0.0, true, 1.0, 0.0};
-  p.zeroAcceleration = true;  // EX2: the forces at a = 0
+  const EvalPoint p = EvalPoint::explicitForces(s.x, s.v, zero, s.t, 0.0);  // EX2: at a = 0
   sys_->assemble(p, false);
   const Eigen::VectorXd& massEq = lumpedMass(s.x, s.t);
   const Eigen::VectorXd& r = sys_->residual();
@@ -206,11 +161,10 @@ void CentralDifference::computeAcceleration(StructuralState& s) {
     if (const int e = sys_->dofs().eqOfDof(d); e >= 0) s.a[d] = -r[e] / massEq[e];
 }
 
-double CentralDifference::chooseStep(double lastStep, double maxStep, const Eigen::VectorXd& x,
-                                     double t) {
+double CentralDifference::chooseStep(double lastStep, const Eigen::VectorXd& x, double t) {
+  const double maxStep = maxStep_;
   const Eigen::VectorXd& massEq = lumpedMass(x, t);
-  auto S = nodalStiffnessBound(sys_->model(), membraneBound_, groupStates(), x, t);
-  if (const ContactTerm* contact = sys_->contact()) contact->addStiffnessBound(x, t, S);  // CT12
+  const auto S = sys_->stiffnessBound(x, t);
   const auto est = chute::stableStep(S, nodalMass(massEq), freeNode_);
   const double stable = settings_.safety * dampedStableStep(est.dt, settings_.stiffnessDamping);
   // EX5: the step changes only when the stable step leaves [step, 1.25 step], and then to 0.9
@@ -231,9 +185,25 @@ double CentralDifference::chooseStep(double lastStep, double maxStep, const Eige
   return dt;
 }
 
-NewtonReport CentralDifference::step(StructuralState& s, double dt) {
+StepResult CentralDifference::step(StructuralState& s, double stop, StepCounters& counters) {
+  if (counters.steps % kStableStepEvery == 0 || sys_->model().hasCutAt(s.t))
+    s.control.dt = chooseStep(s.control.dt, s.x, s.t);
+  StepResult result;
+  const double h = std::min(s.control.dt, stop - s.t);
+  result.reachesStop = h == stop - s.t;
+  const NewtonReport rep = advance(s, h);
+  if (!rep.converged) {
+    std::ostringstream why;
+    why.precision(9);
+    why << "unstable explicit step at t = " << s.t << " (" << rep.failure << ")";
+    result.accepted = false;
+    result.failure = why.str();
+  }
+  return result;
+}
+
+NewtonReport CentralDifference::advance(StructuralState& s, double dt) {
   NewtonReport rep;
-  const Model& m = sys_->model();
   const DofMap& dofs = sys_->dofs();
   const int nd = dofs.numDofs();
   StructuralState& n = next_;  // its buffers are reused from step to step
@@ -247,16 +217,8 @@ NewtonReport CentralDifference::step(StructuralState& s, double dt) {
   // node; a free slider whose part to an end node turns round over the step has passed that
   // node and is handed over to the neighbour there (notePassages), applied by the search below.
   if (sys_->drivesKinks()) sys_->crossDriven(s.x, n.x);
-  if (!sys_->slidingGroups().empty()) {
-    const Eigen::VectorXd motion = n.x - s.x;
-    for (auto* g : sys_->slidingGroups()) {
-      g->state().notePassages(s.x, motion);
-      // A slider whose approach stalls short of the node (the node, with mass, pulled along
-      // by the short part) is handed over within kExplicitArrival of the element's length
-      // (the node placed a hair ahead of it, as at an implicit arrival, RG2).
-      g->state().arriveAtNodes(m, n.x, kExplicitArrival, kernels::kSeparationFraction, true);
-    }
-  }
+  // Sliders whose motion passed or reached a node over the step (notePassages, arriveAtNodes).
+  sys_->afterExplicitMotion(s.x, n.x);
   sys_->updateState(n.x);
   sys_->onConverged(n.x);  // a slider landing on a node is handed over at commit
   // EX2 with the velocity-dependent forces (drag, mass damping) at the forward-Euler
@@ -268,9 +230,8 @@ NewtonReport CentralDifference::step(StructuralState& s, double dt) {
   const bool damped = settings_.stiffnessDamping > 0.0;
   const Eigen::VectorXd xEval =
       damped ? Eigen::VectorXd(n.x + settings_.stiffnessDamping * vStar) : Eigen::VectorXd();
-  EvalPoint p{damped ? xEval : n.x, vStar, zeroDofs_, n.t, 0.0, 0.0, 0.0, true, 1.0, dt};
-  p.zeroAcceleration = true;  // EX2: the forces at a = 0
-  p.explicitStep = dt;        // RG8
+  // EX2: the forces at a = 0; the step's length for RG8.
+  const EvalPoint p = EvalPoint::explicitForces(damped ? xEval : n.x, vStar, zeroDofs_, n.t, dt);
   if (cutSets(n.t) == fixedMassCuts_) {
     // The sliding elements' mass M(x) 1 at x_{n+1} (all lumpedMass has to evaluate while no cut
     // changes the fixed mass) alongside the assembly, on the thread that finishes its part first:

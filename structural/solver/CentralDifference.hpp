@@ -2,9 +2,10 @@
 // Explicit central-difference time integration (docs/formulation.md section 7b, EX1-EX8): lumped
 // mass, no Jacobian and no linear solve, one residual-only evaluation of every term per step, a
 // step bounded by the elements' wave speeds (StableStep) and recomputed from the current
-// positions before every step. The TimeStepper drives it as it drives GeneralizedAlpha (stops,
-// events, output, signals, checkpoints); the state it steps is (x_n, v_n, a_n), so a snapshot of
-// it is a restart bit for bit.
+// positions every kStableStepEvery steps. The TimeStepper drives it as it drives the implicit
+// schemes (stops, events, output, signals, checkpoints); the state it steps is (x_n, v_n, a_n),
+// so a snapshot of it is a restart bit for bit. An unstable (non-finite) step ends the run; it is
+// not retried.
 #include <Eigen/Core>
 #include <stdexcept>
 #include <string>
@@ -14,8 +15,7 @@
 #include "assembly/SystemAssembler.hpp"
 #include "solver/Newton.hpp"
 #include "solver/StableStep.hpp"
-#include "solver/StructuralState.hpp"
-#include "solver/StructuralSystem.hpp"
+#include "solver/TimeIntegrator.hpp"
 
 namespace chute {
 
@@ -31,14 +31,26 @@ class MasslessNodesError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-class CentralDifference {
+class CentralDifference final : public TimeIntegrator {
  public:
-  // Mass scaling (targetStep > 0) is computed here, from the model's start positions x0; a free
-  // node without mass is refused here (MasslessNodesError), before the run starts.
-  CentralDifference(StructuralSystem& sys, ExplicitSettings settings, const Eigen::VectorXd& x0);
+  // Mass scaling (targetStep > 0) is computed here, from the model's start positions; a free
+  // node without mass is refused here (MasslessNodesError), before the run starts. maxStep: the
+  // case's dt, the longest step taken.
+  CentralDifference(StructuralSystem& sys, ExplicitSettings settings, double maxStep);
 
+  IntegratorKind kind() const override { return IntegratorKind::CentralDifference; }
+  StepControl initialControl() const override { return StepControl{maxStep_, 0.0, 0}; }
   // a = M^-1 (f_ext - f_int) at (s.x, s.v, s.t), lumped mass (EX2). Throws MasslessNodesError.
-  void computeAcceleration(StructuralState& s);
+  void computeAcceleration(StructuralState& s) override;
+  // The stable step from the current positions every kStableStepEvery steps of the run (a
+  // restart keeps the count) and after a cut (EX5), cut to land on the stop; no sliver
+  // absorption (it would exceed the stable step). Fails only on a non-finite state.
+  StepResult step(StructuralState& s, double stop, StepCounters& counters) override;
+  bool takesNominalStep() const override { return false; }
+  // EB1: the balance over windows of this many steps (and at every probe row and the last step).
+  static constexpr long kBalanceStride = 10;
+  long balanceStride() const override { return kBalanceStride; }
+  const StableStepRecord* stableSteps() const override { return &record_; }
 
   // The step to take from positions x at time t, given the last step taken (the nominal step at
   // the start): safety x the stable step (with damping), with hysteresis (EX5).
@@ -51,24 +63,16 @@ class CentralDifference {
   // relative node speeds below 0.025 c (67 ft/s there, ~7x the C-9's wind) keep the estimate
   // within 10 % of its value, which the default safety 0.9 covers.
   static constexpr long kStableStepEvery = 4;
-  double chooseStep(double lastStep, double maxStep, const Eigen::VectorXd& x, double t);
+  double chooseStep(double lastStep, const Eigen::VectorXd& x, double t);
 
   // Advances s by dt (EX1-EX3) and commits the terms' histories. Fails (converged = false, the
   // terms reverted, s unchanged) only on a non-finite state: the run stops as unstable.
-  NewtonReport step(StructuralState& s, double dt);
+  NewtonReport advance(StructuralState& s, double dt);
 
   const ExplicitSettings& settings() const { return settings_; }
-  // Stable-step record for summary.json: least and largest step taken, the node that limited
-  // the least, and (t, step) whenever the step changed by more than 5 % since the last entry.
-  struct Record {
-    double least = 0.0, largest = 0.0;
-    int limitingNode = -1;
-    std::vector<std::pair<double, double>> history;
-  };
-  const Record& record() const { return record_; }
   // Mass added by mass scaling, per part (line set, membrane set, or "point masses").
-  const std::vector<std::pair<std::string, double>>& addedMass() const { return addedByPart_; }
-  double totalAddedMass() const;
+  const std::vector<std::pair<std::string, double>>& addedMass() const { return record_.addedMass; }
+  double totalAddedMass() const { return record_.totalAddedMass; }
 
  private:
   // Lumped (row-sum) mass per equation at x, t (EX2): the terms' inertia r(a = 1) - r(a = 0).
@@ -78,20 +82,18 @@ class CentralDifference {
   int cutSets(double t) const;  // line sets cut by time t
   std::vector<double> nodalMass(const Eigen::VectorXd& massEq) const;
   void refuseMassless(const Eigen::VectorXd& massEq) const;
-  std::vector<const SlidingGroupState*> groupStates() const;
 
   StructuralSystem* sys_;
   ExplicitSettings settings_;
+  double maxStep_;
   SystemAssembler massAssembler_;
-  std::vector<Term*> fixedMassTerms_, slidingTerms_;
+  std::vector<Term*> fixedMassTerms_, movingMassTerms_;
   Eigen::VectorXd fixedMass_;  // of the terms whose mass does not move, at fixedMassCuts_
   int fixedMassCuts_ = -1;     // number of cut line sets fixedMass_ was computed with
   Eigen::VectorXd x0_;         // the start positions
   Eigen::VectorXd addedEq_;    // mass scaling, per equation
-  std::vector<std::pair<std::string, double>> addedByPart_;
   std::vector<char> freeNode_;
-  MembraneBoundData membraneBound_;  // the reference part of the stable-step bound (EX6m)
-  Record record_;
+  StableStepRecord record_;
   // The last lumped mass and where it was evaluated (the active elements are those at x).
   Eigen::VectorXd cachedMass_, cachedX_;
   double cachedT_ = 0.0;

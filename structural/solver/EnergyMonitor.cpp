@@ -53,8 +53,7 @@ bool EnergyMonitor::afterStep(const StructuralState& before, const StructuralSta
   // The work of the step (EB1): loads without an energy, and the supports' reactions where the
   // supports move, at the step's equilibrium point.
   double w = 0.0;
-  EvalPoint p{eq.x, eq.v, eq.a, eq.t};
-  p.dt = dt;
+  const EvalPoint p = EvalPoint::state(eq.x, eq.v, eq.a, eq.t).withStep(dt);
   EnergyBreakdown e;
   // The work and the energy are independent evaluations: on the assembly's two threads when it
   // has them (each on one thread, in its own order: the same bits as one after the other).

@@ -1,14 +1,11 @@
 #pragma once
 // Implicit generalized-alpha time integration (Chung & Hulbert 1993, docs/formulation.md
 // section 7): the coefficients, the predictor, the Newmark update formulas and the evaluation
-// point. The nonlinear solve is Newton's (solver/Newton.hpp); the choice of steps, events and
-// retries is the TimeStepper's. The integrator sees one matrix J = cx K + cv C + ca M.
+// point. The nonlinear solve is Newton's (solver/Newton.hpp); step control, events and retries
+// are ImplicitIntegrator's. The integrator sees one matrix J = cx K + cv C + ca M.
 #include <Eigen/Core>
 
-#include "solver/EquilibriumPoint.hpp"
-#include "solver/Newton.hpp"
-#include "solver/StructuralState.hpp"
-#include "solver/StructuralSystem.hpp"
+#include "solver/ImplicitIntegrator.hpp"
 
 namespace chute {
 
@@ -20,47 +17,33 @@ namespace chute {
 //    a node) are consistent at the step's end; with Chung-Hulbert a massless node's end-of-step
 //    position is off equilibrium by O(dt^2), undamped for rho_inf = 1.
 // rho_inf = 1 gives Newmark's trapezoidal rule with Bossak.
-// EnergyMomentum is not of the family: the midpoint-type scheme with discrete gradients
-// (solver/EnergyMomentumStep.hpp, docs/formulation.md section 10); rho_inf is not used.
-enum class AlphaScheme { Bossak, ChungHulbert, EnergyMomentum };
+enum class AlphaScheme { Bossak, ChungHulbert };
 
 struct GeneralizedAlphaParams {
   double alphaM, alphaF, beta, gamma;
   static GeneralizedAlphaParams fromRhoInf(double rhoInf, AlphaScheme scheme);
 };
 
-class GeneralizedAlpha {
+class GeneralizedAlpha final : public ImplicitIntegrator {
  public:
-  // emDissipation: the energy-decaying parameter chi of EnergyMomentum (EM8; 0: conserving);
-  // emOrder: 2, or 4 by the symmetric composition of three EnergyMomentum steps (EM14).
   GeneralizedAlpha(StructuralSystem& sys, double rhoInf, AlphaScheme scheme, NewtonSettings newton,
-                   double emDissipation = 0.0, int emOrder = 2);
+                   double dtNominal, double dtMin);
 
-  // Initial state at rest or moving: positions from the model, prescribed velocities.
-  StructuralState initialState() const;
-  // Consistent acceleration M a = f_ext - f_int at s (massless dofs get a = 0).
-  void computeInitialAcceleration(StructuralState& s);
-
-  // Advances s by dt and commits the terms' histories. On failure s is left as it was and the
-  // terms' trial changes are reverted.
-  NewtonReport step(StructuralState& s, double dt);
-
+  IntegratorKind kind() const override {
+    return scheme_ == AlphaScheme::Bossak ? IntegratorKind::Bossak
+                                          : IntegratorKind::GeneralizedAlpha;
+  }
   // Where the equations of the step that ended in s hold (EquilibriumPoint.hpp): s itself for
   // Bossak, the alpha-point for Chung-Hulbert (a state no step of this integrator ended in: s).
-  EquilibriumPoint equilibrium(const StructuralState& s) const { return eq_.of(s); }
+  EquilibriumPoint equilibrium(const StructuralState& s) const override { return eq_.of(s); }
 
   const GeneralizedAlphaParams& params() const { return p_; }
-  Newton& newton() { return newton_; }
-  const LinearSolver& linearSolver() const { return newton_.linearSolver(); }
-  LinearSolver& linearSolver() { return newton_.linearSolver(); }
+
+  NewtonReport tryStep(StructuralState& s, double dt) override;
 
  private:
-  StructuralSystem* sys_;
   GeneralizedAlphaParams p_;
-  Newton newton_;
   AlphaScheme scheme_;
-  int emOrder_ = 2;
-  double emDissipation_;
   KeptEquilibrium eq_;
 };
 

@@ -13,9 +13,7 @@ class StaticProblem final : public NewtonProblem {
  public:
   StaticProblem(const Eigen::VectorXd& x, double t, double loadFactor)
       : x_(x), zero_(Eigen::VectorXd::Zero(x.size())), t_(t), loadFactor_(loadFactor) {}
-  EvalPoint point() override {
-    return EvalPoint{x_, zero_, zero_, t_, 1.0, 0.0, 0.0, false, loadFactor_, 0.0};
-  }
+  EvalPoint point() override { return EvalPoint::statics(x_, zero_, t_, loadFactor_); }
   void afterUpdate() override {}
 
  private:

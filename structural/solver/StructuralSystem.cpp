@@ -5,57 +5,32 @@
 #include <cmath>
 #include <string>
 
-#include "terms/CableTerm.hpp"
-#include "terms/FaceDragTerm.hpp"
-#include "terms/LineDragTerm.hpp"
-#include "terms/MembraneTerm.hpp"
-#include "terms/PointMassTerm.hpp"
-#include "terms/PressureTerm.hpp"
-#include "terms/SlidingGroupTerm.hpp"
-#include "terms/contact/ContactTerm.hpp"
-
 namespace chute {
 
-StructuralSystem::StructuralSystem(const Model& model, SliderSearch search,
+StructuralSystem::StructuralSystem(const Model& model, TermOptions options,
                                    std::vector<std::unique_ptr<Term>> extraTerms)
-    : model_(&model), dofs_(model), assembler_(dofs_), secondAssembler_(dofs_) {
-  // Only what the scene uses: a term exists only if the model has something for it.
-  if (!model.cables.empty()) terms_.push_back(std::make_unique<CableTerm>(model));
-  for (size_t g = 0; g < model.groups.size(); ++g) {
-    auto t = std::make_unique<SlidingGroupTerm>(model, static_cast<int>(g), search);
-    groups_.push_back(t.get());
-    terms_.push_back(std::move(t));
-  }
-  if (std::any_of(model.pointMass.begin(), model.pointMass.end(), [](double m) { return m > 0; }))
-    terms_.push_back(std::make_unique<PointMassTerm>(model));
-  if (!model.membranes.empty()) {
-    auto t = std::make_unique<MembraneTerm>(model);
-    membranes_ = t.get();
-    terms_.push_back(std::move(t));
-  }
-  if (!model.pressures.empty()) terms_.push_back(std::make_unique<PressureTerm>(model));
-  if (!model.drags.empty()) {
-    std::vector<const SlidingGroupState*> states;
-    for (auto* g : groups_) states.push_back(&g->state());
-    terms_.push_back(std::make_unique<LineDragTerm>(model, states));
-  }
-  if (!model.faceDrags.empty()) terms_.push_back(std::make_unique<FaceDragTerm>(model));
-  if (model.contact.enabled) {
-    std::vector<const SlidingGroupState*> states;
-    for (auto* g : groups_) states.push_back(&g->state());
-    auto t = std::make_unique<ContactTerm>(model, states);
-    contact_ = t.get();
-    terms_.push_back(std::move(t));
-  }
-  for (auto& t : extraTerms) terms_.push_back(std::move(t));
-
+    : model_(&model),
+      dofs_(model),
+      list_(model, options, std::move(extraTerms)),
+      terms_(list_.terms()),
+      assembler_(dofs_),
+      secondAssembler_(dofs_) {
   for (const auto& t : terms_) {
-    if (auto* e = t->events()) events_.push_back(e);
+    if (auto* e = t->events()) {
+      events_.push_back(e);
+      watchesExplicitMotion_ = watchesExplicitMotion_ || e->watchesExplicitMotion();
+    }
     if (t->dynamicCouplings()) dynamicCouplings_.push_back(t.get());
   }
 
+  for (const auto& t : terms_) searches_ = searches_ || t->searchesPerUpdate() > 0;
   for (int d = 0; d < dofs_.numDofs(); ++d)
     if (dofs_.eqOfDof(d) < 0) constrainedDofs_.push_back(d);
+  freeNode_.assign(model.numNodes(), 0);
+  for (int i = 0; i < model.numNodes(); ++i) {
+    const auto& c = model.constraint[i];
+    freeNode_[i] = !(c.fixed[0] && c.fixed[1] && c.fixed[2]);
+  }
 
   std::vector<std::vector<int>> cliques;
   for (const auto& t : terms_) t->addCouplings(cliques);
@@ -63,56 +38,20 @@ StructuralSystem::StructuralSystem(const Model& model, SliderSearch search,
   splitAssembly();
 }
 
-namespace {
-
-int membranesInSet(const Model& m, int set) {
-  return static_cast<int>(std::count_if(m.membranes.begin(), m.membranes.end(),
-                                        [set](const MembraneElement& e) { return e.set == set; }));
-}
-
-}  // namespace
-
-// Terms that read only the model and their own state (membranes, pressure, face drag, cables, a
-// coupled flow's surface loads) may be assembled on the second thread; sliding groups stay on the
-// first, with line drag, which reads their states, point masses and terms from outside the model.
-// The costs are per element relative to a membrane triangle, from a per-step profile of the
-// explicit C-9 scene (residual only): quad membrane 3, pressure face 0.35, face-drag face 0.55,
-// line element (cable or sliding chain) 0.55, line-drag segment 0.4. Largest first, each to the
-// lighter part; the order of terms within a part is the constructor's. The explicit step's own work
-// between assemblies also runs on the first thread; giving that thread less assembly to make up for
-// it was measured slower on the C-9 (the second thread then waits).
+// Terms that read only the model and their own state (Term::assemblesApart) may be assembled on
+// the second thread; the others stay on the first. Costs are the terms' own estimates
+// (Term::assemblyCost, per element relative to a membrane triangle). Largest first, each to the
+// lighter part; the order of terms within a part is the term list's. The explicit step's own work
+// between assemblies also runs on the first thread; giving that thread less assembly to make up
+// for it was measured slower on the C-9 (the second thread then waits).
 void StructuralSystem::splitAssembly() {
-  const Model& m = *model_;
-  double tri = 0.0, quad = 0.0;
-  for (const auto& e : m.membranes) (e.numNodes == 3 ? tri : quad) += 1.0;
   std::vector<std::pair<double, Term*>> movable;
   double first = 0.0;
   for (const auto& t : terms_) {
-    const std::string kind = t->name();
-    double cost = 0.0;
-    if (kind == "membranes") {
-      cost = tri + 3.0 * quad;
-    } else if (kind == "pressure") {
-      for (const auto& l : m.pressures) cost += 0.35 * membranesInSet(m, l.set);
-    } else if (kind == "external_load") {  // a coupled flow's pressures on the wet surface
-      cost = 0.35 * (tri + quad);
-    } else if (kind == "face_drag") {
-      for (const auto& l : m.faceDrags) cost += 0.55 * membranesInSet(m, l.set);
-    } else if (kind == "cables") {
-      cost = 0.55 * static_cast<double>(m.cables.size());
-    } else {
-      continue;
-    }
-    movable.emplace_back(cost, t.get());
-  }
-  for (const auto& g : m.groups) first += 0.55 * g.numElements();
-  for (const auto& d : m.drags) {
-    if (d.lineSet < 0) {
-      first += 0.4 * static_cast<double>(d.edges.size());
-      continue;
-    }
-    for (const auto& c : m.cables) first += c.set == d.lineSet ? 0.4 : 0.0;
-    for (const auto& g : m.groups) first += g.set == d.lineSet ? 0.4 * g.numElements() : 0.0;
+    if (t->assemblesApart())
+      movable.emplace_back(t->assemblyCost(), t.get());
+    else
+      first += t->assemblyCost();
   }
   std::stable_sort(movable.begin(), movable.end(),
                    [](const auto& a, const auto& b) { return a.first > b.first; });
@@ -135,19 +74,41 @@ void StructuralSystem::splitAssembly() {
   runner_ = std::make_unique<TwoPartRunner>();
 }
 
-const std::vector<std::string>& StructuralSystem::termKinds() {
-  static const std::vector<std::string> kinds{"cables",    "sliding_group", "point_masses",
-                                              "membranes", "pressure",      "drag",
-                                              "face_drag", "contact"};
-  return kinds;
+StructuralState StructuralSystem::initialState() const {
+  const Model& m = *model_;
+  StructuralState s;
+  const int n = 3 * m.numNodes();
+  s.x.resize(n);
+  for (int i = 0; i < m.numNodes(); ++i) s.x.segment<3>(3 * i) = m.X[i] + m.u0[i];
+  s.v.setZero(n);
+  s.a.setZero(n);
+  for (int d = 0; d < n; ++d)
+    if (dofs_.eqOfDof(d) < 0) s.v[d] = m.constraint[d / 3].speed(d % 3, 0.0);
+  return s;
+}
+
+void StructuralSystem::prepareFor(const IntegrationTraits& traits) {
+  for (const auto& t : terms_) t->prepareFor(traits);
+}
+
+std::vector<double> StructuralSystem::stiffnessBound(const Eigen::VectorXd& x, double t) const {
+  std::vector<double> S(model_->numNodes(), 0.0);
+  for (const auto& term : terms_) term->addStiffnessBound(x, t, freeNode_, S);
+  return S;
+}
+
+void StructuralSystem::afterExplicitMotion(const Eigen::VectorXd& x, Eigen::VectorXd& xEnd) {
+  if (!watchesExplicitMotion_) return;
+  const Eigen::VectorXd motion = xEnd - x;
+  for (auto* e : events_)
+    if (e->watchesExplicitMotion()) e->afterExplicitMotion(x, motion, xEnd);
 }
 
 int StructuralSystem::updateState(const Eigen::VectorXd& x) {
-  if (groups_.empty()) return 0;  // no sliding search without sliding groups
+  if (!searches_) return 0;  // no search without configuration-dependent state
   ScopedTimer timer(timings_.search);
   ++timings_.searches;
-  for (const auto* g : groups_)
-    assembler_.work().sliderSearch += static_cast<long>(g->state().def().sliders.size());
+  for (const auto& t : terms_) assembler_.work().sliderSearch += t->searchesPerUpdate();
   int changes = 0;
   for (const auto& t : terms_) changes += t->updateState(x);
   return changes;
@@ -214,9 +175,7 @@ StructuralSystem::NodalForces StructuralSystem::nodalForces(const Eigen::VectorX
   NodalForces f;
   auto residualOver = [&](bool loadTerms, double load) {
     Eigen::VectorXd out = Eigen::VectorXd::Zero(n);
-    EvalPoint p{x, v, a, t};
-    p.inertia = inertia;
-    p.loadFactor = load;
+    const EvalPoint p = EvalPoint::state(x, v, a, t).withInertia(inertia).withLoadFactor(load);
     assembler_.captureAllDofs(&out);
     assembler_.begin(false);
     for (const auto& term : terms_)

@@ -10,26 +10,18 @@
 #include "assembly/Term.hpp"
 #include "assembly/TwoPartRunner.hpp"
 #include "model/Model.hpp"
-#include "model/SlidingGroupState.hpp"
 #include "solver/StructuralState.hpp"
 #include "solver/Timings.hpp"
+#include "terms/TermList.hpp"
 
 namespace chute {
 
-class SlidingGroupTerm;
-class MembraneTerm;
-class ContactTerm;
-
 class StructuralSystem {
  public:
-  // extraTerms: terms the model does not describe (loads supplied by a coupled flow solver);
-  // they join the sparsity pattern like the others.
-  StructuralSystem(const Model& model, SliderSearch search,
+  // The terms of the model (terms/TermList.hpp); extraTerms: terms the model does not describe
+  // (loads supplied by a coupled flow solver), which join the sparsity pattern like the others.
+  StructuralSystem(const Model& model, TermOptions options,
                    std::vector<std::unique_ptr<Term>> extraTerms = {});
-
-  // The names of every kind of term the constructor may create (Term::name()), for the test
-  // that every kind's history round-trips.
-  static const std::vector<std::string>& termKinds();
 
   const Model& model() const { return *model_; }
   const DofMap& dofs() const { return dofs_; }
@@ -39,6 +31,18 @@ class StructuralSystem {
   // The dofs without an equation (fixed or prescribed), in order.
   const std::vector<int>& constrainedDofs() const { return constrainedDofs_; }
   int numEquations() const { return dofs_.numEquations(); }
+
+  // The state a run starts from: the model's positions X + u0, prescribed velocities on the
+  // constrained dofs, zero acceleration (the integrator computes it), t = 0.
+  StructuralState initialState() const;
+  // Whether node i has a free dof (its rows are part of the free system).
+  const std::vector<char>& freeNodes() const { return freeNode_; }
+
+  // Tells every term which kind of integrator steps the system (Term::prepareFor), once.
+  void prepareFor(const IntegrationTraits& traits);
+  // Per node, the row sum S_i of the stiffness at x, t that bounds the explicit step's highest
+  // frequency, omega^2 <= max S_i / m_i (EX5): the terms' bounds added up in term order.
+  std::vector<double> stiffnessBound(const Eigen::VectorXd& x, double t) const;
 
   // Discrete state updates (sliding search) for trial positions; returns the number of changes.
   int updateState(const Eigen::VectorXd& x);
@@ -71,6 +75,9 @@ class StructuralSystem {
   bool drivesKinks() const;
   int crossDriven(const Eigen::VectorXd& from, Eigen::VectorXd& to);
   double displacementFloor() const;
+  // An explicit step moved the positions from x to xEnd (EX3): the sources that watch the motion
+  // note the kinks passed and may move xEnd onto one reached.
+  void afterExplicitMotion(const Eigen::VectorXd& x, Eigen::VectorXd& xEnd);
 
   // Nodal forces over all dofs at a converged state (for output): the support reactions
   // (the residual at constrained dofs, zero elsewhere) and the applied loads (gravity, pressure,
@@ -102,14 +109,10 @@ class StructuralSystem {
   void addToDofs(const Eigen::VectorXd& eqVec, Eigen::VectorXd& dofVec, double scale = 1.0) const;
   Eigen::VectorXd gatherEquations(const Eigen::VectorXd& dofVec) const;
 
-  const std::vector<std::unique_ptr<Term>>& terms() const { return terms_; }
-  // The sliding group terms, in the model's group order (empty without sliding groups).
-  const std::vector<SlidingGroupTerm*>& slidingGroups() const { return groups_; }
-  // The membrane term (nullptr without membranes).
-  const MembraneTerm* membranes() const { return membranes_; }
-  MembraneTerm* membranes() { return membranes_; }
-  // The contact term (nullptr without [contact]).
-  const ContactTerm* contact() const { return contact_; }
+  const std::vector<std::unique_ptr<Term>>& terms() const { return list_.terms(); }
+  // The terms by kind, for output that reports what a kind of term knows.
+  const TermList& termList() const { return list_; }
+  TermList& termList() { return list_; }
 
   // Work done so far, per kind of term (kernel evaluations, searches, energies, output frames).
   WorkCounters work() const {
@@ -126,11 +129,12 @@ class StructuralSystem {
   const Model* model_;
   DofMap dofs_;
   std::vector<int> constrainedDofs_;  // the dofs without an equation, in order (prescribeMotion)
-  std::vector<std::unique_ptr<Term>> terms_;
+  std::vector<char> freeNode_;
+  TermList list_;
+  const std::vector<std::unique_ptr<Term>>& terms_;  // list_'s
   std::vector<EventSource*> events_;
-  std::vector<SlidingGroupTerm*> groups_;
-  MembraneTerm* membranes_ = nullptr;
-  ContactTerm* contact_ = nullptr;
+  bool watchesExplicitMotion_ = false;
+  bool searches_ = false;  // some term has configuration-dependent state (Term::updateState)
   std::vector<Term*> dynamicCouplings_;  // terms whose couplings move (contact)
   bool patternStale_ = false;            // their couplings changed since the pattern was built
   SystemAssembler assembler_;

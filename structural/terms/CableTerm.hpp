@@ -21,6 +21,10 @@ class CableTerm final : public Term, public EventSource {
   // Measured along the step's whole motion: Newton's later updates may take a cable across.
   double stepEventFraction(const Eigen::VectorXd& start, const Eigen::VectorXd& motion) override;
   EventSource* events() override { return this; }
+  void addStiffnessBound(const Eigen::VectorXd& x, double t, const std::vector<char>& free,
+                         std::vector<double>& S) const override;
+  double assemblyCost() const override;
+  bool assemblesApart() const override { return true; }
 
  private:
   const Model* m_;

@@ -5,7 +5,7 @@
 
 #include "assembly/Term.hpp"
 #include "model/Model.hpp"
-#include "model/SlidingGroupState.hpp"
+#include "terms/sliding/SlidingGroupState.hpp"
 
 namespace chute {
 
@@ -20,6 +20,8 @@ class LineDragTerm final : public Term {
   void addEnergy(const Eigen::VectorXd&, const Eigen::VectorXd&, double,
                  EnergyBreakdown&) const override {}
   bool symmetricJacobian() const override { return false; }
+  // Reads the sliding groups' states: assembled with them, on the first thread.
+  double assemblyCost() const override;
 
  private:
   void addSegment(int a, int b, const kernels::Vec3& wind, double c, const EvalPoint& p,

@@ -31,6 +31,46 @@ MembraneTerm::MembraneTerm(const Model& m) : m_(&m), states_(m.membranes.size())
   }
 }
 
+void MembraneTerm::prepareFor(const IntegrationTraits& traits) {
+  if (traits.explicitSteps) makeBound();
+}
+
+void MembraneTerm::makeBound() const {
+  if (!bound_.empty()) return;
+  bound_.reserve(m_->membranes.size());
+  for (const auto& e : m_->membranes) {
+    // On the reference geometry: the initial one shrunk by the set's prestrain.
+    const double shrink = 1.0 / (1.0 + m_->membraneSets[e.set].prestrain);
+    std::array<Vec3, 4> X;
+    X.fill(Vec3::Zero());
+    for (int i = 0; i < e.numNodes; ++i) X[i] = shrink * m_->X[e.nodes[i]];
+    bound_.push_back(
+        kernels::membraneBoundReference(X, e.numNodes, m_->membraneMaterials[e.material]));
+  }
+}
+
+void MembraneTerm::addStiffnessBound(const Eigen::VectorXd& x, double /*t*/,
+                                     const std::vector<char>& /*free*/,
+                                     std::vector<double>& S) const {
+  makeBound();
+  for (size_t k = 0; k < m_->membranes.size(); ++k) {
+    const auto& e = m_->membranes[k];
+    if (!(bound_[k].perNode > 0.0)) continue;
+    std::array<Vec3, 4> xe;
+    xe.fill(Vec3::Zero());
+    for (int i = 0; i < e.numNodes; ++i) xe[i] = x.segment<3>(3 * e.nodes[i]);
+    const double perNode = kernels::membraneNodeBound(bound_[k], xe, e.numNodes);  // EX6m
+    for (int i = 0; i < e.numNodes; ++i) S[e.nodes[i]] += perNode;
+  }
+}
+
+// A triangle is the unit; a quad costs 3 (a per-step profile of the explicit C-9).
+double MembraneTerm::assemblyCost() const {
+  double tri = 0.0, quad = 0.0;
+  for (const auto& e : m_->membranes) (e.numNodes == 3 ? tri : quad) += 1.0;
+  return tri + 3.0 * quad;
+}
+
 void MembraneTerm::addCouplings(std::vector<std::vector<int>>& cliques) const {
   for (const auto& e : m_->membranes)
     cliques.emplace_back(e.nodes.begin(), e.nodes.begin() + e.numNodes);

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "assembly/Term.hpp"
+#include "kernels/StiffnessBound.hpp"
 #include "model/Model.hpp"
 
 namespace chute {
@@ -32,6 +33,11 @@ class MembraneTerm final : public Term {
   bool hasHistory() const override { return true; }
   void save(History& h) const override;
   void load(HistoryReader& h) override;
+  void prepareFor(const IntegrationTraits& traits) override;
+  void addStiffnessBound(const Eigen::VectorXd& x, double t, const std::vector<char>& free,
+                         std::vector<double>& S) const override;
+  double assemblyCost() const override;
+  bool assemblesApart() const override { return true; }
   // Elements around a node, for stress probes.
   std::vector<int> elementsAt(int node) const;
 
@@ -48,6 +54,9 @@ class MembraneTerm final : public Term {
   std::vector<kernels::MembraneReference<3>> refs3_;
   std::vector<kernels::MembraneReference<4>> refs4_;
   mutable std::vector<ElementState> states_;
+  // The reference part of each element's stable-step bound (EX6m), made for explicit steps.
+  mutable std::vector<kernels::MembraneBoundReference> bound_;
+  void makeBound() const;
   // Positions of the last assembly, and whether states_' principal values are still to be
   // computed from them.
   Eigen::VectorXd lastX_;

@@ -16,6 +16,8 @@ class PressureTerm final : public Term {
   void addEnergy(const Eigen::VectorXd&, const Eigen::VectorXd&, double,
                  EnergyBreakdown&) const override {}
   bool symmetricJacobian() const override { return false; }
+  double assemblyCost() const override;
+  bool assemblesApart() const override { return true; }
 
  private:
   const Model* m_;

@@ -37,7 +37,7 @@ std::string writeCase(double dt, double interval) {
 
 TEST(OutputStepCap, AnIntervalBelowDtCapsTheStepAndSaysSo) {
   const RunResult r = runCase(readCase(writeCase(0.01, 0.004)), RunOptions{});
-  ASSERT_EQ(r.status, "completed");
+  ASSERT_EQ(r.status, RunStatus::Completed);
   EXPECT_EQ(r.steps, 25);  // 0.1 / 0.004: every step is the interval
   EXPECT_DOUBLE_EQ(r.outputStepCap, 0.004);
   ASSERT_EQ(r.notes.size(), 1u);
@@ -49,7 +49,7 @@ TEST(OutputStepCap, AnIntervalBelowDtCapsTheStepAndSaysSo) {
 
 TEST(OutputStepCap, AnIntervalOfAtLeastDtSaysNothing) {
   const RunResult r = runCase(readCase(writeCase(0.01, 0.02)), RunOptions{});
-  ASSERT_EQ(r.status, "completed");
+  ASSERT_EQ(r.status, RunStatus::Completed);
   EXPECT_EQ(r.steps, 10);
   EXPECT_TRUE(std::isnan(r.outputStepCap));
   EXPECT_TRUE(r.notes.empty());

@@ -69,7 +69,7 @@ TEST(Restart, ReproducesTheUninterruptedRunBitForBitWithoutRepeatedOutputTimes) 
   const CaseSpec spec = bead5WithVtu();
   const fs::path whole = freshDir("whole"), split = freshDir("split");
   const RunResult a = runCase(spec, RunOptions::writingTo(whole.string()));
-  ASSERT_EQ(a.status, "completed");
+  ASSERT_EQ(a.status, RunStatus::Completed);
 
   // The same run with a checkpoint every 300 steps: the file left holds the state at step 600
   // (the later ones overwrite the earlier). Restart from it into the same directory: the probes
@@ -77,12 +77,12 @@ TEST(Restart, ReproducesTheUninterruptedRunBitForBitWithoutRepeatedOutputTimes) 
   RunOptions withCheckpoints = RunOptions::writingTo(split.string());
   withCheckpoints.checkpointEvery = 300;
   const RunResult b = runCase(spec, withCheckpoints);
-  ASSERT_EQ(b.status, "completed");
+  ASSERT_EQ(b.status, RunStatus::Completed);
   EXPECT_EQ(b.checkpoints, a.steps / 300);
   RunOptions restart = RunOptions::writingTo(split.string());
   restart.restartFile = (split / "checkpoint.cbor").string();
   const RunResult c = runCase(spec, restart);
-  ASSERT_EQ(c.status, "completed");
+  ASSERT_EQ(c.status, RunStatus::Completed);
 
   const std::string pa = readFile(whole / "probes.csv"), pc = readFile(split / "probes.csv");
   std::printf("restart: %ld steps uninterrupted, %ld after restart; probes.csv %zu bytes, %s\n",
@@ -117,7 +117,7 @@ TEST(Restart, RefusesACheckpointOfAnotherModel) {
   RunOptions o = RunOptions::writingTo(dir.string());
   o.checkpointEvery = 50;
   CaseSpec spec = readCase(CHUTE_SOURCE_DIR "/cases/bead_1.toml");
-  ASSERT_EQ(runCase(spec, o).status, "completed");
+  ASSERT_EQ(runCase(spec, o).status, RunStatus::Completed);
   RunOptions r = RunOptions::writingTo(freshDir("other_restart").string());
   r.restartFile = (dir / "checkpoint.cbor").string();
   spec.model.X[0].x() += 1e-9;  // a different model with the same name

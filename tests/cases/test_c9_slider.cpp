@@ -40,8 +40,8 @@ double at(const RunResult& r, const std::string& name, double t) {
 TEST(C9Slider, ReefsAndComesDownTheLinesWithoutCuttingSteps) {
   const auto slider = runShipped("c9_slider", 1.0);
   const auto open = runShipped("c9_no_slider", 0.75);
-  ASSERT_EQ(slider.status, "completed") << slider.reason;
-  ASSERT_EQ(open.status, "completed") << open.reason;
+  ASSERT_EQ(slider.status, RunStatus::Completed) << slider.reason;
+  ASSERT_EQ(open.status, RunStatus::Completed) << open.reason;
   const long handovers = std::accumulate(slider.handovers.begin(), slider.handovers.end(), 0L);
   const double r75 = at(slider, "skirt.mean", 0.75), r100 = at(slider, "skirt.mean", 1.0);
   const double open75 = at(open, "skirt.mean", 0.75);

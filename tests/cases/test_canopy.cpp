@@ -26,7 +26,7 @@ TEST(Hencky, CentreDeflectionConvergesUnderRefinement) {
     const auto spec =
         readCase(CHUTE_SOURCE_DIR "/cases/hencky.toml", {"membranes.0.rings=" + std::to_string(n)});
     const auto r = runCase(spec, RunOptions{});
-    ASSERT_EQ(r.status, "completed") << r.reason;
+    ASSERT_EQ(r.status, RunStatus::Completed) << r.reason;
     err.push_back(r.reference->relative());
     std::printf(
         "Hencky, %2d rings (%5d dofs): centre deflection error %.4f %% of w0 = %.5f, "
@@ -141,7 +141,7 @@ rings = 6
     StructuralSystem sys(m, spec.solver.search);
     Eigen::VectorXd x(3 * m.numNodes()), zero = Eigen::VectorXd::Zero(3 * m.numNodes());
     for (int i = 0; i < m.numNodes(); ++i) x.segment<3>(3 * i) = m.X[i] + m.u0[i];
-    sys.assemble(EvalPoint{x, zero, zero, 0.0, 1.0, 0.0, 0.0, false, 1.0}, false);
+    sys.assemble(EvalPoint::statics(x, zero, 0.0, 1.0), false);
     const double f = sys.residual().norm();
     std::printf(
         "gathered canopy (60 %% of the flat pattern), wrinkling %s: |internal force| %.3e\n",
@@ -193,7 +193,7 @@ kind = "energy"
     };
     const auto spec = readCase(file, {"solver.dt=" + num(dt), "solver.t_end=" + num(1000 * dt)});
     const auto r = runCase(spec, RunOptions{});
-    ASSERT_EQ(r.status, "completed");
+    ASSERT_EQ(r.status, RunStatus::Completed);
     EXPECT_EQ(r.steps, 1000);
     const double scale = std::max(r.kineticMax, std::abs(r.energyInitial));
     drift = r.energyMaxDrift / scale;
@@ -246,7 +246,7 @@ name = "d"
 kind = "node_velocity"
 )"));
   const auto r = runCase(spec, RunOptions{});
-  ASSERT_EQ(r.status, "completed") << r.reason;
+  ASSERT_EQ(r.status, RunStatus::Completed) << r.reason;
   // Lumped node masses: a third of each adjacent face's mass.
   const auto& m = spec.model;
   std::vector<double> mass(m.numNodes(), 0.0);
@@ -290,7 +290,7 @@ TEST(Airbag, InflatesToRestWithWrinklingAndFewNewtonIterations) {
     }();
     const auto spec = readCase(writeCase(std::string("airbag_") + div, text));
     const auto r = runCase(spec, RunOptions{});
-    ASSERT_EQ(r.status, "completed") << r.reason;
+    ASSERT_EQ(r.status, RunStatus::Completed) << r.reason;
     const auto& last = r.rows.back();
     // columns: energy (4), centre (3), fabric (3), centre_stress (2)
     const double kinetic = last[0], wz = last[6], taut = last[7], wrinkled = last[8];

@@ -14,12 +14,12 @@ TEST(ShippedCases, EveryCaseRunsAFewSteps) {
     if (e.path().extension() != ".toml") continue;
     SCOPED_TRACE(e.path().string());
     CaseSpec spec = readCase(e.path().string());
-    if (spec.solver.type == "dynamic")
+    if (spec.solver.type == AnalysisType::Dynamic)
       spec = readCase(e.path().string(), {"solver.t_end=" + std::to_string(5 * spec.solver.dt)});
     const auto r = runCase(spec, RunOptions{});
     std::printf("%-40s %s, %ld steps, %.2f Newton iterations/step\n", e.path().filename().c_str(),
-                r.status.c_str(), r.steps, r.newtonPerStep());
-    EXPECT_EQ(r.status, "completed");
+                std::string(runStatusName(r.status)).c_str(), r.steps, r.newtonPerStep());
+    EXPECT_EQ(r.status, RunStatus::Completed);
     ++count;
   }
   EXPECT_GE(count, 3);

@@ -49,7 +49,7 @@ TEST(CutEvent, SetHoldsUntilItsTimeThenTheMassFallsFreely) {
   for (double tc : {0.0, 0.1}) {
     const CaseSpec spec = readCase(writeCase("cut_event", tc, "holder"));
     const RunResult r = runCase(spec, RunOptions{});
-    ASSERT_EQ(r.status, "completed");
+    ASSERT_EQ(r.status, RunStatus::Completed);
     double before = 0.0, after = 0.0, forceBefore = 0.0, forceAfter = 0.0;
     bool landed = false;
     for (size_t k = 0; k < r.times.size(); ++k) {

@@ -13,7 +13,7 @@
 #include "app/RunCase.hpp"
 #include "case/CaseError.hpp"
 #include "case/CaseSpec.hpp"
-#include "terms/SlidingGroupTerm.hpp"
+#include "terms/sliding/SlidingGroupTerm.hpp"
 
 using namespace chute;
 
@@ -25,8 +25,9 @@ void report(const std::string& label, const RunResult& r) {
   std::printf(
       "%-40s %s t=%.2f  ellipse error %.3e = %.4f %% of the motion  energy drift %.3e (max "
       "kinetic %.3e)  steps %ld  Newton/step %.2f\n",
-      label.c_str(), r.status.c_str(), r.finalTime, r.reference->maxError,
-      100 * r.reference->relative(), r.energyMaxDrift, r.kineticMax, r.steps, r.newtonPerStep());
+      label.c_str(), std::string(runStatusName(r.status)).c_str(), r.finalTime,
+      r.reference->maxError, 100 * r.reference->relative(), r.energyMaxDrift, r.kineticMax, r.steps,
+      r.newtonPerStep());
 }
 }  // namespace
 
@@ -40,8 +41,8 @@ TEST(EnergyMomentumCases, BeadOneAgainstTheEllipse) {
   report("bead_1 bossak (shipped)", b4);
   report("bead_1 energy_momentum to 20 s", e20);
   report("bead_1 bossak rho_inf = 1 to 20 s", b20);
-  ASSERT_EQ(e4.status, "completed");
-  ASSERT_EQ(e20.status, "completed");
+  ASSERT_EQ(e4.status, RunStatus::Completed);
+  ASSERT_EQ(e20.status, RunStatus::Completed);
   EXPECT_LE(e4.reference->relative(), 5e-3);  // the shipped case's bound (test_verification)
   EXPECT_LE(e20.reference->relative(), 5e-3);
   // EM7 with EM11: the energy is conserved to Newton's tolerance.
@@ -59,8 +60,8 @@ TEST(EnergyMomentumCases, BeadFiveAgainstTheEllipseWithItsChainCondensed) {
   long handovers = 0;
   for (long h : e20.handovers) handovers += h;
   std::printf("bead_5 energy_momentum to 20 s: %ld rope nodes passed\n", handovers);
-  ASSERT_EQ(e.status, "completed");
-  ASSERT_EQ(e20.status, "completed");
+  ASSERT_EQ(e.status, RunStatus::Completed);
+  ASSERT_EQ(e20.status, RunStatus::Completed);
   EXPECT_LE(e.reference->relative(), 5e-3);  // the shipped case's bound (test_verification)
   EXPECT_LE(e.reference->relative(), 2.0 * b.reference->relative());
   EXPECT_GE(handovers, 20);                              // it crosses the rope's nodes
@@ -100,8 +101,8 @@ TEST(EnergyMomentumCases, BeadOnARopeWithMassTurnsWhereCentralDifferencesTurnIt)
   };
   const auto em = run({"solver.integrator=\"energy_momentum\"", "solver.dt=1e-3"});
   const auto cd = run({"solver.integrator=\"central_difference\""});
-  ASSERT_EQ(em.status, "completed") << em.reason;
-  ASSERT_EQ(cd.status, "completed") << cd.reason;
+  ASSERT_EQ(em.status, RunStatus::Completed) << em.reason;
+  ASSERT_EQ(cd.status, RunStatus::Completed) << cd.reason;
   auto turn = [](const RunResult& r) {
     const auto col =
         std::find(r.columns.begin(), r.columns.end(), "bead_slider.s") - r.columns.begin();

@@ -58,7 +58,7 @@ TEST(FaceDragPlate, FallingPlateReachesAnalyticTerminalVelocity) {
   for (const char* element : {"quad", "triangle"}) {
     const auto spec = readCase(writeCase(std::string("plate_") + element, plateCase(element)));
     const auto r = runCase(spec, RunOptions{});
-    ASSERT_EQ(r.status, "completed") << r.reason;
+    ASSERT_EQ(r.status, RunStatus::Completed) << r.reason;
     int ke = -1;
     for (size_t c = 0; c < r.columns.size(); ++c)
       if (r.columns[c] == "energy.kinetic") ke = static_cast<int>(c);

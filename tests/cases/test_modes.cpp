@@ -65,7 +65,7 @@ type = "static"
 load_steps = 4
 )")));
   const auto r = runCase(spec, RunOptions{});
-  ASSERT_EQ(r.status, "completed") << r.reason;
+  ASSERT_EQ(r.status, RunStatus::Completed) << r.reason;
   const auto& row = r.rows.back();
   const double x = row[0], z = row[2], N = row[3];
   const double l1 = std::hypot(x, z);
@@ -95,7 +95,7 @@ frequency = 2.0
 )",
                                                                R"(["a"])")));
   const auto r = runCase(spec, RunOptions{});
-  ASSERT_EQ(r.status, "completed") << r.reason;
+  ASSERT_EQ(r.status, RunStatus::Completed) << r.reason;
   EXPECT_EQ(r.rejectedSteps, 0);
   double worst = 0.0;
   for (size_t k = 0; k < r.times.size(); ++k) {
@@ -110,7 +110,7 @@ frequency = 2.0
 
 TEST(SharedSlider, BeadOnTwoRopesFollowsTheEllipse) {
   const auto r = runCase(readCase(CHUTE_SOURCE_DIR "/cases/bead_two_ropes.toml"), RunOptions{});
-  ASSERT_EQ(r.status, "completed");
+  ASSERT_EQ(r.status, RunStatus::Completed);
   std::printf(
       "bead on two ropes (two groups, one slider): max error %.3e = %.4f %% of the swing, "
       "hand-overs %ld and %ld\n",

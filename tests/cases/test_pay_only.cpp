@@ -176,7 +176,7 @@ TEST(PayOnly, NoWorkForWhatTheSceneDoesNotDeclare) {
 
   for (const auto& row : rows) {
     SCOPED_TRACE(row.name);
-    ASSERT_EQ(row.r.status, "completed") << row.r.reason;
+    ASSERT_EQ(row.r.status, RunStatus::Completed) << row.r.reason;
     const auto& w = row.r.work;
     const bool vtu = row.name.find("_vtu") != std::string::npos;
     const bool full = row.name.rfind("full", 0) == 0;

@@ -132,7 +132,7 @@ TEST(Pendulum, PeakMemberForceIsTheRigidPendulumsForEveryIntegrator) {
     const double P = exactPeriod(th), Tpeak = exactPeakForce(th);
     for (const auto& integ : kIntegrators) {
       const Measured m = runScene(sc, integ, 5.0e-3, 2.2 * P, 0.9);
-      ASSERT_EQ(m.r.status, "completed") << m.r.reason;
+      ASSERT_EQ(m.r.status, RunStatus::Completed) << m.r.reason;
       const double err = std::abs(m.peakForce - Tpeak) / Tpeak;
       std::printf(
           "%-5s %5.1f deg %-17s dt = 0.005 s (%4.0f steps/period): peak N = %.5f N, exact %.5f N, "
@@ -172,14 +172,15 @@ TEST(Pendulum, CoarseStepsAreAccurateOrStoppedAsUnstable) {
             "%-5s %5.1f deg %-17s %3.0f steps/period rho_inf %.1f: %-9s at t = %7.3f s; period "
             "error %8.4f %%, peak force error %9.3g %%; balance max %.3g J of scale %.3g J\n",
             sc.kind.c_str(), sc.theta0Deg, integ.c_str(), st.stepsPerPeriod, st.rhoInf,
-            m.r.status.c_str(), m.r.finalTime, 100.0 * perr, 100.0 * ferr, m.r.balanceMax,
-            m.r.balanceScale);
+            std::string(runStatusName(m.r.status)).c_str(), m.r.finalTime, 100.0 * perr,
+            100.0 * ferr, m.r.balanceMax, m.r.balanceScale);
         if (st.mustStop) {
-          EXPECT_EQ(m.r.status, "unstable") << sc.kind << " " << integ;
+          EXPECT_EQ(m.r.status, RunStatus::Unstable) << sc.kind << " " << integ;
           continue;
         }
-        ASSERT_TRUE(m.r.status == "completed" || m.r.status == "unstable") << m.r.reason;
-        if (m.r.status != "completed") continue;
+        ASSERT_TRUE(m.r.status == RunStatus::Completed || m.r.status == RunStatus::Unstable)
+            << m.r.reason;
+        if (m.r.status != RunStatus::Completed) continue;
         EXPECT_LT(perr, st.periodTolerance) << sc.kind << " " << integ;
         EXPECT_LT(ferr, 0.015) << sc.kind << " " << integ;
       }
@@ -205,7 +206,7 @@ TEST(MassDamping, ActsOnAPointMass) {
       "[solver]\ndt = 1e-3\nt_end = 1.0\nrho_inf = 1.0\nmass_damping = 2.0\n"
       "[output]\nevery = 10\n[[output.probes]]\nname = \"mass\"\nkind = \"node_velocity\"\n");
   const RunResult r = runCase(readCase(path), RunOptions{});
-  ASSERT_EQ(r.status, "completed") << r.reason;
+  ASSERT_EQ(r.status, RunStatus::Completed) << r.reason;
   double err = 0.0;
   for (size_t k = 0; k < r.times.size(); ++k) {
     const double exact = -(kG / alpha) * (1.0 - std::exp(-alpha * r.times[k]));
@@ -226,7 +227,7 @@ TEST(SliderFrictionProbe, FrictionlessSliderReportsItsWrapAngle) {
   const RunResult r =
       runCase(readCase(chute::testing::writeCase("bead_1_wrap", text), {"solver.t_end=0.01"}),
               RunOptions{});
-  ASSERT_EQ(r.status, "completed") << r.reason;
+  ASSERT_EQ(r.status, RunStatus::Completed) << r.reason;
   int col = -1;
   for (size_t c = 0; c < r.columns.size(); ++c)
     if (r.columns[c] == "fr.wrap_angle") col = static_cast<int>(c);

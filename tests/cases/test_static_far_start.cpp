@@ -69,7 +69,7 @@ TEST(StaticFarStart, RingOnStiffRopeConvergesFromUpToOneRopeLengthAway) {
       const double x = 0.5 * kSpan + d * std::cos(deg * M_PI / 180.0);
       const double z = -h + d * std::sin(deg * M_PI / 180.0);
       const RunResult r = runCase(readCase(writeCase(x, z)), RunOptions{});
-      ASSERT_EQ(r.status, "completed") << "start " << d << " ft at " << deg << " deg";
+      ASSERT_EQ(r.status, RunStatus::Completed) << "start " << d << " ft at " << deg << " deg";
       const auto& row = r.rows.back();
       const double err = std::hypot(row[0] - 0.5 * kSpan, row[2] + h);
       std::printf("start %.3f ft at %5.1f deg: %3d Newton iterations, error %.2e ft\n", d, deg,

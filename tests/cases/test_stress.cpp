@@ -44,13 +44,14 @@ void printTable(const std::vector<StressRun>& runs) {
               "hand", "rejected", "retries", "max drift", "rel drift", "Newton/st");
   for (const auto& s : runs)
     std::printf("%-34s %-10s %6ld %6ld %8ld %9ld %10.3e %10.3e %8.2f\n", s.name.c_str(),
-                s.r.status.c_str(), s.r.steps, s.handovers(), s.r.rejectedSteps, s.r.eventRetries,
-                s.r.energyMaxDrift, s.relativeDrift(), s.r.newtonPerStep());
+                std::string(runStatusName(s.r.status)).c_str(), s.r.steps, s.handovers(),
+                s.r.rejectedSteps, s.r.eventRetries, s.r.energyMaxDrift, s.relativeDrift(),
+                s.r.newtonPerStep());
 }
 
 void expectBounded(const StressRun& s, double relativeDrift) {
   SCOPED_TRACE(s.name);
-  EXPECT_EQ(s.r.status, "completed") << s.r.reason;
+  EXPECT_EQ(s.r.status, RunStatus::Completed) << s.r.reason;
   EXPECT_TRUE(std::isfinite(s.r.energyMaxDrift));
   EXPECT_GT(s.r.kineticMax, 0.0);
   EXPECT_LE(s.relativeDrift(), relativeDrift);
@@ -64,7 +65,7 @@ TEST(Stress, DrivenSliderCrossesTheNodesOfAFiftyElementRope) {
   const StressRun s{"driven slider (4 s)", runCase(spec, RunOptions{})};
   printTable({s});
   SCOPED_TRACE(s.name);
-  ASSERT_EQ(s.r.status, "completed") << s.r.reason;
+  ASSERT_EQ(s.r.status, RunStatus::Completed) << s.r.reason;
   EXPECT_EQ(s.r.rejectedSteps, 0);
   EXPECT_GE(s.handovers(), 250);
   // Closed form: two straight lines at one strain, so s = L lL / (lL + lR).
@@ -189,10 +190,10 @@ TEST(Stress, CableWithMassiveNodesSnatchingTaut) {
   const auto d = run("the same, rho_inf 0.8", "stress_snatch",
                      {"solver.t_end=1", "materials.line.density=10000", "solver.rho_inf=0.8"});
   printTable({s, d});
-  EXPECT_EQ(s.r.status, "unstable");
+  EXPECT_EQ(s.r.status, RunStatus::Unstable);
   EXPECT_NE(s.r.reason.find("without external work"), std::string::npos) << s.r.reason;
   EXPECT_GT(s.r.eventRetries, 0);
-  ASSERT_EQ(d.r.status, "completed") << d.r.reason;
+  ASSERT_EQ(d.r.status, RunStatus::Completed) << d.r.reason;
   EXPECT_GT(d.r.eventRetries, 0);
   std::printf("rho_inf 0.8: largest balance %.3e of the scale %.4g (bound 1e-6)\n",
               d.r.balanceMax / d.r.balanceScale, d.r.balanceScale);

@@ -19,16 +19,16 @@ void report(const std::string& label, const RunResult& r) {
   std::printf(
       "%-34s %s t=%.2f  max error %.3e = %.4f %% of the motion (%.4g)  steps %ld  "
       "rejected %ld  events %ld  Newton/step %.2f  wall %.3f s\n",
-      label.c_str(), r.status.c_str(), r.finalTime, r.reference->maxError,
-      100 * r.reference->relative(), r.reference->motionSize, r.steps, r.rejectedSteps,
-      r.eventRetries, r.newtonPerStep(), r.wallTime);
+      label.c_str(), std::string(runStatusName(r.status)).c_str(), r.finalTime,
+      r.reference->maxError, 100 * r.reference->relative(), r.reference->motionSize, r.steps,
+      r.rejectedSteps, r.eventRetries, r.newtonPerStep(), r.wallTime);
 }
 }  // namespace
 
 TEST(Verification, PulleyWithinPointOnePercent) {
   const auto r = runShipped("pulley");
   report("pulley", r);
-  ASSERT_EQ(r.status, "completed");
+  ASSERT_EQ(r.status, RunStatus::Completed);
   EXPECT_GE(r.finalTime, 4.0);
   EXPECT_LE(r.reference->relative(), 1e-3);
 }
@@ -36,7 +36,7 @@ TEST(Verification, PulleyWithinPointOnePercent) {
 TEST(Verification, BeadOneElementWithinHalfAPercent) {
   const auto r = runShipped("bead_1");
   report("bead_1", r);
-  ASSERT_EQ(r.status, "completed");
+  ASSERT_EQ(r.status, RunStatus::Completed);
   EXPECT_GE(r.finalTime, 4.0);
   EXPECT_LE(r.reference->relative(), 5e-3);
 }
@@ -44,7 +44,7 @@ TEST(Verification, BeadOneElementWithinHalfAPercent) {
 TEST(Verification, BeadFiveElementsWithinOnePercentCrossingNodes) {
   const auto r = runShipped("bead_5");
   report("bead_5", r);
-  ASSERT_EQ(r.status, "completed");
+  ASSERT_EQ(r.status, RunStatus::Completed);
   EXPECT_GE(r.finalTime, 4.0);
   EXPECT_LE(r.reference->relative(), 1e-2);
   EXPECT_GT(r.handovers.at(0), 0);  // the bead did cross rope nodes
@@ -57,7 +57,7 @@ TEST(Verification, BeadFiveWithoutNumericalDampingTo20s) {
   report("bead_5 rho_inf=1 to 20 s", r);
   std::printf("  energy drift %.3e (max kinetic energy %.3e), hand-overs %ld\n", r.energyMaxDrift,
               r.kineticMax, r.handovers.at(0));
-  ASSERT_EQ(r.status, "completed");
+  ASSERT_EQ(r.status, RunStatus::Completed);
   EXPECT_GE(r.finalTime, 20.0);
   EXPECT_EQ(r.rejectedSteps, 0);
   EXPECT_LE(r.energyMaxDrift, 1e-3 * r.kineticMax);
@@ -70,8 +70,8 @@ TEST(Verification, BothSlidingSearchesAgreeOnBeadFive) {
   const auto f12 = runShipped("bead_5", {"solver.search=\"nearest_length\""});
   report("bead_5 material-coordinate tracker", tracker);
   report("bead_5 nearest-length search (F12)", f12);
-  ASSERT_EQ(tracker.status, "completed");
-  ASSERT_EQ(f12.status, "completed");
+  ASSERT_EQ(tracker.status, RunStatus::Completed);
+  ASSERT_EQ(f12.status, RunStatus::Completed);
   EXPECT_LE(tracker.reference->relative(), 1e-2);
   EXPECT_LE(f12.reference->relative(), 1e-2);
 }
@@ -85,7 +85,7 @@ TEST(Verification, SlidersCrossedInsideTheStepAgreeWithLocatedCrossings) {
   const auto inStep = runShipped("bead_5", {"solver.slider_events=false"});
   report("bead_5 crossings located", located);
   report("bead_5 crossings inside the step", inStep);
-  ASSERT_EQ(inStep.status, "completed");
+  ASSERT_EQ(inStep.status, RunStatus::Completed);
   EXPECT_EQ(inStep.eventRetries, 0);
   EXPECT_EQ(inStep.handovers.at(0), located.handovers.at(0));
   EXPECT_LE(inStep.reference->relative(), 1e-2);
@@ -102,7 +102,7 @@ TEST(Verification, SlidersCrossedInsideTheStepAgreeWithLocatedCrossings) {
       "%.3e), hand-overs %ld / %ld, steps %ld / %ld\n",
       l20.energyMaxDrift, s20.energyMaxDrift, s20.kineticMax, l20.handovers.at(0),
       s20.handovers.at(0), l20.steps, s20.steps);
-  ASSERT_EQ(s20.status, "completed");
+  ASSERT_EQ(s20.status, RunStatus::Completed);
   EXPECT_EQ(s20.handovers.at(0), l20.handovers.at(0));
   EXPECT_LE(s20.energyMaxDrift, 1e-3 * s20.kineticMax);
   EXPECT_LE(s20.reference->relative(), 1e-2);

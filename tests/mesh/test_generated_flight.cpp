@@ -49,10 +49,10 @@ Flight fly(const std::string& name, const ParachuteSpec& s, const std::string& u
   std::printf(
       "%s: %s at t = %.3f s, %ld steps, %ld rejected, %.2f Newton/step, %d equations, %.1f s "
       "wall; skirt radius / D %.4f -> %.4f (max %.4f)\n",
-      name.c_str(), f.run.status.c_str(), f.run.finalTime, f.run.steps, f.run.rejectedSteps,
-      f.run.newtonPerStep(), f.run.equations, f.run.wallTime, f.radius.front() / s.diameter,
-      f.radius.back() / s.diameter, rmax / s.diameter);
-  EXPECT_EQ(f.run.status, "completed") << f.run.reason;
+      name.c_str(), std::string(runStatusName(f.run.status)).c_str(), f.run.finalTime, f.run.steps,
+      f.run.rejectedSteps, f.run.newtonPerStep(), f.run.equations, f.run.wallTime,
+      f.radius.front() / s.diameter, f.radius.back() / s.diameter, rmax / s.diameter);
+  EXPECT_EQ(f.run.status, RunStatus::Completed) << f.run.reason;
   EXPECT_NEAR(f.run.finalTime, tEnd, 1e-9);
   EXPECT_LE(rmax, 0.5 * s.diameter * (1 + 1e-9));  // never beyond the flat pattern's radius
   return f;

@@ -60,9 +60,9 @@ TEST(MeshImport, ShippedExampleMapsItsGroupsAndRunsAFewSteps) {
   for (int n = 0; n < m.numNodes(); ++n)
     EXPECT_GT((m.X[n] - Vec3(0, 0, std::sqrt(3.0))).norm(), 1e-9) << m.nodeName[n];
   const auto r = runCase(c, RunOptions{});
-  std::printf("flat_canopy: %s, %ld steps, %.2f Newton iterations/step\n", r.status.c_str(),
-              r.steps, r.newtonPerStep());
-  EXPECT_EQ(r.status, "completed");
+  std::printf("flat_canopy: %s, %ld steps, %.2f Newton iterations/step\n",
+              std::string(runStatusName(r.status)).c_str(), r.steps, r.newtonPerStep());
+  EXPECT_EQ(r.status, RunStatus::Completed);
 }
 
 TEST(MeshImport, MissingOrMisdimensionedGroupsAreErrorsNamingThem) {

@@ -55,7 +55,7 @@ double startForce(CaseSpec& spec) {
   StructuralSystem sys(m, spec.solver.search);
   Eigen::VectorXd x(3 * m.numNodes()), zero = Eigen::VectorXd::Zero(3 * m.numNodes());
   for (int i = 0; i < m.numNodes(); ++i) x.segment<3>(3 * i) = m.X[i] + m.u0[i];
-  sys.assemble(EvalPoint{x, zero, zero, 0.0, 1.0, 0.0, 0.0, false, 1.0}, false);
+  sys.assemble(EvalPoint::statics(x, zero, 0.0, 1.0), false);
   return sys.residual().norm();
 }
 
@@ -236,6 +236,6 @@ TEST(ParachuteMesh, GeneratedFoldedCaseRunsAFewSteps) {
   const CaseSpec c = readCase(toml, {"solver.t_end=0.003"});
   const auto r = runCase(c, RunOptions{});
   std::printf("generated folded 8-gore case: %s, %ld steps, %.2f Newton iterations/step\n",
-              r.status.c_str(), r.steps, r.newtonPerStep());
-  EXPECT_EQ(r.status, "completed");
+              std::string(runStatusName(r.status)).c_str(), r.steps, r.newtonPerStep());
+  EXPECT_EQ(r.status, RunStatus::Completed);
 }

@@ -58,7 +58,7 @@ axis = ["disk.center", "tip"]
 )";
   const CaseSpec spec = readCase(file);
   const auto r = runCase(spec, RunOptions{});
-  ASSERT_EQ(r.status, "completed");
+  ASSERT_EQ(r.status, RunStatus::Completed);
   // Independent: |d x e| for every rim node (the probe projects d onto the axis instead).
   const Eigen::Vector3d e(std::sin(tilt), 0.0, std::cos(tilt));
   const auto& m = spec.model;
@@ -88,7 +88,7 @@ TEST(SkirtRadiusProbe, C9CasesStartWithTheSkirtAtTheBundleRadius) {
     const std::string file = std::string(CHUTE_SOURCE_DIR "/cases/") + name + ".toml";
     const CaseSpec spec = readCase(file, {"solver.t_end=0.004"});
     const auto r = runCase(spec, RunOptions{});
-    ASSERT_EQ(r.status, "completed") << name;
+    ASSERT_EQ(r.status, RunStatus::Completed) << name;
     const auto got = firstRadius(r, "skirt");
     std::printf("%s: folded skirt radius mean %.15f min %.15f max %.15f (bundle radius 0.7)\n",
                 name, got[0], got[1], got[2]);

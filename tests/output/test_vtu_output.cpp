@@ -48,7 +48,7 @@ TEST(VtuSeries, PulleyEveryStepReadsBackWithTimesArraysAndCells) {
   const auto dir = freshDir("pulley");
   const CaseSpec spec = readCase(casePath("pulley"), {"output.vtu.write=true", "solver.t_end=0.5"});
   const auto r = runCase(spec, RunOptions::writingTo(dir.string()));
-  ASSERT_EQ(r.status, "completed");
+  ASSERT_EQ(r.status, RunStatus::Completed);
   const auto frames = readPvd((dir / "pulley.pvd").string());
   // Every step plus the initial state.
   ASSERT_EQ(static_cast<long>(frames.size()), r.steps + 1);
@@ -99,7 +99,7 @@ TEST(VtuSeries, StaticMembraneReactionsBalanceTheAppliedPressure) {
   const auto dir = freshDir("hencky");
   const CaseSpec spec = readCase(casePath("hencky"), {"membranes.0.rings=4"});
   const auto r = runCase(spec, RunOptions::writingTo(dir.string()));
-  ASSERT_EQ(r.status, "completed");
+  ASSERT_EQ(r.status, RunStatus::Completed);
   const auto frames = readPvd((dir / "hencky.pvd").string());
   ASSERT_EQ(frames.size(), 1u);  // the converged state
   const auto g = readVtu(dir / frames[0].file);
@@ -155,7 +155,7 @@ TEST(VtuSeries, NoSeriesUnlessTheCaseAsksForOne) {
   const CaseSpec spec = readCase(casePath("bead_1"), {"solver.t_end=0.05"});
   ASSERT_FALSE(spec.output.vtu.write);
   const auto r = runCase(spec, RunOptions::writingTo(dir.string()));
-  ASSERT_EQ(r.status, "completed");
+  ASSERT_EQ(r.status, RunStatus::Completed);
   EXPECT_EQ(r.vtuFrames, 0);
   for (const auto& e : fs::directory_iterator(dir)) {
     EXPECT_NE(e.path().extension(), ".pvd");
@@ -169,7 +169,7 @@ TEST(VtuSeries, FrameCostStaysSmall) {
   const auto dir = freshDir("cost");
   const CaseSpec spec = readCase(casePath("bead_5"), {"output.vtu.write=true"});
   const auto r = runCase(spec, RunOptions::writingTo(dir.string()));
-  ASSERT_EQ(r.status, "completed");
+  ASSERT_EQ(r.status, RunStatus::Completed);
   const double perFrame = r.timings.output / std::max(1, r.vtuFrames);
   std::printf(
       "bead_5, a frame every step: %d frames, output %.3f s (%.2f ms a frame), run %.3f s "

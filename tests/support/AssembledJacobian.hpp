@@ -38,10 +38,10 @@ inline double assembledJacobianError(StructuralSystem& sys, const MovingState& s
     for (int d = 0, e = 0; d < y.size(); ++d)
       if (sys.dofs().eqOfDof(d) >= 0) y[d] = xeq[e++];
     const Eigen::VectorXd vy = s.v + (cv / cx) * (y - s.x), ay = s.a + (ca / cx) * (y - s.x);
-    sys.assemble(EvalPoint{y, vy, ay, 0.5, cx, cv, ca, true, 1.0}, false);
+    sys.assemble(EvalPoint::implicitStep(y, vy, ay, 0.5, {cx, cv, ca}, 0.0), false);
     return sys.residual();
   };
-  sys.assemble(EvalPoint{s.x, s.v, s.a, 0.5, cx, cv, ca, true, 1.0}, true);
+  sys.assemble(EvalPoint::implicitStep(s.x, s.v, s.a, 0.5, {cx, cv, ca}, 0.0), true);
   const Eigen::MatrixXd J = Eigen::MatrixXd(sys.matrix()) / cx;
   return relativeError(J, fdJacobian(residual, sys.gatherEquations(s.x), h));
 }

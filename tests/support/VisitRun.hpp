@@ -1,14 +1,14 @@
 #pragma once
-// A case's dynamic run stepped as `chute run` steps it (implicit or central differences), without
+// A case's dynamic run stepped as `chute run` steps it (its integrator from the case), without
 // output, calling visit(state, system) at the start, every `every` steps and at the end: for
 // checks that need the states themselves (the interpenetration counts of the contact tests).
 #include <functional>
-#include <optional>
+#include <limits>
+#include <memory>
 
 #include "case/CaseSpec.hpp"
 #include "case/SolverSetup.hpp"
-#include "solver/CentralDifference.hpp"
-#include "solver/GeneralizedAlpha.hpp"
+#include "solver/TimeIntegrator.hpp"
 #include "solver/TimeStepper.hpp"
 
 namespace chute::testing {
@@ -25,15 +25,8 @@ inline VisitedRun visitRun(
   const Model& m = spec.model;
   const SolverSpec& sv = spec.solver;
   StructuralSystem sys(m, sv.search);
-  GeneralizedAlpha integrator(sys, sv.rhoInf, alphaScheme(sv), newtonSettings(sv, m),
-                              sv.emDissipation, sv.emOrder);
-  TimeStepper stepper(sys, integrator, sv.dt, sv.dtMin);
-  std::optional<CentralDifference> cd;
-  if (sv.integrator == "central_difference") {
-    cd.emplace(sys, ExplicitSettings{sv.safetyFactor, sv.targetDt, sv.stiffnessDamping},
-               integrator.initialState().x);
-    stepper.useExplicit(*cd);
-  }
+  const std::unique_ptr<TimeIntegrator> integrator = makeIntegrator(sys, sv, m);
+  TimeStepper stepper(sys, *integrator, sv.dt);
   StructuralState s = stepper.start();
   visit(s, sys);
   long steps = 0;

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <climits>
 #include <set>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -10,21 +11,34 @@
 
 namespace chute {
 
+const std::vector<ProbeKindInfo>& probeKinds() {
+  static const std::vector<ProbeKindInfo> kinds{
+      {ProbeKind::NodePosition, "node_position", {"x", "y", "z"}},
+      {ProbeKind::NodeVelocity, "node_velocity", {"vx", "vy", "vz"}},
+      {ProbeKind::Slider, "slider", {"s", "element"}},
+      {ProbeKind::Energy, "energy", {"kinetic", "strain", "gravity", "total"}},
+      {ProbeKind::EnergyBalance, "energy_balance", {"work", "balance"}},
+      {ProbeKind::LineForce, "line_force", {"N", "strain"}},
+      {ProbeKind::MembraneStress, "membrane_stress", {"S1", "S2"}},
+      {ProbeKind::Wrinkling, "wrinkling", {"taut", "wrinkled", "slack"}},
+      {ProbeKind::SliderFriction,
+       "slider_friction",
+       {"state", "slip_rate", "tension_ratio", "wrap_angle", "N1", "N2"}},
+      {ProbeKind::SkirtRadius, "skirt_radius", {"mean", "min", "max"}},
+      {ProbeKind::EdgeAngle, "edge_angle", {"angle"}},
+  };
+  return kinds;
+}
+
+const ProbeKindInfo& probeKindInfo(ProbeKind k) {
+  for (const auto& info : probeKinds())
+    if (info.kind == k) return info;
+  throw std::logic_error("probeKindInfo: unknown kind");
+}
+
 std::vector<std::string> ProbeSpec::columns() const {
   std::vector<std::string> q;
-  if (kind == "node_position") q = {"x", "y", "z"};
-  if (kind == "node_velocity") q = {"vx", "vy", "vz"};
-  if (kind == "slider") q = {"s", "element"};
-  if (kind == "slider_friction")
-    q = {"state", "slip_rate", "tension_ratio", "wrap_angle", "N1", "N2"};
-  if (kind == "energy") q = {"kinetic", "strain", "gravity", "total"};
-  if (kind == "energy_balance") q = {"work", "balance"};
-  if (kind == "line_force") q = {"N", "strain"};
-  if (kind == "membrane_stress") q = {"S1", "S2"};
-  if (kind == "edge_angle") q = {"angle"};
-  if (kind == "wrinkling") q = {"taut", "wrinkled", "slack"};
-  if (kind == "skirt_radius") q = {"mean", "min", "max"};
-  for (auto& s : q) s = name + "." + s;
+  for (const char* quantity : probeKindInfo(kind).quantities) q.push_back(name + "." + quantity);
   return q;
 }
 
@@ -40,27 +54,28 @@ ProbeSpec readProbe(const Model& m, TomlTable t) {
         return (ch >= 0 && ch < 32) || ch == ',' || ch == '"';
       }))
     t.fail("name", "must be non-empty, without commas, quotes or control characters");
-  p.kind = t.choice(
-      "kind", "node_position",
-      {"node_position", "node_velocity", "slider", "energy", "energy_balance", "line_force",
-       "membrane_stress", "wrinkling", "slider_friction", "skirt_radius", "edge_angle"});
-  const std::string why = "by a probe of kind \"" + p.kind + "\"";
-  const bool atNode =
-      p.kind == "node_position" || p.kind == "node_velocity" || p.kind == "membrane_stress";
-  const bool atSlider = p.kind == "slider" || p.kind == "slider_friction";
+  std::vector<std::string> names;
+  for (const auto& info : probeKinds()) names.emplace_back(info.name);
+  const std::string kind = t.choice("kind", "node_position", names);
+  for (const auto& info : probeKinds())
+    if (kind == info.name) p.kind = info.kind;
+  const std::string why = "by a probe of kind \"" + kind + "\"";
+  const bool atNode = p.kind == ProbeKind::NodePosition || p.kind == ProbeKind::NodeVelocity ||
+                      p.kind == ProbeKind::MembraneStress;
+  const bool atSlider = p.kind == ProbeKind::Slider || p.kind == ProbeKind::SliderFriction;
   if (!atNode) t.notUsed({"node"}, why);
   if (!atSlider) t.notUsed({"group", "slider"}, why);
-  if (p.kind != "line_force") t.notUsed({"element"}, why);
-  if (p.kind != "line_force" && p.kind != "skirt_radius") t.notUsed({"set"}, why);
-  if (p.kind != "skirt_radius") t.notUsed({"axis"}, why);
-  if (p.kind != "edge_angle") t.notUsed({"from", "to"}, why);
+  if (p.kind != ProbeKind::LineForce) t.notUsed({"element"}, why);
+  if (p.kind != ProbeKind::LineForce && p.kind != ProbeKind::SkirtRadius) t.notUsed({"set"}, why);
+  if (p.kind != ProbeKind::SkirtRadius) t.notUsed({"axis"}, why);
+  if (p.kind != ProbeKind::EdgeAngle) t.notUsed({"from", "to"}, why);
   if (atNode) {
     p.node = nodeRef(m, t, "node", t.string("node", p.name));
-  } else if (p.kind == "edge_angle") {
+  } else if (p.kind == ProbeKind::EdgeAngle) {
     p.node = nodeRef(m, t, "from", t.string("from"));
     p.node2 = nodeRef(m, t, "to", t.string("to"));
     if (p.node == p.node2) t.fail("to", "the edge needs two different nodes");
-  } else if (p.kind == "slider" || p.kind == "slider_friction") {
+  } else if (p.kind == ProbeKind::Slider || p.kind == ProbeKind::SliderFriction) {
     const std::string g = t.string("group");
     for (size_t i = 0; i < m.groups.size(); ++i)
       if (m.groups[i].name == g) p.group = static_cast<int>(i);
@@ -70,7 +85,7 @@ ProbeSpec readProbe(const Model& m, TomlTable t) {
     auto it = std::find(sl.begin(), sl.end(), node);
     if (it == sl.end()) t.fail("slider", "node is not a slider of group '" + g + "'");
     p.slider = static_cast<int>(it - sl.begin());
-  } else if (p.kind == "line_force") {
+  } else if (p.kind == ProbeKind::LineForce) {
     const std::string set = t.string("set");
     for (size_t i = 0; i < m.lineSets.size(); ++i)
       if (m.lineSets[i].name == set) p.lineSet = static_cast<int>(i);
@@ -79,7 +94,7 @@ ProbeSpec readProbe(const Model& m, TomlTable t) {
     for (const auto& c : m.cables) count += c.set == p.lineSet;
     for (const auto& g : m.groups) count += g.set == p.lineSet ? g.numElements() : 0;
     p.element = static_cast<int>(t.integer("element", 0, 0, count - 1));
-  } else if (p.kind == "skirt_radius") {
+  } else if (p.kind == ProbeKind::SkirtRadius) {
     // A node set (or one node) by name: its node ids.
     auto nodesOf = [&](const std::string& key, const std::string& name) -> std::vector<int> {
       if (auto it = m.nodeSets.find(name); it != m.nodeSets.end() && !it->second.empty())

@@ -8,25 +8,44 @@
 #include "case/sections/Sections.hpp"
 #include "verification/References.hpp"
 
-namespace chute::caseio {
+namespace chute {
+
+std::string_view referenceKindName(ReferenceKind k) {
+  switch (k) {
+    case ReferenceKind::Pulley:
+      return "pulley";
+    case ReferenceKind::BeadEllipse:
+      return "bead_ellipse";
+    case ReferenceKind::FreeFall:
+      return "free_fall";
+    case ReferenceKind::Hencky:
+      return "hencky";
+  }
+  return "unknown";
+}
+
+namespace caseio {
 
 void readReference(CaseSpec& c, TomlTable r) {
   const Model& m = c.model;
   ReferenceSpec ref;
-  ref.kind = r.choice("kind", "", {"pulley", "bead_ellipse", "free_fall", "hencky"});
+  const std::string kind = r.choice("kind", "", {"pulley", "bead_ellipse", "free_fall", "hencky"});
+  for (const auto k : {ReferenceKind::Pulley, ReferenceKind::BeadEllipse, ReferenceKind::FreeFall,
+                       ReferenceKind::Hencky})
+    if (kind == referenceKindName(k)) ref.kind = k;
   const std::string probe = r.string("probe");
   for (size_t p = 0; p < c.output.probes.size(); ++p)
     if (c.output.probes[p].name == probe) ref.probe = static_cast<int>(p);
-  if (ref.probe < 0 || c.output.probes[ref.probe].kind != "node_position")
+  if (ref.probe < 0 || c.output.probes[ref.probe].kind != ProbeKind::NodePosition)
     r.fail("probe", "no node_position probe named '" + probe + "'");
-  if (ref.kind == "pulley") {
+  if (ref.kind == ReferenceKind::Pulley) {
     ref.pulley = nodeRef(m, r, "pulley", r.string("pulley"));
     const std::string group = r.string("group");
     for (const auto& g : m.groups)
       if (g.name == group)
         for (double L : g.refLength) ref.ropeLength += L;
     if (ref.ropeLength <= 0.0) r.fail("group", "unknown sliding group '" + group + "'");
-  } else if (ref.kind == "hencky") {
+  } else if (ref.kind == ReferenceKind::Hencky) {
     const std::string set = r.string("membranes");
     int setId = -1;
     for (size_t k = 0; k < m.membraneSets.size(); ++k)
@@ -46,7 +65,7 @@ void readReference(CaseSpec& c, TomlTable r) {
     for (const auto& pl : m.pressures)
       if (pl.set == setId) ref.pressure += pl.pressure;
     if (ref.pressure == 0.0) r.fail("membranes", "no pressure on membrane set '" + set + "'");
-  } else if (ref.kind == "bead_ellipse") {
+  } else if (ref.kind == ReferenceKind::BeadEllipse) {
     const auto anchors = r.strings("anchors");
     if (anchors.size() != 2) r.fail("anchors", "expected the two fixed rope ends");
     ref.anchor1 = nodeRef(m, r, "anchors", anchors[0]);
@@ -63,4 +82,5 @@ void readReference(CaseSpec& c, TomlTable r) {
   c.reference = ref;
 }
 
-}  // namespace chute::caseio
+}  // namespace caseio
+}  // namespace chute

@@ -3,7 +3,7 @@
 
 #include "case/sections/SectionLookup.hpp"
 #include "case/sections/Sections.hpp"
-#include "terms/SlidingGroupTerm.hpp"
+#include "terms/sliding/SlidingGroupTerm.hpp"
 
 namespace chute::caseio {
 
@@ -45,15 +45,16 @@ void checkEnergyMomentumModel(const Model& m, TomlTable& s) {
 void readSolver(CaseSpec& c, TomlTable s) {
   Model& m = c.model;
   auto& sv = c.solver;
-  sv.type = s.choice("type", "dynamic", {"dynamic", "static"});
-  if (sv.type == "dynamic") {
+  sv.type = s.choice("type", "dynamic", {"dynamic", "static"}) == "static" ? AnalysisType::Static
+                                                                           : AnalysisType::Dynamic;
+  if (sv.type == AnalysisType::Dynamic) {
     sv.dt = s.positive("dt");
     sv.tEnd = s.positive("t_end");
     sv.rhoInf = s.number("rho_inf", 0.9);
-    sv.integrator =
-        s.choice("integrator", "bossak",
-                 {"bossak", "generalized_alpha", "energy_momentum", "central_difference"});
-    if (sv.integrator == "energy_momentum") {
+    std::vector<std::string> names;
+    for (const auto k : integratorKinds()) names.emplace_back(integratorName(k));
+    sv.integrator = *integratorFromName(s.choice("integrator", "bossak", names));
+    if (sv.integrator == IntegratorKind::EnergyMomentum) {
       sv.emDissipation = s.nonNegative("em_dissipation", 0.0);
       checkEnergyMomentumModel(m, s);
       sv.emOrder = static_cast<int>(s.integer("em_order", 2, 2, 4));
@@ -123,7 +124,8 @@ void readSolver(CaseSpec& c, TomlTable s) {
       s.choice("linear_solver", "auto", {"auto", "symmetric_part"}) == "symmetric_part";
   // Slider hand-over inside a step needs the forces at the step's end: Bossak, or explicit
   // (which always hands over inside the step).
-  if (!sv.sliderEvents && sv.integrator != "bossak" && sv.integrator != "central_difference")
+  if (!sv.sliderEvents && sv.integrator != IntegratorKind::Bossak &&
+      sv.integrator != IntegratorKind::CentralDifference)
     s.fail("slider_events",
            "false needs integrator = \"bossak\" (forces at the step's end, where a slider "
            "crossed inside the step is in its new element)");

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <set>
 
-#include "model/SlidingGroupState.hpp"
+#include "terms/sliding/SlidingGroupState.hpp"
 
 namespace chute::contact {
 

@@ -6,8 +6,8 @@
 #include <limits>
 #include <stdexcept>
 
-#include "model/SlidingGroupState.hpp"
-#include "solver/StableStep.hpp"
+#include "kernels/StiffnessBound.hpp"
+#include "terms/sliding/SlidingGroupState.hpp"
 
 namespace chute {
 
@@ -53,6 +53,31 @@ std::vector<double> lumpedNodeMass(const Model& m) {
   return mass;
 }
 
+// The nodal stiffness bound of EX5-EX6 on the reference geometry, every node counted free: the
+// membranes' (EX6m at unit stretch), the cables' and the sliding chains' elements (E A / L, a
+// slider's element as a whole).
+std::vector<double> referenceStiffnessBound(const Model& m) {
+  std::vector<double> S(m.numNodes(), 0.0);
+  const std::vector<char> free(m.numNodes(), 1);
+  for (const auto& e : m.membranes) {
+    const double shrink = 1.0 / (1.0 + m.membraneSets[e.set].prestrain);
+    std::array<Vec3, 4> X;
+    X.fill(Vec3::Zero());
+    for (int i = 0; i < e.numNodes; ++i) X[i] = shrink * m.X[e.nodes[i]];
+    const auto ref =
+        kernels::membraneBoundReference(X, e.numNodes, m.membraneMaterials[e.material]);
+    for (int i = 0; i < e.numNodes; ++i) S[e.nodes[i]] += ref.perNode;
+  }
+  for (const auto& c : m.cables)
+    kernels::addLineBound(c.a, c.b, kernels::lineStiffness(m.materials[c.material], c.L), free, S);
+  for (const auto& g : m.groups)
+    for (int k = 0; k < g.numElements(); ++k)
+      kernels::addLineBound(g.chain[k], g.chain[k + 1],
+                            kernels::lineStiffness(m.materials[g.material], g.refLength[k]), free,
+                            S);
+  return S;
+}
+
 }  // namespace
 
 ContactTerm::ContactTerm(const Model& m, std::vector<const SlidingGroupState*> groups)
@@ -62,9 +87,7 @@ ContactTerm::ContactTerm(const Model& m, std::vector<const SlidingGroupState*> g
   broadPhase_ = std::make_unique<BroadPhase>(*mesh_, def.thickness, def.skin);
   // CT9: k_i = kappa m_i / dt_i^2 with dt_i = 2 sqrt(m_i / S_i) the node's own stable step (EX5),
   // that is kappa S_i / 4, from the reference geometry.
-  Eigen::VectorXd X(3 * m.numNodes());
-  for (int n = 0; n < m.numNodes(); ++n) X.segment<3>(3 * n) = m.X[n];
-  const std::vector<double> S = nodalStiffnessBound(m, groups_, X, 0.0);
+  const std::vector<double> S = referenceStiffnessBound(m);
   nodeStiffness_.assign(m.numNodes(), 0.0);
   for (int n : mesh_->nodes()) nodeStiffness_[n] = 0.25 * def.stiffnessScale * S[n];
   nodeMass_ = lumpedNodeMass(m);
@@ -371,7 +394,7 @@ void ContactTerm::addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd&, do
   });
 }
 
-void ContactTerm::addStiffnessBound(const Eigen::VectorXd& x, double,
+void ContactTerm::addStiffnessBound(const Eigen::VectorXd& x, double, const std::vector<char>&,
                                     std::vector<double>& S) const {
   const double reach = m_->contact.thickness;
   forEachPairWithin(x, reach, [&](const Pair& pair) {

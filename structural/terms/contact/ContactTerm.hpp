@@ -51,7 +51,8 @@ class ContactTerm final : public Term {
   // per node of the model) the row sums 2 k |w_i| of every pair in contact at x. A pair that
   // comes into contact before the next estimate (4 steps) adds one pair's k, about 1/400 of its
   // nodes' bound at the default scale: the safety factor covers it.
-  void addStiffnessBound(const Eigen::VectorXd& x, double t, std::vector<double>& S) const;
+  void addStiffnessBound(const Eigen::VectorXd& x, double t, const std::vector<char>& free,
+                         std::vector<double>& S) const override;
 
   // What the run met (summary.json "contact").
   struct Record {

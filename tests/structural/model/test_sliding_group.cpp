@@ -9,10 +9,10 @@
 #include "kernels/CableKernel.hpp"
 #include "kernels/SlidingCableKernel.hpp"
 #include "model/History.hpp"
-#include "model/SlidingGroupState.hpp"
 #include "solver/StructuralSystem.hpp"
 #include "support/FiniteDifference.hpp"
-#include "terms/SlidingGroupTerm.hpp"
+#include "terms/sliding/SlidingGroupState.hpp"
+#include "terms/sliding/SlidingGroupTerm.hpp"
 
 using namespace chute;
 
@@ -346,11 +346,11 @@ TEST(SlidingGroupSystem, AssembledJacobianMatchesFiniteDifferences) {
       if (sys.dofs().eqOfDof(d) >= 0) y[d] = xeq[e++];
     // The accelerations move with x as the integrator's do: a = a0 + (ca/cx)(y - x).
     Eigen::VectorXd ay = a + (ca / cx) * (y - x);
-    sys.assemble(EvalPoint{y, v, ay, 0.0, cx, 0.0, ca, true, 1.0}, false);
+    sys.assemble(EvalPoint::implicitStep(y, v, ay, 0.0, {cx, 0.0, ca}, 0.0), false);
     return sys.residual();  // dR/dy = dr/dx + (ca/cx) dr/da = J / cx
   };
   const Eigen::VectorXd xeq = sys.gatherEquations(x);
-  sys.assemble(EvalPoint{x, v, a, 0.0, cx, 0.0, ca, true, 1.0}, true);
+  sys.assemble(EvalPoint::implicitStep(x, v, a, 0.0, {cx, 0.0, ca}, 0.0), true);
   const Eigen::MatrixXd J = Eigen::MatrixXd(sys.matrix()) / cx;
   const Eigen::MatrixXd Jfd = chute::testing::fdJacobian(residual, xeq, 1e-7);
   const double err = chute::testing::relativeError(J, Jfd);

@@ -1,6 +1,6 @@
 // Every term's history round-trips through StructuralSystem::saveState / loadState: a second
 // system loaded from a snapshot taken mid-run goes on bit for bit like the first. The scenes
-// together contain every kind of term the system can build (StructuralSystem::termKinds), so a
+// together contain every kind of term the system can build (TermList::kinds), so a
 // new kind, or a term that remembers something save() leaves out, fails here.
 #include <gtest/gtest.h>
 
@@ -12,7 +12,6 @@
 
 #include "case/CaseSpec.hpp"
 #include "case/SolverSetup.hpp"
-#include "solver/GeneralizedAlpha.hpp"
 #include "solver/TimeStepper.hpp"
 
 using namespace chute;
@@ -27,16 +26,15 @@ struct Scene {
 struct SteppedSystem {
   explicit SteppedSystem(const CaseSpec& spec)
       : sys(spec.model, spec.solver.search),
-        integrator(sys, spec.solver.rhoInf, alphaScheme(spec.solver),
-                   newtonSettings(spec.solver, spec.model)),
-        stepper(sys, integrator, spec.solver.dt, spec.solver.dtMin) {}
+        integrator(makeIntegrator(sys, spec.solver, spec.model)),
+        stepper(sys, *integrator, spec.solver.dt) {}
   void advance(StructuralState& s, double t) {
     const auto r = stepper.advanceTo(
         s, t, [](double) { return 1e300; }, [](const StructuralState&, int) { return true; });
     ASSERT_EQ(r.outcome, TimeStepper::Outcome::Reached) << r.reason;
   }
   StructuralSystem sys;
-  GeneralizedAlpha integrator;
+  std::unique_ptr<TimeIntegrator> integrator;
   TimeStepper stepper;
 };
 
@@ -94,7 +92,7 @@ TEST(History, EveryTermKindRoundTripsThroughASnapshot) {
         sc.file.c_str(), sc.tSave, sc.tEnd, ea.histories.size(), a.stepper.counters().steps,
         b.stepper.counters().steps, state && histories ? "yes" : "NO");
   }
-  for (const auto& kind : StructuralSystem::termKinds())
+  for (const auto& kind : TermList::kinds())
     EXPECT_TRUE(covered.count(kind)) << "no scene here has a term of kind " << kind;
 }
 

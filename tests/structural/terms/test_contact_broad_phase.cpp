@@ -10,8 +10,8 @@
 
 #include "case/CaseSpec.hpp"
 #include "kernels/ContactPotential.hpp"
-#include "model/SlidingGroupState.hpp"
 #include "terms/contact/BroadPhase.hpp"
+#include "terms/sliding/SlidingGroupState.hpp"
 
 using namespace chute;
 using namespace chute::contact;

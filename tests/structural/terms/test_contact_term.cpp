@@ -15,7 +15,6 @@
 
 #include "app/RunCase.hpp"
 #include "case/CaseSpec.hpp"
-#include "solver/StableStep.hpp"
 #include "solver/StructuralSystem.hpp"
 #include "support/AssembledJacobian.hpp"
 #include "support/Intersections.hpp"
@@ -114,7 +113,7 @@ TEST(ContactTerm, AssembledJacobianMatchesCentralDifferences) {
                 dropScene("damping_ratio = 0.3\nfriction = 0.3\nslip_speed = 0.05", "bossak")));
   const Model& m = c.model;
   StructuralSystem sys(m, c.solver.search);
-  ASSERT_NE(sys.contact(), nullptr);
+  ASSERT_NE(sys.termList().contact(), nullptr);
   // The sheet lowered to 4-9 mm above the floor (within dHat = 10 mm), moving down and sideways.
   chute::testing::MovingState s{Eigen::VectorXd(3 * m.numNodes()),
                                 Eigen::VectorXd(3 * m.numNodes()),
@@ -129,7 +128,7 @@ TEST(ContactTerm, AssembledJacobianMatchesCentralDifferences) {
   }
   // One step's evaluation and commit: the friction's lag is then that of these positions.
   sys.updateState(s.x);
-  EvalPoint step{s.x, s.v, s.a, 0.1, 1.0, 0.0, 0.0, true, 1.0, 1e-3};
+  const EvalPoint step = EvalPoint::implicitStep(s.x, s.v, s.a, 0.1, {1.0, 0.0, 0.0}, 1e-3);
   sys.assemble(step, false);
   sys.commit(CommitPoint{s.x, 0.1, 1e-3, 0.1});
   // Positions 1e-4 m off, so that the lag (from the commit) is not at the evaluation point.
@@ -145,7 +144,7 @@ TEST(ContactTerm, AssembledJacobianMatchesCentralDifferences) {
 // error.
 TEST(ContactTerm, UndampedBounceConservesEnergy) {
   const auto r = run("contact_bounce", dropScene("damping_ratio = 0.0\nfriction = 0.0"));
-  ASSERT_EQ(r.status, "completed");
+  ASSERT_EQ(r.status, RunStatus::Completed);
   const int e = column(r, "energy.total"), z = column(r, "mid.z");
   const double e0 = r.rows.front()[e];
   double worst = 0.0, lowest = 1.0, highestAfter = 0.0;
@@ -176,7 +175,7 @@ TEST(ContactTerm, DampingAndFrictionNeverSupplyEnergy) {
   // friction against its fall rings at the stable step's limit without damping; not contact's).
   text.replace(text.find("wrinkling = false"), 17, "wrinkling = true");
   const auto r = run("contact_dissipation", text);
-  ASSERT_EQ(r.status, "completed") << r.reason;
+  ASSERT_EQ(r.status, RunStatus::Completed) << r.reason;
   const int e = column(r, "energy.total"), x = column(r, "mid.x");
   const double e0 = r.rows.front()[e];
   double worstRise = 0.0, lowestSoFar = e0;
@@ -207,18 +206,23 @@ TEST(ContactTerm, StiffnessBoundCoversTheContactFrequencies) {
   for (int k = 0; k < m.numNodes(); ++k) x.segment<3>(3 * k) = m.X[k];
   for (int k : m.nodeSets.at("sheet")) x[3 * k + 2] = 0.004 + 0.003 * std::sin(3.7 * k);
   sys.updateState(x);
-  sys.assemble(EvalPoint{x, zero, zero, 0.0, 1.0, 0.0, 0.0, true, 1.0}, true);
+  sys.assemble(EvalPoint::state(x, zero, zero, 0.0), true);
   const Eigen::MatrixXd K = Eigen::MatrixXd(sys.matrix());
-  sys.assemble(EvalPoint{x, zero, ones, 0.0, 0.0, 0.0, 0.0, true, 0.0}, false);
+  sys.assemble(EvalPoint::inertiaOf(x, zero, ones, 0.0, false), false);
   const Eigen::VectorXd withMass = sys.residual();
-  sys.assemble(EvalPoint{x, zero, zero, 0.0, 0.0, 0.0, 0.0, true, 0.0}, false);
+  sys.assemble(EvalPoint::inertiaOf(x, zero, zero, 0.0, false), false);
   const Eigen::VectorXd mass = withMass - sys.residual();  // lumped: M 1
   const Eigen::VectorXd s = mass.cwiseSqrt().cwiseInverse();
   const Eigen::MatrixXd A = s.asDiagonal() * (0.5 * (K + K.transpose())) * s.asDiagonal();
   const double omega2 = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(A).eigenvalues().maxCoeff();
-  auto S = nodalStiffnessBound(m, {}, x, 0.0);
-  const double withoutContact = *std::max_element(S.begin(), S.end());
-  sys.contact()->addStiffnessBound(x, 0.0, S);
+  // The bound of every term but contact, then with it (CentralDifference's, EX5 and CT12).
+  const std::vector<char> free(m.numNodes(), 1);
+  std::vector<double> without(m.numNodes(), 0.0);
+  for (const auto& t : sys.terms())
+    if (std::string(t->name()) != "contact") t->addStiffnessBound(x, 0.0, free, without);
+  const double withoutContact = *std::max_element(without.begin(), without.end());
+  const auto S = sys.stiffnessBound(x, 0.0);
+
   double bound = 0.0;
   for (int k : m.nodeSets.at("sheet")) bound = std::max(bound, S[k] / mass[sys.dofs().eq(k, 2)]);
   std::printf(
@@ -246,7 +250,7 @@ TEST(ContactTerm, RestartIsBitForBit) {
     RunOptions restart = RunOptions::writingTo(split.string());
     restart.restartFile = (split / "checkpoint.cbor").string();
     const auto c = run("contact_restart", text, restart);
-    ASSERT_EQ(c.status, "completed");
+    ASSERT_EQ(c.status, RunStatus::Completed);
     const std::string pa = readFile(whole / "probes.csv"), pc = readFile(split / "probes.csv");
     std::printf(
         "%s restart with contact: %ld steps, %ld checkpoints, %ld pairs in contact at most; "

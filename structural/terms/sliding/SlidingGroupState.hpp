@@ -1,19 +1,17 @@
 #pragma once
-// Which element of a sliding group is active for each slider point, with a trial / commit /
-// revert lifecycle so a rejected step or a coupling checkpoint rolls back cleanly.
+// Which element of a sliding group is active for each slider point (the search, hand-overs at
+// nodes, the reference lengths hand-overs carry), with a trial / commit / revert lifecycle so a
+// rejected step or a coupling checkpoint rolls back cleanly; it holds the sliders' friction
+// history (SliderFrictionHistory), which its hand-overs restart.
 #include <Eigen/Core>
 #include <vector>
 
 #include "model/History.hpp"
 #include "model/Model.hpp"
+#include "model/SliderSearch.hpp"
+#include "terms/sliding/SliderFrictionHistory.hpp"
 
 namespace chute {
-
-enum class SliderSearch {
-  NearestLength,       // F12: every element of the group, least |l - L| (the paper's search)
-  MaterialCoordinate,  // track the slider along the chain: it leaves its element only by
-                       // passing one of the element's end nodes, to the neighbour there
-};
 
 class SlidingGroupState {
  public:
@@ -101,26 +99,16 @@ class SlidingGroupState {
 
   long committedHandovers() const { return handovers_; }
 
-  // ---- friction history (docs/friction.md) -----------------------------------------------
-  // Sliders with friction, a lock or one-way flow carry the split s of their active element's
-  // reference length (part 1 = end 1 -> slider) as history; frictionless ones derive it from x.
-  struct FrictionState {
-    double s = 0.0;  // split: reference length of part 1 of the active element
-    kernels::SliderStick state = kernels::SliderStick::Stick;
-    double slipRate = 0.0;  // ds/dt over the last step (material length per time)
-    double N1 = 0.0, N2 = 0.0, wrapAngle = 0.0;
-    double tensionRatio() const;  // N2 / N1 (1 when both are slack)
-  };
+  // ---- friction history (terms/sliding/SliderFrictionHistory.hpp) ----------------------------
+  using FrictionState = SliderFrictionHistory::State;
   bool hasFriction(int slider) const { return def_->frictionOf(slider) != nullptr; }
   // The split at the start of the step (the stick predictor), for the trial active element.
-  double splitStart(int slider) const { return splitStart_[slider]; }
+  double splitStart(int slider) const { return friction_.splitStart(slider); }
   // Converged friction state of a slider at the end of the step, before commit(x).
-  void setConvergedFriction(int slider, const FrictionState& f) { frTrial_[slider] = f; }
-  const FrictionState& friction(int slider) const { return frCommitted_[slider]; }
+  void setConvergedFriction(int slider, const FrictionState& f) { friction_.setConverged(slider, f); }
+  const FrictionState& friction(int slider) const { return friction_.committed(slider); }
   // Splits start uniform at the first positions seen (search or commit).
-  void ensureSplits(const Eigen::VectorXd& x) {
-    if (!splitsInitialised_) initSplits(x);
-  }
+  void ensureSplits(const Eigen::VectorXd& x);
 
  private:
   const SlidingGroupDef* def_;
@@ -149,13 +137,9 @@ class SlidingGroupState {
   std::vector<double> cumulativeRef_;  // reference arc length at each chain node
   std::vector<char> driven_;           // per slider: follows a moving prescribed path
   long handovers_ = 0;                 // nodes passed by committed steps
-  // Friction history: the split the step starts from, per slider (reset to the uniform split
-  // when the slider changes element), and the committed / converged-trial friction state.
+  // The split of an element where both parts have one strain (a new element starts with it).
   double uniformSplit(int slider, int element, const Eigen::VectorXd& x) const;
-  void initSplits(const Eigen::VectorXd& x);
-  bool splitsInitialised_ = false;
-  std::vector<double> splitStart_;
-  std::vector<FrictionState> frTrial_, frCommitted_;
+  SliderFrictionHistory friction_;
 };
 
 }  // namespace chute

@@ -1,4 +1,4 @@
-#include "terms/SlidingGroupTerm.hpp"
+#include "terms/sliding/SlidingGroupTerm.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -11,6 +11,7 @@
 #include "kernels/SliderWhirlDamping.hpp"
 #include "kernels/SlidingCableKernel.hpp"
 #include "kernels/SlidingDiscreteGradient.hpp"
+#include "kernels/StiffnessBound.hpp"
 #include "terms/LineElementAssembly.hpp"
 
 namespace chute {
@@ -334,6 +335,45 @@ void SlidingGroupTerm::assembleInertia(const EvalPoint& p, SystemAssembler& out)
                                                 gather3(p.a, n1, n2, n3), state_.refLength(k), mat,
                                                 m_->massKind);
     out.add<3>({n1, n2, n3}, r, nullptr);
+  }
+}
+
+void SlidingGroupTerm::addStiffnessBound(const Eigen::VectorXd& x, double /*t*/,
+                                         const std::vector<char>& free,
+                                         std::vector<double>& S) const {
+  const auto& g = state_.def();
+  const auto& mat = m_->materials[g.material];
+  for (int k = 0; k < g.numElements(); ++k) {
+    const int n1 = g.chain[k], n2 = g.chain[k + 1];
+    const double L = state_.refLength(k);
+    const int s = state_.sliderOfElement(k);
+    if (s < 0) {
+      kernels::addLineBound(n1, n2, kernels::lineStiffness(mat, L), free, S);
+      continue;
+    }
+    // Uniform strain over the whole element (F9): K = k g g^T with g the gradient of l1 + l2,
+    // |g| = 1 at the end nodes and |t1 - t2| <= 2 at the slider. The stiffness is that of the
+    // whole reference length L however close the slider is to a node: a slider approaching a
+    // node does not shrink the step (EX6).
+    const int n3 = g.sliders[s];
+    if (g.frictionOf(s)) {
+      // Capstan friction: each part has its own strain over its own reference length (FR2); a
+      // sticking slider next to a node makes a short, stiff part, and the step shrinks with it
+      // (EX6).
+      const double s1 = std::clamp(state_.splitStart(s), 1e-9 * L, L * (1.0 - 1e-9));
+      kernels::addLineBound(n1, n3, mat.E * mat.area / s1, free, S);
+      kernels::addLineBound(n3, n2, mat.E * mat.area / (L - s1), free, S);
+      continue;
+    }
+    const Vec3 d1 = pos(x, n3) - pos(x, n1), d2 = pos(x, n2) - pos(x, n3);
+    const double l1 = d1.norm(), l2 = d2.norm();
+    const double gs = (l1 > 0.0 && l2 > 0.0) ? (d1 / l1 - d2 / l2).norm() : 2.0;
+    const double kk = kernels::lineStiffness(mat, L);
+    const double g1 = free[n1] ? 1.0 : 0.0, g2 = free[n2] ? 1.0 : 0.0, g3 = free[n3] ? gs : 0.0;
+    const double sum = g1 + g2 + g3;
+    S[n1] += kk * 1.0 * sum;
+    S[n2] += kk * 1.0 * sum;
+    S[n3] += kk * gs * sum;
   }
 }
 

@@ -5,7 +5,7 @@
 #include "assembly/Term.hpp"
 #include "kernels/Regularisations.hpp"
 #include "model/Model.hpp"
-#include "model/SlidingGroupState.hpp"
+#include "terms/sliding/SlidingGroupState.hpp"
 
 namespace chute {
 
@@ -16,6 +16,7 @@ class SlidingGroupTerm final : public Term, public EventSource {
   bool loadDependent() const override { return m_->hasGravity(); }  // gravity only
   void addCouplings(std::vector<std::vector<int>>& cliques) const override;
   int updateState(const Eigen::VectorXd& x) override { return state_.search(x, search_); }
+  long searchesPerUpdate() const override { return static_cast<long>(state_.def().sliders.size()); }
   void assemble(const EvalPoint& p, SystemAssembler& out) override;
   void addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v, double t,
                  EnergyBreakdown& e) const override;
@@ -40,7 +41,27 @@ class SlidingGroupTerm final : public Term, public EventSource {
                                                kernels::kSeparationFraction, true);
   }
   double displacementFloor() const override { return floor_; }
+  // EX3, F12b: explicit steps hand sliders over where the motion passed a node (notePassages) or
+  // left a slider within kExplicitArrivalFraction of one (the node placed a hair ahead of it, as
+  // at an implicit arrival, RG2).
+  bool watchesExplicitMotion() const override { return !condensed_; }
+  void afterExplicitMotion(const Eigen::VectorXd& x, const Eigen::VectorXd& motion,
+                           Eigen::VectorXd& xEnd) override {
+    state_.notePassages(x, motion);
+    state_.arriveAtNodes(*m_, xEnd, kernels::kExplicitArrivalFraction, kernels::kSeparationFraction,
+                         true);
+  }
   EventSource* events() override { return this; }
+  // EM12 under energy-momentum steps: the chain condensed where it can be.
+  void prepareFor(const IntegrationTraits& traits) override {
+    condenseChain(traits.discreteGradients);
+  }
+  // F10: the lumped mass follows the slider's split.
+  bool massMovesWithPositions() const override { return true; }
+  void addStiffnessBound(const Eigen::VectorXd& x, double t, const std::vector<char>& free,
+                         std::vector<double>& S) const override;
+  // Per element, 0.55 of a membrane triangle (a per-step profile of the explicit C-9).
+  double assemblyCost() const override { return 0.55 * state_.def().numElements(); }
   // Sliders with friction: the converged split at x is found (docs/friction.md) and committed.
   bool hasHistory() const override { return true; }
   void commit(const CommitPoint& c) override;

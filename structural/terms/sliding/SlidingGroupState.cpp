@@ -1,4 +1,4 @@
-#include "model/SlidingGroupState.hpp"
+#include "terms/sliding/SlidingGroupState.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -23,9 +23,7 @@ SlidingGroupState::SlidingGroupState(const SlidingGroupDef& def)
       pendingTransfer_(def.sliders.size(), 0.0),
       handoverAtCommit_(def.sliders.size(), 0),
       driven_(def.sliders.size(), 0),
-      splitStart_(def.sliders.size(), 0.0),
-      frTrial_(def.sliders.size()),
-      frCommitted_(def.sliders.size()) {
+      friction_(def.sliders.size()) {
   // Sized from the start (set by every commit) so that the history record has one shape.
   for (auto& d : committedDistance_) d.assign(def.sliders.size(), 0.0);
   for (auto& d : committedGain_) d.assign(def.sliders.size(), 0.0);
@@ -75,7 +73,7 @@ void SlidingGroupState::setActiveElement(int slider, int element) {
 }
 
 int SlidingGroupState::search(const Eigen::VectorXd& x, SliderSearch kind) {
-  if (!splitsInitialised_) initSplits(x);
+  ensureSplits(x);
   int changed = 0;
   const int nEl = def_->numElements();
   for (size_t s = 0; s < trial_.size(); ++s) {
@@ -123,7 +121,7 @@ int SlidingGroupState::search(const Eigen::VectorXd& x, SliderSearch kind) {
       trial_[s] = best;
       ++changed;
       // A new element starts with the uniform split (both parts at one strain).
-      splitStart_[s] = uniformSplit(static_cast<int>(s), best, x);
+      friction_.startTrialElement(static_cast<int>(s), uniformSplit(static_cast<int>(s), best, x));
     }
   }
   return changed;
@@ -374,19 +372,20 @@ int SlidingGroupState::crossDriven(const Model& model, const Eigen::VectorXd& fr
 }
 
 void SlidingGroupState::commit(const Eigen::VectorXd& x) {
-  if (!splitsInitialised_) initSplits(x);
+  ensureSplits(x);
   for (size_t s = 0; s < trial_.size(); ++s) {
     const int k = trial_[s] + handoverAtCommit_[s];
-    if (hasFriction(static_cast<int>(s))) splitStart_[s] = frTrial_[s].s;
+    if (hasFriction(static_cast<int>(s))) friction_.keepConvergedSplit(static_cast<int>(s));
     if (handoverAtCommit_[s] != 0 && k >= 0 && k < def_->numElements()) {
       carryMaterial(trial_[s], k, transferAtCommit_[s]);  // F12b
       trial_[s] = k;
-      splitStart_[s] = frTrial_[s].s = uniformSplit(static_cast<int>(s), k, x);
+      friction_.startCommittedElement(static_cast<int>(s),
+                                      uniformSplit(static_cast<int>(s), k, x));
     }
     handoverAtCommit_[s] = 0;
     transferAtCommit_[s] = 0.0;
   }
-  frCommitted_ = frTrial_;
+  friction_.commit();
   refCommitted_ = ref_;
   // Nodes passed by the committed step (not the trial changes a Newton solve made and undid).
   for (size_t s = 0; s < trial_.size(); ++s) handovers_ += std::abs(trial_[s] - committed_[s]);
@@ -408,8 +407,7 @@ void SlidingGroupState::revert() {
   trial_ = committed_;
   if (ref_ != refCommitted_) setRefLengths(refCommitted_);
   std::fill(pendingTransfer_.begin(), pendingTransfer_.end(), 0.0);
-  frTrial_ = frCommitted_;
-  for (size_t s = 0; s < trial_.size(); ++s) splitStart_[s] = frCommitted_[s].s;
+  friction_.revert();
   std::fill(pendingHandover_.begin(), pendingHandover_.end(), 0);
   std::fill(handoverAtCommit_.begin(), handoverAtCommit_.end(), 0);
   std::fill(transferAtCommit_.begin(), transferAtCommit_.end(), 0.0);
@@ -417,7 +415,7 @@ void SlidingGroupState::revert() {
 
 double SlidingGroupState::materialCoordinate(int slider, const Eigen::VectorXd& x) const {
   const int k = trial_[slider];
-  if (hasFriction(slider)) return cumulativeRef_[k] + splitStart_[slider];
+  if (hasFriction(slider)) return cumulativeRef_[k] + friction_.splitStart(slider);
   const double offset =
       kernels::sliderReferenceOffset(nodePos(x, def_->chain[k]), nodePos(x, def_->chain[k + 1]),
                                      nodePos(x, def_->sliders[slider]), ref_[k]);
@@ -430,13 +428,12 @@ double SlidingGroupState::uniformSplit(int slider, int element, const Eigen::Vec
                                         nodePos(x, def_->sliders[slider]), ref_[element]);
 }
 
-void SlidingGroupState::initSplits(const Eigen::VectorXd& x) {
-  for (size_t s = 0; s < trial_.size(); ++s) {
-    splitStart_[s] = uniformSplit(static_cast<int>(s), committed_[s], x);
-    frTrial_[s] = frCommitted_[s] = FrictionState{};
-    frTrial_[s].s = frCommitted_[s].s = splitStart_[s];
-  }
-  splitsInitialised_ = true;
+void SlidingGroupState::ensureSplits(const Eigen::VectorXd& x) {
+  if (friction_.initialised()) return;
+  std::vector<double> uniform(trial_.size());
+  for (size_t s = 0; s < trial_.size(); ++s)
+    uniform[s] = uniformSplit(static_cast<int>(s), committed_[s], x);
+  friction_.initialise(uniform);
 }
 
 void SlidingGroupState::save(History& h) const {
@@ -446,18 +443,13 @@ void SlidingGroupState::save(History& h) const {
   h.put(pendingHandover_);
   h.put(handoverAtCommit_);
   h.put(static_cast<std::int64_t>(handovers_));
-  h.put(splitsInitialised_);
-  h.put(splitStart_);
+  friction_.saveSplits(h);
   h.put(pendingTransfer_);
   h.put(transferAtCommit_);
   for (const auto& d : committedGain_) h.put(d);
   h.put(ref_);
   h.put(refCommitted_);
-  for (const auto* fr : {&frTrial_, &frCommitted_})
-    for (const auto& f : *fr) {
-      h.put(f.s), h.put(f.slipRate), h.put(f.N1), h.put(f.N2), h.put(f.wrapAngle);
-      h.put(static_cast<int>(f.state));
-    }
+  friction_.saveStates(h);
 }
 
 void SlidingGroupState::load(HistoryReader& h) {
@@ -469,8 +461,7 @@ void SlidingGroupState::load(HistoryReader& h) {
   pendingHandover_ = h.ints(n, -1, 1);
   handoverAtCommit_ = h.ints(n, -1, 1);
   handovers_ = static_cast<long>(h.integer(0, std::numeric_limits<std::int64_t>::max()));
-  splitsInitialised_ = h.flag();
-  splitStart_ = h.reals(n);
+  friction_.loadSplits(h);
   pendingTransfer_ = h.reals(n);
   transferAtCommit_ = h.reals(n);
   for (auto& d : committedGain_) d = h.reals(n);
@@ -495,20 +486,12 @@ void SlidingGroupState::load(HistoryReader& h) {
     if (!(m >= 0.0) || !std::isfinite(m)) h.fail("pending transfer not a length");
   setRefLengths(ref);
   refCommitted_ = committed;
-  for (auto* fr : {&frTrial_, &frCommitted_})
-    for (auto& f : *fr) {
-      f.s = h.finiteReal(), f.slipRate = h.finiteReal(), f.N1 = h.finiteReal();
-      f.N2 = h.finiteReal(), f.wrapAngle = h.finiteReal();
-      f.state = static_cast<kernels::SliderStick>(h.integer(-1, 1));
-    }
-  for (size_t s = 0; s < n; ++s)
-    if (splitStart_[s] < 0.0 || splitStart_[s] > ref_[trial_[s]] || !std::isfinite(splitStart_[s]))
+  friction_.loadStates(h);
+  for (size_t s = 0; s < n; ++s) {
+    const double split = friction_.splitStart(static_cast<int>(s));
+    if (split < 0.0 || split > ref_[trial_[s]] || !std::isfinite(split))
       h.fail("slider split outside its element");
-}
-
-double SlidingGroupState::FrictionState::tensionRatio() const {
-  if (N1 <= 0.0 && N2 <= 0.0) return 1.0;
-  return N1 > 0.0 ? N2 / N1 : std::numeric_limits<double>::infinity();
+  }
 }
 
 }  // namespace chute

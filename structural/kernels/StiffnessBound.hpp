@@ -1,0 +1,83 @@
+#pragma once
+// Per-node bounds of the stiffness that set the stable step of explicit central differences
+// (docs/formulation.md EX5-EX6): the Gershgorin row sum S_i of each element's stiffness, so that
+// omega_max^2 <= max_i S_i / m_i. Pure functions of an element's geometry and material; the
+// terms add them up over their elements (Term::addStiffnessBound).
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <array>
+#include <limits>
+#include <vector>
+
+#include "kernels/MembraneKernel.hpp"
+#include "kernels/UniformStrainPolyline.hpp"
+
+namespace chute::kernels {
+
+// Axial stiffness of a line part of reference length L: E A / L (engineering strain, F1). The
+// tension's geometric stiffness N / l is left out: it is E A / L times the strain, covered by
+// the safety factor, and a step that followed it would vary with the line's axial vibration,
+// which pumps energy into that vibration (EX6).
+inline double lineStiffness(const LineMaterial& mat, double L) {
+  return mat.E * mat.area / L;
+}
+
+// A two-node line of stiffness k: K = k [1 -1; -1 1] (x) n n^T, whose row sum over the free nodes
+// is k per free node touched, at both ends (EX5).
+inline void addLineBound(int a, int b, double k, const std::vector<char>& free,
+                         std::vector<double>& S) {
+  const double rowSum = k * ((free[a] ? 1.0 : 0.0) + (free[b] ? 1.0 : 0.0));
+  S[a] += rowSum;
+  S[b] += rowSum;
+}
+
+// Smallest altitude of triangle (a, b, c): twice its area over its longest edge.
+inline double smallestAltitude(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                               const Eigen::Vector3d& c) {
+  const double twiceArea = (b - a).cross(c - a).norm();
+  const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+  return longest > 0.0 ? twiceArea / longest : 0.0;
+}
+
+// What a membrane element's bound takes from its reference geometry alone (EX6m): the bound at
+// unit stretch, 4 E t A0 / (n (1 - nu^2) h0^2) per node (plane-stress dilatational wave over the
+// smallest reference altitude h0; a quad: the least of its four corner triangles'), and its
+// reference edge lengths (edge i from node i to node i + 1).
+struct MembraneBoundReference {
+  double perNode = 0.0;
+  std::array<double, 4> l0{};
+};
+inline MembraneBoundReference membraneBoundReference(const std::array<Eigen::Vector3d, 4>& X,
+                                                     int numNodes, const MembraneMaterial& mat) {
+  double area0 = 0.0, h0 = std::numeric_limits<double>::infinity();
+  if (numNodes == 3) {
+    area0 = 0.5 * (X[1] - X[0]).cross(X[2] - X[0]).norm();
+    h0 = smallestAltitude(X[0], X[1], X[2]);
+  } else {
+    area0 = 0.5 * (X[2] - X[0]).cross(X[3] - X[1]).norm();
+    for (int i = 0; i < 4; ++i)
+      h0 = std::min(h0, smallestAltitude(X[i], X[(i + 1) % 4], X[(i + 2) % 4]));
+  }
+  MembraneBoundReference r;
+  r.perNode = h0 > 0.0 ? 4.0 * mat.E * mat.thickness * area0 /
+                             (numNodes * (1.0 - mat.nu * mat.nu) * h0 * h0)
+                       : 0.0;
+  for (int i = 0; i < numNodes; ++i) r.l0[i] = (X[(i + 1) % numNodes] - X[i]).norm();
+  return r;
+}
+
+// The bound per node of a membrane element at current positions x (EX6m): total-Lagrangian St.
+// Venant-Kirchhoff stiffness grows with the square of the largest edge stretch; compressed
+// (folded, wrinkled) fabric is bounded by its reference stiffness.
+inline double membraneNodeBound(const MembraneBoundReference& ref,
+                                const std::array<Eigen::Vector3d, 4>& x, int numNodes) {
+  double stretch = 1.0;
+  for (int i = 0; i < numNodes; ++i) {
+    const double l0 = ref.l0[i];
+    if (l0 > 0.0) stretch = std::max(stretch, (x[(i + 1) % numNodes] - x[i]).norm() / l0);
+  }
+  return ref.perNode * stretch * stretch;
+}
+
+}  // namespace chute::kernels

@@ -1,0 +1,57 @@
+#include "terms/TermList.hpp"
+
+#include <algorithm>
+
+#include "terms/CableTerm.hpp"
+#include "terms/FaceDragTerm.hpp"
+#include "terms/LineDragTerm.hpp"
+#include "terms/MembraneTerm.hpp"
+#include "terms/PointMassTerm.hpp"
+#include "terms/PressureTerm.hpp"
+#include "terms/contact/ContactTerm.hpp"
+#include "terms/sliding/SlidingGroupTerm.hpp"
+
+namespace chute {
+
+TermList::TermList(const Model& model, TermOptions options,
+                   std::vector<std::unique_ptr<Term>> extraTerms) {
+  // Only what the scene uses: a term exists only if the model has something for it.
+  if (!model.cables.empty()) terms_.push_back(std::make_unique<CableTerm>(model));
+  for (size_t g = 0; g < model.groups.size(); ++g) {
+    auto t = std::make_unique<SlidingGroupTerm>(model, static_cast<int>(g), options.search);
+    groups_.push_back(t.get());
+    terms_.push_back(std::move(t));
+  }
+  if (std::any_of(model.pointMass.begin(), model.pointMass.end(), [](double m) { return m > 0; }))
+    terms_.push_back(std::make_unique<PointMassTerm>(model));
+  if (!model.membranes.empty()) {
+    auto t = std::make_unique<MembraneTerm>(model);
+    membranes_ = t.get();
+    terms_.push_back(std::move(t));
+  }
+  if (!model.pressures.empty()) terms_.push_back(std::make_unique<PressureTerm>(model));
+  if (!model.drags.empty()) {
+    std::vector<const SlidingGroupState*> states;
+    for (auto* g : groups_) states.push_back(&g->state());
+    terms_.push_back(std::make_unique<LineDragTerm>(model, states));
+  }
+  if (!model.faceDrags.empty()) terms_.push_back(std::make_unique<FaceDragTerm>(model));
+  if (model.contact.enabled) {
+    std::vector<const SlidingGroupState*> states;
+    for (auto* g : groups_) states.push_back(&g->state());
+    auto t = std::make_unique<ContactTerm>(model, states);
+    contact_ = t.get();
+    terms_.push_back(std::move(t));
+  }
+  for (auto& t : extraTerms) terms_.push_back(std::move(t));
+}
+
+TermList::~TermList() = default;
+
+const std::vector<std::string>& TermList::kinds() {
+  static const std::vector<std::string> kinds{
+      "cables", "sliding_group", "point_masses", "membranes", "pressure", "drag", "face_drag"};
+  return kinds;
+}
+
+}  // namespace chute
