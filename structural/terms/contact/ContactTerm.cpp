@@ -92,6 +92,9 @@ ContactTerm::ContactTerm(const Model& m, std::vector<const SlidingGroupState*> g
   for (int n : mesh_->nodes()) nodeStiffness_[n] = 0.25 * def.stiffnessScale * S[n];
   nodeMass_ = lumpedNodeMass(m);
   moved_.assign(m.numNodes(), 0.0);
+  Eigen::VectorXd x0(3 * m.numNodes());
+  for (int n = 0; n < m.numNodes(); ++n) x0.segment<3>(3 * n) = m.X[n] + m.u0[n];
+  startGapsAt(x0);
 }
 
 ContactTerm::~ContactTerm() = default;
@@ -130,8 +133,51 @@ void ContactTerm::nearList() {
     const auto xs = gather(xb, pair.nodes);
     if (kernels::boxesApart(pair.kind == ContactPairKind::PointTriangle, xs, reach)) return;
     const double d2 = kernels::pairSquaredDistance(pair.kind, xs);
-    if (d2 <= reach * reach) near_.push_back({pair, std::sqrt(d2)});
+    if (d2 <= reach * reach) near_.push_back({pair, std::sqrt(d2), m_->contact.thickness});
   });
+  nearThicknesses();
+}
+
+// CT15: each near pair's own thickness, from the sorted table (both lists in key order).
+void ContactTerm::nearThicknesses() {
+  auto g = startGaps_.begin();
+  for (auto& n : near_) {
+    const std::int64_t k = n.pair.key();
+    while (g != startGaps_.end() && g->first < k) ++g;
+    n.thickness = g != startGaps_.end() && g->first == k ? g->second : m_->contact.thickness;
+  }
+}
+
+void ContactTerm::raiseStartGap(const Pair& p, double d) {
+  const auto it =
+      std::lower_bound(trialStartGaps_.begin(), trialStartGaps_.end(), Thickness{p.key(), -1.0});
+  if (it == trialStartGaps_.end() || it->first != p.key()) return;
+  it->second = std::max(it->second, std::min(d, m_->contact.thickness));
+}
+
+double ContactTerm::thicknessOf(const Pair& p) const {
+  const auto it = std::lower_bound(startGaps_.begin(), startGaps_.end(), Thickness{p.key(), -1.0});
+  return it != startGaps_.end() && it->first == p.key() ? it->second : m_->contact.thickness;
+}
+
+// CT15: the pairs within dHat at the start positions x0 (a packed or folded start whose layers
+// are closer than the thickness) start with their distance as their thickness: no force at the
+// start, a contact that resists any further approach.
+void ContactTerm::startGapsAt(const Eigen::VectorXd& x0) {
+  startGaps_.clear();
+  std::vector<int> sliders;
+  slidersNow(sliders);
+  BroadPhase own(*mesh_, m_->contact.thickness, 0.0);
+  own.build(x0, sliders);
+  const double dHat = m_->contact.thickness;
+  forEachPair(own, [&](const Pair& pair) {
+    const auto xs = gather(x0, pair.nodes);
+    if (kernels::boxesApart(pair.kind == ContactPairKind::PointTriangle, xs, dHat)) return;
+    const double d2 = kernels::pairSquaredDistance(pair.kind, xs);
+    if (d2 < dHat * dHat) startGaps_.push_back({pair.key(), std::sqrt(d2)});
+  });
+  std::sort(startGaps_.begin(), startGaps_.end());
+  trialStartGaps_ = startGaps_;
 }
 
 template <class F>
@@ -145,7 +191,7 @@ void ContactTerm::forEachNear(const std::vector<double>& moved, double reach, F&
       first = std::max(first, moved[k[1]]);
       second = std::max(moved[k[2]], moved[k[3]]);
     }
-    if (n.distance - first - second < reach) f(n.pair);
+    if (n.distance - first - second < reach) f(n.pair, n.thickness);
   }
 }
 
@@ -176,9 +222,9 @@ void ContactTerm::forEachPair(const BroadPhase& bp, F&& f) const {
     }
     // Bent at its slider: two segments, each excluded on its own when it shares a node (CT11).
     if (!ContactMesh::adjacent({l.a, s}, e))
-      f(Pair{ContactPairKind::EdgeEdge, {l.a, s, e[0], e[1]}, 2, c.first, c.second});
+      f(Pair{ContactPairKind::EdgeEdge, {l.a, s, e[0], e[1]}, 2, c.first, c.second, 1});
     if (!ContactMesh::adjacent({s, l.b}, e))
-      f(Pair{ContactPairKind::EdgeEdge, {s, l.b, e[0], e[1]}, 2, c.first, c.second});
+      f(Pair{ContactPairKind::EdgeEdge, {s, l.b, e[0], e[1]}, 2, c.first, c.second, 2});
   }
 }
 
@@ -292,16 +338,23 @@ void ContactTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
     for (int n : nodes) most = std::max(most, lagShare_[n]);
     return most;
   };
-  forEachNear(moved_, dHat, [&](const Pair& pair) {
+  forEachNear(moved_, dHat, [&](const Pair& pair, double own) {
     const auto x = gather(p.x, pair.nodes);
     ++out.work().contact;
-    if (!(kernels::pairSquaredDistance(pair.kind, x) < dHat * dHat)) return;
+    const double d2 = kernels::pairSquaredDistance(pair.kind, x);
+    if (!(d2 < dHat * dHat)) return;
+    if (!(d2 < own * own)) {
+      // CT15: a pair that started closer than dHat and is now farther than its own thickness:
+      // its thickness follows it back towards dHat (it has no energy now, nor after).
+      if (stepEvaluation && own < dHat) raiseStartGap(pair, std::sqrt(d2));
+      return;
+    }
     const double k = pairStiffness(pair.nodes);
     if (!(k > 0.0)) return;
     ++active;
     const auto v = gather(p.v, pair.nodes);
     const double mass = pairMass(pair.kind, pair.nodes);
-    kernels::ContactLaw law{k, dHat, 0.0};
+    kernels::ContactLaw law{k, own, 0.0};
     if (def.dampingRatio > 0.0 && p.inertia) {
       law.damping = 2.0 * def.dampingRatio * std::sqrt(k * mass);  // CT6
       if (p.explicitStep > 0.0)
@@ -318,7 +371,7 @@ void ContactTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
         record_.largestApproachPerStep =
             std::max(record_.largestApproachPerStep, -ddot * p.dt / dHat);
         record_.largestApproachEnergy =
-            std::max(record_.largestApproachEnergy, mass * ddot * ddot / (k * dHat * dHat));
+            std::max(record_.largestApproachEnergy, mass * ddot * ddot / (k * own * own));
       }
     }
     if (!r.active) return;
@@ -375,21 +428,21 @@ void ContactTerm::forEachPairWithin(const Eigen::VectorXd& x, double reach, F&& 
   }
   BroadPhase own(*mesh_, m_->contact.thickness, m_->contact.skin);
   own.build(x, sliders);
-  forEachPair(own, f);
+  forEachPair(own, [&](const Pair& pair) { f(pair, thicknessOf(pair)); });
 }
 
 void ContactTerm::addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd&, double,
                             EnergyBreakdown& e) const {
   const double dHat = m_->contact.thickness;
   const std::array<Vec3, 4> still{Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
-  forEachPairWithin(x, dHat, [&](const Pair& pair) {
+  forEachPairWithin(x, dHat, [&](const Pair& pair, double own) {
     const auto xs = gather(x, pair.nodes);
-    if (kernels::boxesApart(pair.kind == ContactPairKind::PointTriangle, xs, dHat)) return;
-    if (!(kernels::pairSquaredDistance(pair.kind, xs) < dHat * dHat)) return;
+    if (kernels::boxesApart(pair.kind == ContactPairKind::PointTriangle, xs, own)) return;
+    if (!(kernels::pairSquaredDistance(pair.kind, xs) < own * own)) return;
     const double k = pairStiffness(pair.nodes);
     if (!(k > 0.0)) return;
     const auto r =
-        kernels::contactPair(pair.kind, xs, still, {k, dHat, 0.0}, mollifierThreshold(pair), false);
+        kernels::contactPair(pair.kind, xs, still, {k, own, 0.0}, mollifierThreshold(pair), false);
     if (r.active) e.strain += r.energy;
   });
 }
@@ -397,10 +450,10 @@ void ContactTerm::addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd&, do
 void ContactTerm::addStiffnessBound(const Eigen::VectorXd& x, double, const std::vector<char>&,
                                     std::vector<double>& S) const {
   const double reach = m_->contact.thickness;
-  forEachPairWithin(x, reach, [&](const Pair& pair) {
+  forEachPairWithin(x, reach, [&](const Pair& pair, double own) {
     const auto xs = gather(x, pair.nodes);
-    if (kernels::boxesApart(pair.kind == ContactPairKind::PointTriangle, xs, reach)) return;
-    if (!(kernels::pairSquaredDistance(pair.kind, xs) < reach * reach)) return;
+    if (kernels::boxesApart(pair.kind == ContactPairKind::PointTriangle, xs, own)) return;
+    if (!(kernels::pairSquaredDistance(pair.kind, xs) < own * own)) return;
     const double k = pairStiffness(pair.nodes);
     if (!(k > 0.0)) return;
     const auto d = kernels::pairDistance(pair.kind, xs, false);
@@ -411,6 +464,10 @@ void ContactTerm::addStiffnessBound(const Eigen::VectorXd& x, double, const std:
 
 void ContactTerm::commit(const CommitPoint&) {
   lag_ = trialLag_;
+  if (trialStartGaps_ != startGaps_) {
+    startGaps_ = trialStartGaps_;
+    nearThicknesses();
+  }
   if (!lagCovered(lag_)) couplingsChanged_ = true;
   committedBuild_ = broadPhase_->state();
   record_.builds = broadPhase_->builds();
@@ -422,6 +479,7 @@ void ContactTerm::commit(const CommitPoint&) {
 
 void ContactTerm::revert() {
   trialLag_ = lag_;
+  trialStartGaps_ = startGaps_;
   if (committedBuild_.positions.size() == 0) return;  // nothing committed yet: keep the build
   const auto& trial = broadPhase_->state();
   if (trial.sliders == committedBuild_.sliders &&
@@ -450,6 +508,12 @@ void ContactTerm::save(History& h) const {
   }
   h.put(ints);
   h.put(reals);
+  // CT15: the pairs' own thicknesses.
+  h.put(static_cast<int>(startGaps_.size()));
+  for (const auto& [key, thickness] : startGaps_) {
+    h.put(static_cast<std::int64_t>(key));
+    h.put(thickness);
+  }
 }
 
 void ContactTerm::load(HistoryReader& h) {
@@ -490,8 +554,19 @@ void ContactTerm::load(HistoryReader& h) {
         !(wsum <= 2.0 + 1e-9))
       h.fail("contact: a lagged pair's weights, normal or normal force are out of range");
   }
+  const int gaps = static_cast<int>(h.integer(0, 1L << 30));
+  std::vector<Thickness> startGaps(gaps);
+  for (auto& [key, thickness] : startGaps) {
+    key = h.integer(0, std::numeric_limits<std::int64_t>::max());
+    thickness = h.real();
+    if (!(thickness >= 0.0 && thickness <= m_->contact.thickness))
+      h.fail("contact: a pair's own thickness is outside [0, thickness]");
+  }
+  if (!std::is_sorted(startGaps.begin(), startGaps.end()))
+    h.fail("contact: the pairs' own thicknesses are not in order");
   committedBuild_.positions = positions;
   committedBuild_.sliders.assign(sliders.begin(), sliders.end());
+  startGaps_ = trialStartGaps_ = startGaps;
   lag_ = trialLag_ = lag;
   if (positions.size() != 0) {
     broadPhase_->build(committedBuild_);

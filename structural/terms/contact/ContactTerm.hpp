@@ -10,6 +10,7 @@
 // follows the candidate list (Term::updateCouplings). The penalty's energy is strain energy in
 // the energy balance; damping and friction only take energy out.
 #include <Eigen/Core>
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -78,6 +79,12 @@ class ContactTerm final : public Term {
     kernels::ContactPairKind kind;
     std::array<int, 4> nodes;
     int list = 0, first = 0, second = 0;  // which candidate list (0 pt, 1 ee, 2 le) and entry
+    int sub = 0;  // a line element bent at its slider: its segment 1 or 2 (0: unbent)
+    // One number per pair, increasing in the order the lists are walked (CT15's table).
+    std::int64_t key() const {
+      return (static_cast<std::int64_t>(list) << 60) | (static_cast<std::int64_t>(first) << 31) |
+             (static_cast<std::int64_t>(second) << 2) | static_cast<std::int64_t>(sub);
+    }
   };
   struct Lag {
     kernels::ContactPairKind kind;
@@ -112,8 +119,17 @@ class ContactTerm final : public Term {
   std::unique_ptr<contact::BroadPhase> broadPhase_;
   struct Near {
     Pair pair;
-    double distance;  // at the build
+    double distance;   // at the build
+    double thickness;  // the pair's own (CT15)
   };
+  // CT15: the pairs closer than dHat at the start, with their own thickness (sorted by key);
+  // committed, and as the last step's evaluation would leave it.
+  using Thickness = std::pair<std::int64_t, double>;
+  std::vector<Thickness> startGaps_, trialStartGaps_;
+  double thicknessOf(const Pair& p) const;
+  void raiseStartGap(const Pair& p, double distance);
+  void startGapsAt(const Eigen::VectorXd& x0);
+  void nearThicknesses();
   std::vector<Near> near_;     // the candidates within dHat + skin at the build (CT10)
   std::vector<double> moved_;  // per node: motion since the build, at the last refresh
   std::vector<int> slidersScratch_;
