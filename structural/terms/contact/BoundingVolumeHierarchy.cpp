@@ -14,6 +14,8 @@ void BoundingVolumeHierarchy::build(const std::vector<Aabb>& boxes) {
   nodes_.reserve(2 * (boxes.size() / kLeafSize + 1));
   nodes_.emplace_back();
   buildNode(0, 0, static_cast<int>(boxes.size()), 0);
+  leafBoxes_.resize(boxes_.size());
+  for (size_t i = 0; i < order_.size(); ++i) leafBoxes_[i] = boxes_[order_[i]];
   loosenessAtBuild_ = looseness();
 }
 
@@ -51,12 +53,13 @@ void BoundingVolumeHierarchy::buildNode(int self, int first, int count, int dept
 
 void BoundingVolumeHierarchy::refit(const std::vector<Aabb>& boxes) {
   boxes_ = boxes;
+  for (size_t i = 0; i < order_.size(); ++i) leafBoxes_[i] = boxes_[order_[i]];
   // Children are stored after their parent: one pass from the back refits every node.
   for (int k = static_cast<int>(nodes_.size()) - 1; k >= 0; --k) {
     Node& n = nodes_[k];
     Aabb b;
     if (n.count > 0) {
-      for (int i = n.first; i < n.first + n.count; ++i) b.add(boxes_[order_[i]]);
+      for (int i = n.first; i < n.first + n.count; ++i) b.add(leafBoxes_[i]);
     } else {
       b.add(nodes_[n.left].box);
       b.add(nodes_[n.left + 1].box);

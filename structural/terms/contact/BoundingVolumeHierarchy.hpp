@@ -51,7 +51,7 @@ class BoundingVolumeHierarchy {
       if (!n.box.overlaps(box)) continue;
       if (n.count > 0) {
         for (int i = n.first; i < n.first + n.count; ++i)
-          if (boxes_[order_[i]].overlaps(box)) visit(order_[i]);
+          if (leafBoxes_[i].overlaps(box)) visit(order_[i]);
       } else {
         stack[top++] = n.left;
         stack[top++] = n.left + 1;
@@ -69,6 +69,7 @@ class BoundingVolumeHierarchy {
   std::vector<Node> nodes_;
   std::vector<int> order_;
   std::vector<Aabb> boxes_;
+  std::vector<Aabb> leafBoxes_;  // boxes_ in the leaves' order (order_), read by the queries
   double loosenessAtBuild_ = 1.0;
 };
 
