@@ -86,9 +86,9 @@ void readContact(Model& m, TomlTable t) {
   c.friction = t.nonNegative("friction", 0.25);
   if (c.friction > 2.0) t.fail("friction", "must be at most 2");
   c.slipSpeed = t.has("slip_speed") ? t.positive("slip_speed") : c.thickness;  // per second
-  // CT10: a skin of three thicknesses balanced the lists' builds against the narrow phase on
-  // the C-9 (bench/results/contact_c9_cost.md).
-  c.skin = t.has("skin") ? length(t, "skin") : 3.0 * c.thickness;
+  // CT10: a skin of six thicknesses (the near list's a quarter of it) balanced the candidate
+  // lists' builds against the near lists' on the C-9 (docs/contact.md, "What it costs").
+  c.skin = t.has("skin") ? length(t, "skin") : 6.0 * c.thickness;
   if (c.skin > 100.0 * c.thickness)
     t.fail("skin",
            "must be at most 100 times the thickness (the candidate lists would hold "

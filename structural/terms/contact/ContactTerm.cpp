@@ -106,36 +106,73 @@ void ContactTerm::slidersNow(std::vector<int>& s) const {
     s[i] = lines[i].group < 0 ? -1 : mesh_->sliderOn(lines[i], groups_);
 }
 
+// CT10: the near list's skin, a share of the candidate lists'.
+constexpr double kNearSkinShare = 0.25;
+
+double ContactTerm::nearSkin() const {
+  return kNearSkinShare * m_->contact.skin;
+}
+
+// How far each node of the mesh has moved since the near list was made (into `moved`), and
+// whether both lists still cover x: no node farther than the near skin's half from where the
+// near list saw it, nor than the skin's half from the candidate lists' build (the motion since
+// that build is at most its motion up to the near list's plus since), the same sliders.
 bool ContactTerm::covered(const Eigen::VectorXd& x, const std::vector<int>& sliders,
                           std::vector<double>& moved) const {
-  if (!broadPhase_->built() || sliders != broadPhase_->state().sliders) return false;
-  return broadPhase_->displacements(x, moved) <= 0.5 * m_->contact.skin;
+  if (!broadPhase_->built() || sliders != broadPhase_->state().sliders || nearAt_.size() == 0)
+    return false;
+  const auto& nodes = mesh_->nodes();
+  double near = 0.0, build = 0.0;
+  for (size_t i = 0; i < nodes.size(); ++i) {
+    const double d = (x.segment<3>(3 * nodes[i]) - nearAt_.segment<3>(3 * i)).norm();
+    moved[nodes[i]] = d;
+    near = std::max(near, d);
+    build = std::max(build, d + nearFromBuild_[i]);
+  }
+  return near <= 0.5 * nearSkin() && build <= 0.5 * m_->contact.skin;
 }
 
 void ContactTerm::refresh(const Eigen::VectorXd& x) {
   std::vector<int>& sliders = slidersScratch_;
   slidersNow(sliders);
   if (covered(x, sliders, moved_)) return;
-  broadPhase_->build(x, sliders);
-  nearList();
-  broadPhase_->displacements(x, moved_);
-  couplingsChanged_ = true;
+  const auto& nodes = mesh_->nodes();
+  bool candidatesHold = broadPhase_->built() && sliders == broadPhase_->state().sliders;
+  if (candidatesHold) {
+    const auto& xb = broadPhase_->state().positions;
+    for (size_t i = 0; i < nodes.size() && candidatesHold; ++i)
+      candidatesHold =
+          (x.segment<3>(3 * nodes[i]) - xb.segment<3>(3 * i)).norm() <= 0.5 * m_->contact.skin;
+  }
+  if (!candidatesHold) {
+    broadPhase_->build(x, sliders);
+    couplingsChanged_ = true;
+  }
+  nearList(x);
 }
 
-// CT10: the candidates' exact distances at the build. A pair farther than dHat + skin then
-// cannot come into contact before the next build (each node moves at most skin / 2); the others
-// keep their distance, from which the motion since the build is taken off at each evaluation.
-void ContactTerm::nearList() {
-  const Eigen::VectorXd xb = broadPhase_->buildPositions(m_->numNodes());
-  const double reach = m_->contact.thickness + m_->contact.skin;
+// CT10: the candidates within dHat + the near skin at positions x, with their distance there.
+// While no node has moved more than half the near skin since, no other candidate can come
+// within dHat; each evaluation takes the near pairs' nodes' motion since x off their distance.
+void ContactTerm::nearList(const Eigen::VectorXd& x) {
+  const double reach = m_->contact.thickness + nearSkin();
   near_.clear();
   forEachPair(*broadPhase_, [&](const Pair& pair) {
-    const auto xs = gather(xb, pair.nodes);
+    const auto xs = gather(x, pair.nodes);
     if (kernels::boxesApart(pair.kind == ContactPairKind::PointTriangle, xs, reach)) return;
     const double d2 = kernels::pairSquaredDistance(pair.kind, xs);
     if (d2 <= reach * reach) near_.push_back({pair, std::sqrt(d2), m_->contact.thickness});
   });
   nearThicknesses();
+  const auto& nodes = mesh_->nodes();
+  const auto& xb = broadPhase_->state().positions;
+  nearAt_.resize(3 * static_cast<long>(nodes.size()));
+  nearFromBuild_.resize(nodes.size());
+  for (size_t i = 0; i < nodes.size(); ++i) {
+    nearAt_.segment<3>(3 * i) = x.segment<3>(3 * nodes[i]);
+    nearFromBuild_[i] = (nearAt_.segment<3>(3 * i) - xb.segment<3>(3 * i)).norm();
+    moved_[nodes[i]] = 0.0;
+  }
 }
 
 // CT15: each near pair's own thickness, from the sorted table (both lists in key order).
@@ -312,7 +349,9 @@ bool ContactTerm::lagCovered(const std::vector<Lag>& lag) const {
 void ContactTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
   if (p.xStart) throw std::logic_error("contact: the energy-momentum integrator is not supported");
   refresh(p.x);
-  if (broadPhase_->builds() != buildsSeen_) {
+  // The builds are counted on an evaluation of the forces (load factor > 0), not on the lumped
+  // mass's (EvalPoint::inertiaOf), whose assembler's counters are not the run's.
+  if (p.loadFactor > 0.0 && broadPhase_->builds() != buildsSeen_) {
     out.work().contactLists += broadPhase_->builds() - buildsSeen_;
     buildsSeen_ = broadPhase_->builds();
   }
@@ -470,6 +509,7 @@ void ContactTerm::commit(const CommitPoint&) {
   }
   if (!lagCovered(lag_)) couplingsChanged_ = true;
   committedBuild_ = broadPhase_->state();
+  committedNearAt_ = nearAt_;
   record_.builds = broadPhase_->builds();
   record_.treeBuilds = broadPhase_->treeBuilds();
   record_.candidates =
@@ -480,15 +520,25 @@ void ContactTerm::commit(const CommitPoint&) {
 void ContactTerm::revert() {
   trialLag_ = lag_;
   trialStartGaps_ = startGaps_;
-  if (committedBuild_.positions.size() == 0) return;  // nothing committed yet: keep the build
+  if (committedBuild_.positions.size() == 0) return;  // nothing committed yet: keep the lists
   const auto& trial = broadPhase_->state();
-  if (trial.sliders == committedBuild_.sliders &&
-      trial.positions.size() == committedBuild_.positions.size() &&
-      trial.positions == committedBuild_.positions)
-    return;
-  broadPhase_->build(committedBuild_);
-  nearList();
-  couplingsChanged_ = true;
+  const bool sameBuild = trial.sliders == committedBuild_.sliders &&
+                         trial.positions.size() == committedBuild_.positions.size() &&
+                         trial.positions == committedBuild_.positions;
+  if (sameBuild && nearAt_.size() == committedNearAt_.size() && nearAt_ == committedNearAt_) return;
+  if (!sameBuild) {
+    broadPhase_->build(committedBuild_);
+    couplingsChanged_ = true;
+  }
+  nearList(unpacked(committedNearAt_));
+}
+
+// Positions over all nodes of the model from the mesh's nodes' (zero elsewhere).
+Eigen::VectorXd ContactTerm::unpacked(const Eigen::VectorXd& packed) const {
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(3 * static_cast<long>(m_->numNodes()));
+  const auto& nodes = mesh_->nodes();
+  for (size_t i = 0; i < nodes.size(); ++i) x.segment<3>(3 * nodes[i]) = packed.segment<3>(3 * i);
+  return x;
 }
 
 // History: the build the candidate lists come from (its positions and sliders) and the lagged
@@ -496,6 +546,7 @@ void ContactTerm::revert() {
 void ContactTerm::save(History& h) const {
   h.put(committedBuild_.positions);
   h.put(committedBuild_.sliders);
+  h.put(committedNearAt_);
   h.put(static_cast<int>(lag_.size()));
   std::vector<int> ints;
   std::vector<double> reals;
@@ -525,6 +576,8 @@ void ContactTerm::load(HistoryReader& h) {
   if (!positions.allFinite()) h.fail("contact build positions not finite");
   const int numNodes = m_->numNodes();
   const auto sliders = h.ints(positions.size() ? mesh_->lines().size() : 0, -1, numNodes - 1);
+  const Eigen::VectorXd nearAt = h.vector(positions.size());
+  if (!nearAt.allFinite()) h.fail("contact near-list positions not finite");
   const int count = static_cast<int>(h.integer(0, 1L << 30));
   const auto ints = h.ints(7 * static_cast<size_t>(count), 0, 1 << 30);
   const auto reals = h.reals(8 * static_cast<size_t>(count));
@@ -566,11 +619,12 @@ void ContactTerm::load(HistoryReader& h) {
     h.fail("contact: the pairs' own thicknesses are not in order");
   committedBuild_.positions = positions;
   committedBuild_.sliders.assign(sliders.begin(), sliders.end());
+  committedNearAt_ = nearAt;
   startGaps_ = trialStartGaps_ = startGaps;
   lag_ = trialLag_ = lag;
   if (positions.size() != 0) {
     broadPhase_->build(committedBuild_);
-    nearList();
+    nearList(unpacked(committedNearAt_));
   }
   couplingsChanged_ = true;
 }

@@ -99,7 +99,9 @@ class ContactTerm final : public Term {
   bool covered(const Eigen::VectorXd& x, const std::vector<int>& sliders,
                std::vector<double>& moved) const;
   void refresh(const Eigen::VectorXd& x);
-  void nearList();
+  double nearSkin() const;
+  void nearList(const Eigen::VectorXd& x);
+  Eigen::VectorXd unpacked(const Eigen::VectorXd& packed) const;
   template <class F>
   void forEachNear(const std::vector<double>& moved, double reach, F&& f) const;
   template <class F>
@@ -131,7 +133,11 @@ class ContactTerm final : public Term {
   void startGapsAt(const Eigen::VectorXd& x0);
   void nearThicknesses();
   std::vector<Near> near_;     // the candidates within dHat + skin at the build (CT10)
-  std::vector<double> moved_;  // per node: motion since the build, at the last refresh
+  std::vector<double> moved_;  // per node: motion since the near list, at the last refresh
+  // Where the mesh's nodes were when the near list was made (packed, ContactMesh::nodes()
+  // order), committed; and how far each was then from the candidate lists' build.
+  Eigen::VectorXd nearAt_, committedNearAt_;
+  std::vector<double> nearFromBuild_;
   std::vector<int> slidersScratch_;
   std::vector<double> nodeStiffness_, nodeMass_;
   contact::BuildState committedBuild_;
