@@ -25,17 +25,6 @@ bool BroadPhase::covers(const Eigen::VectorXd& x, const std::vector<int>& slider
   return true;
 }
 
-double BroadPhase::displacements(const Eigen::VectorXd& x, std::vector<double>& moved) const {
-  double most = 0.0;
-  const auto& nodes = mesh_->nodes();
-  for (size_t i = 0; i < nodes.size(); ++i) {
-    const double d = (at(x, nodes[i]) - state_.positions.segment<3>(3 * i)).norm();
-    moved[nodes[i]] = d;
-    most = std::max(most, d);
-  }
-  return most;
-}
-
 Eigen::VectorXd BroadPhase::buildPositions(int numNodes) const {
   Eigen::VectorXd x = Eigen::VectorXd::Zero(3 * static_cast<long>(numNodes));
   const auto& nodes = mesh_->nodes();

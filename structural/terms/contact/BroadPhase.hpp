@@ -51,9 +51,6 @@ class BroadPhase {
 
   // Whether the last build still covers positions x with these sliders on the line elements.
   bool covers(const Eigen::VectorXd& x, const std::vector<int>& sliders) const;
-  // How far each node of the mesh has moved since the last build (entries of other nodes are
-  // left alone); returns the largest.
-  double displacements(const Eigen::VectorXd& x, std::vector<double>& moved) const;
   // The positions of the last build, over all nodes of the model (zero at nodes not in the mesh).
   Eigen::VectorXd buildPositions(int numNodes) const;
   // Builds the candidate lists at x (all dofs of the model).

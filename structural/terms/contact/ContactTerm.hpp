@@ -2,13 +2,14 @@
 // Fabric contact as a term of the equations (docs/contact.md): fabric against fabric (within a
 // canopy, between the canopies of a cluster, the slider against the canopy) and lines against
 // fabric, between the primitives of the sets a case's [contact] names. The broad phase
-// (BroadPhase, CT10) keeps the candidate pairs; each evaluation computes the distance of every
-// candidate and adds, for those closer than the contact thickness, the penalty and damping of
-// CT4-CT6 with the stiffness of CT9, and for the pairs in contact at the step's start their
-// lagged friction (CT7). The integrators know nothing of it: residual only for the explicit path,
-// the consistent Jacobian cx dr/dx + cv dr/dv for the implicit ones, whose sparsity pattern
-// follows the candidate list (Term::updateCouplings). The penalty's energy is strain energy in
-// the energy balance; damping and friction only take energy out.
+// (BroadPhase, CT10) keeps the candidate pairs and the term a near list of them; each evaluation
+// computes the distance of the near pairs its motion could have brought within the contact
+// thickness and adds, for those closer, the penalty and damping of CT4-CT6 with the stiffness of
+// CT9, and for the pairs in contact at the step's start their lagged friction (CT7). The
+// integrators know nothing of it: residual only for the explicit path, the consistent Jacobian cx
+// dr/dx + cv dr/dv for the implicit ones, whose sparsity pattern follows the candidate list
+// (Term::updateCouplings). The penalty's energy is strain energy in the energy balance; damping and
+// friction only take energy out.
 #include <Eigen/Core>
 #include <cstdint>
 #include <memory>
