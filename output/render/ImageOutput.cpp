@@ -10,6 +10,8 @@
 #include <vtkWindowToImageFilter.h>
 
 #include <cerrno>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <stdexcept>
@@ -63,30 +65,46 @@ void writeWindowPng(vtkRenderWindow* window, const std::string& path) {
   if (!bytes || bytes->GetNumberOfValues() == 0)
     throw ImageWriteError("cannot write " + path + ": the image could not be encoded");
   if (const std::string bad = imageFileProblem(path); !bad.empty()) throw ImageWriteError(bad);
-  // O_NOFOLLOW: a symbolic link planted at the path is refused, not written through;
-  // O_NONBLOCK: a FIFO there fails the open (no reader) instead of waiting.
-  const int fd = ::open(path.c_str(),
-                        O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC, 0644);
+  // Written whole to a new file beside `path`, then renamed over it: a reader, or another chute
+  // writing the same path at the same time, sees the old image or the new one, never a file
+  // truncated to 0 bytes (two `chute plot` runs with one --out, each checking its image after
+  // the write, saw the other's truncation: "the image could not be written"). mkstemp creates
+  // the file (O_EXCL: never a link or FIFO planted there); rename replaces a name, never
+  // writing through a link to its target.
+  namespace fs = std::filesystem;
+  const fs::path parent = fs::path(path).parent_path();
+  std::string tmp =
+      (parent.empty() ? fs::path(".chute-png-XXXXXX") : parent / ".chute-png-XXXXXX").string();
+  const int fd = ::mkostemp(tmp.data(), O_CLOEXEC);
   if (fd < 0) throw ImageWriteError("cannot write " + path + ": " + std::strerror(errno));
-  struct stat st {};
-  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+  auto fail = [&](int e) {
     ::close(fd);
-    throw ImageWriteError("cannot write " + path + ": not a regular file");
-  }
+    ::unlink(tmp.c_str());
+    throw ImageWriteError("cannot write " + path + ": " + std::strerror(e));
+  };
+  // mkstemp's file is 0600: give the image the mode a plain create would (0644 less the umask).
+  const mode_t mask = ::umask(0);
+  ::umask(mask);
+  if (::fchmod(fd, 0644 & ~mask) != 0) fail(errno);
   const auto* data = bytes->GetPointer(0);
   std::size_t left = static_cast<std::size_t>(bytes->GetNumberOfValues()), done = 0;
   while (left > 0) {
     const ssize_t n = ::write(fd, data + done, left);
     if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      const int e = errno;
-      ::close(fd);
-      throw ImageWriteError("cannot write " + path + ": " + std::strerror(e));
-    }
+    if (n <= 0) fail(n < 0 ? errno : EIO);
     done += static_cast<std::size_t>(n);
     left -= static_cast<std::size_t>(n);
   }
-  if (::close(fd) != 0) throw ImageWriteError("cannot write " + path + ": " + std::strerror(errno));
+  if (::close(fd) != 0) {
+    const int e = errno;
+    ::unlink(tmp.c_str());
+    throw ImageWriteError("cannot write " + path + ": " + std::strerror(e));
+  }
+  if (::rename(tmp.c_str(), path.c_str()) != 0) {
+    const int e = errno;
+    ::unlink(tmp.c_str());
+    throw ImageWriteError("cannot write " + path + ": " + std::strerror(e));
+  }
 }
 
 }  // namespace chute::render

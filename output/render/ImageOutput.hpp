@@ -39,9 +39,10 @@ class ImageWriteError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Reads the window's image back and writes it to `path` as PNG: encoded in memory, then written
-// to a regular file created or truncated without following a symbolic link and without blocking
-// on a FIFO. Throws ImageWriteError naming the file.
+// Reads the window's image back and writes it to `path` as PNG: encoded in memory, written to a
+// new file in the same directory and renamed over `path` (a symbolic link there is replaced, not
+// written through; a FIFO never opened; a reader or a concurrent writer of the same path never
+// sees a part-written file). Throws ImageWriteError naming the file.
 void writeWindowPng(vtkRenderWindow* window, const std::string& path);
 
 }  // namespace chute::render

@@ -493,8 +493,14 @@ def corpus(ctx):
     # ---- CSV inputs of plot
     P = "plot CSV"
     run_dir = ctx.path("run")
-    plot = [c, "plot", "--columns", ctx.columns, "--out", ctx.path("p.png")]
-    add(Input(P, "valid", plot + [run_dir], OK, None, 60))
+    # Each input its own image: inputs run two at a time, and two plots of one --out raced (each
+    # checks its image after writing it; the other's truncation read as "the image could not be
+    # written", exit 3; chute now writes images whole and renames them into place).
+    def plot_to(name):
+        return [c, "plot", "--columns", ctx.columns, "--out",
+                ctx.path("p_%s.png" % name.replace(" ", "_"))]
+
+    add(Input(P, "valid", plot_to("valid") + [run_dir], OK, None, 60))
     lines = ctx.probes.splitlines()
     sub = "\n".join([lines[0]] + [",".join(["4.9406564584124654e-324"] + r.split(",")[1:])
                                   if k == 0 else r for k, r in enumerate(lines[1:])]) + "\n"
@@ -507,13 +513,13 @@ def corpus(ctx):
         os.makedirs(d, exist_ok=True)
         with open(os.path.join(d, "probes.csv"), "w") as f:
             f.write(text)
-        add(Input(P, name, plot + [d], expect, None, 60))
+        add(Input(P, name, plot_to(name) + [d], expect, None, 60))
     d = ctx.path("plot_summary_fifo")
     os.makedirs(d, exist_ok=True)
     shutil.copy(os.path.join(run_dir, "probes.csv"), d)
     if not os.path.lexists(os.path.join(d, "summary.json")):
         os.mkfifo(os.path.join(d, "summary.json"))
-    add(Input(P, "summary.json is a fifo", plot + [d], ERROR, None, 10))
+    add(Input(P, "summary.json is a fifo", plot_to("summary fifo") + [d], ERROR, None, 10))
     for name, target in [("fifo", ctx.path("fifo.csv")), ("dev zero", "/dev/zero"),
                          ("directory", ctx.path("dir.toml"))]:
         d = ctx.path("plot_" + name.replace(" ", "_"))
@@ -521,9 +527,10 @@ def corpus(ctx):
         link = os.path.join(d, "probes.csv")
         if not os.path.lexists(link):
             os.symlink(target, link)
-        add(Input(P, "probes.csv is a " + name, plot + [d], ERROR, None, 10))
-        add(Input(P, "--reference is a " + name, plot + [run_dir, "--reference", target], ERROR,
-                  None, 10))
+        add(Input(P, "probes.csv is a " + name, plot_to("csv " + name) + [d], ERROR, None, 10))
+        add(Input(P, "--reference is a " + name,
+                  plot_to("reference " + name) + [run_dir, "--reference", target], ERROR, None,
+                  10))
 
     # ---- the files `chute render` and `chute plot` open: frames checked before drawing, no
     # blocking on FIFOs, the output never a FIFO or a link, images within the memory budget

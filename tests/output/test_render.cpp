@@ -606,6 +606,42 @@ TEST(Plot, TheTimeAsACurveAnImageBeyondTheBudgetOrAFifoOutIsRefused) {
   EXPECT_FALSE(fs::exists(dir / "elsewhere.png"));
 }
 
+// Two `chute plot` runs writing one --out at once (the attack corpus ran its plot inputs two at a
+// time into one file): each image is written whole beside the target and renamed over it, so
+// neither sees the other's half-written or truncated file. Before, each truncated and wrote the
+// path itself and then checked its size; the other's truncation in between read as "the image
+// could not be written" (exit 3). Both must succeed, leaving a whole image and no temporary file.
+TEST(Plot, TwoPlotsOfOneOutWriteWholeImages) {
+  const auto dir = smallRun("plot_concurrent");
+  const std::string png = (dir / "p.png").string();
+  const std::string plot = "env -u DISPLAY " + kChute + " plot " + dir.string() +
+                           " --columns bead.x --size 320x200 --out " + png + " > /dev/null";
+  for (int round = 0; round < 3; ++round) {
+    const std::string both = "(" + plot + " 2> " + (dir / "e1.txt").string() + "; echo $? > " +
+                             (dir / "s1.txt").string() + ") & (" + plot + " 2> " +
+                             (dir / "e2.txt").string() + "; echo $? > " +
+                             (dir / "s2.txt").string() + ") & wait";
+    ASSERT_EQ(std::system(("bash -c '" + both + "'").c_str()), 0);
+    for (const char* k : {"1", "2"}) {
+      std::ifstream status(dir / (std::string("s") + k + ".txt"));
+      std::ifstream err(dir / (std::string("e") + k + ".txt"));
+      const std::string text((std::istreambuf_iterator<char>(err)),
+                             std::istreambuf_iterator<char>());
+      int code = -1;
+      status >> code;
+      EXPECT_EQ(code, 0) << "round " << round << ", plot " << k << ": " << text;
+    }
+    const Image im = readPng(png);
+    std::printf("round %d: both plots exit 0, %s is %dx%d\n", round, png.c_str(), im.width,
+                im.height);
+    EXPECT_EQ(im.width, 320);
+    EXPECT_EQ(im.height, 200);
+  }
+  for (const auto& e : fs::directory_iterator(dir))
+    EXPECT_EQ(e.path().filename().string().rfind(".chute-png-", 0), std::string::npos)
+        << "a temporary image left behind: " << e.path();
+}
+
 // A frame whose XML or appended-data headers VTK's reader would trust is refused before the
 // reader sees it (found by mutating real series: an unknown data type in <FieldData> and stray
 // text inside <Cells> crashed the reader, a changed byte count ran it out of memory or past the
