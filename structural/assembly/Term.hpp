@@ -45,6 +45,9 @@ struct EvalPoint {
   // a is zero at every dof (the explicit step evaluates its forces at a = 0, EX2): the terms skip
   // the inertia M a without gathering a at every element. Set only by the caller that made a.
   bool zeroAcceleration = false;
+  // A Newton iteration's Jacobian may give tension-only parts on the kink their taut tangent
+  // (RG10); off for the iteration that confirms convergence with the exact tangent.
+  bool kinkTangent = false;
 
   // The state (x, v, a) at t as it is: residual r(x, v, a, t), Jacobian dr/dx (output, the
   // energy balance, checks).
