@@ -12,12 +12,13 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "OutputFile.hpp"
 #include "app/CborNesting.hpp"
 
 namespace chute {
 
 namespace {
-constexpr int kFormat = 2;
+constexpr int kFormat = 3;  // 3: every case key (2: the solver's)
 // A checkpoint holds a few vectors of the model's size: anything far larger is not one.
 constexpr std::uintmax_t kMaxBytes = std::uintmax_t{4} << 30;
 // The deepest a checkpoint nests is 4 (payload, terms, a term's record, its lists); anything far
@@ -50,7 +51,7 @@ nlohmann::json payloadOf(const Checkpoint& c) {
   nlohmann::json j;
   j["case"] = c.caseName;
   j["model_hash"] = c.modelHash;
-  j["solver"] = c.solverSettings;
+  j["settings"] = c.settings;
   j["t"] = s.t;
   j["x"] = toVector(s.x);
   j["v"] = toVector(s.v);
@@ -96,7 +97,7 @@ Checkpoint checkpointOf(const nlohmann::json& j) {
   constexpr long kMax = std::numeric_limits<long>::max();
   c.caseName = j.at("case").get<std::string>();
   c.modelHash = j.at("model_hash").get<std::uint64_t>();
-  c.solverSettings = j.at("solver").get<std::map<std::string, std::string>>();
+  c.settings = j.at("settings").get<std::map<std::string, std::string>>();
   auto& s = c.stepping.snapshot.state;
   s.t = finite(j, "t");
   if (s.t < 0.0) throw std::runtime_error("t is negative (a run starts at t = 0)");
@@ -163,17 +164,9 @@ void writeCheckpoint(const std::string& path, const Checkpoint& c) {
   j["payload"] = nlohmann::json::binary(payload);
   j["checksum"] = sum.h;
   const std::vector<std::uint8_t> bytes = nlohmann::json::to_cbor(j);
-  const std::string tmp = path + ".tmp";
-  std::FILE* f = std::fopen(tmp.c_str(), "wb");
-  if (!f) throw std::runtime_error("cannot write checkpoint " + tmp);
-  const bool ok = std::fwrite(bytes.data(), 1, bytes.size(), f) == bytes.size() &&
-                  std::fflush(f) == 0 && ::fsync(fileno(f)) == 0;
-  const bool closed = std::fclose(f) == 0;
-  if (!ok || !closed) {
-    std::remove(tmp.c_str());
-    throw std::runtime_error("cannot write checkpoint " + tmp + " (disk full?)");
-  }
-  std::filesystem::rename(tmp, path);  // atomic: the old checkpoint stays until this one is whole
+  // Synced before the rename: the old checkpoint stays until this one is whole on disk.
+  replaceFile(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()),
+              true);
 }
 
 Checkpoint readCheckpoint(const std::string& path) {

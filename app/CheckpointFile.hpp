@@ -4,7 +4,7 @@
 // the step counters, and what the output had written when it was taken. CBOR keeps every double
 // exact. Format 2 carries a checksum over its payload; every field is validated on reading, and
 // the snapshot again by StructuralSystem::loadState, before anything of a run is touched.
-// Written atomically (a temporary file renamed over the old one).
+// Written atomically (a temporary file renamed over the old one, never written through a link).
 #include <cstdint>
 #include <map>
 #include <string>
@@ -26,16 +26,17 @@ struct OutputMark {
 struct Checkpoint {
   std::string caseName;
   std::uint64_t modelHash = 0;  // of the model's nodes, elements and constraints
-  // The settings a restart must share with the run (dt, dt_min, rho_inf, integrator, ...):
-  // another dt would not continue the run bit for bit, so it is refused, not ignored.
-  std::map<std::string, std::string> solverSettings;
+  // Every key of the case the run was started with, as text (CaseSpec::settings): a restart
+  // must give the same, but for the keys docs/cli.md allows to change (solver.t_end): another
+  // dt, load or output interval would not continue the run, so it is refused, not ignored.
+  std::map<std::string, std::string> settings;
   TimeStepper::Saved stepping;  // the system snapshot, the counters, the linear solver's kind
   OutputMark output;
 };
 
 std::uint64_t modelHash(const Model& m);
 
-// Throws std::runtime_error naming the file on any failure (including a full disk).
+// Throws OutputError naming the file on any failure (a full disk, the directory removed).
 void writeCheckpoint(const std::string& path, const Checkpoint& c);
 // Throws std::runtime_error naming the file and the field for anything that is not a whole,
 // unaltered checkpoint of this format with values in range.

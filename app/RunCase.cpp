@@ -15,7 +15,11 @@
 #include <nlohmann/json.hpp>
 
 #include "OutputError.hpp"
+#include "OutputFile.hpp"
 #include "app/CheckpointFile.hpp"
+#include "app/Progress.hpp"
+#include "app/RestartSettings.hpp"
+#include "app/RunLimits.hpp"
 #include "app/RunOutput.hpp"
 #include "app/StopSignals.hpp"
 #include "case/SolverSetup.hpp"
@@ -25,107 +29,10 @@
 #include "terms/CanopyFlowTerm.hpp"
 #include "terms/contact/ContactTerm.hpp"
 #include "terms/sliding/SlidingGroupTerm.hpp"
-#include "verification/HenckyReference.hpp"
-#include "verification/References.hpp"
 
 namespace chute {
 
 namespace {
-
-// What a restart must share with the run it continues (CheckpointFile.hpp); t_end may change.
-std::map<std::string, std::string> settingsOfEveryScheme(const SolverSpec& sv, const Model& m) {
-  return {{"solver.dt", fmt::format("{}", sv.dt)},
-          {"solver.dt_min", fmt::format("{}", sv.dtMin)},
-          {"solver.rho_inf", fmt::format("{}", sv.rhoInf)},
-          {"solver.integrator", std::string(integratorName(sv.integrator))},
-          {"solver.max_newton", fmt::format("{}", sv.maxNewton)},
-          {"solver.tolerance", fmt::format("{}", sv.tolDisplacement)},
-          {"solver.slack_events", sv.slackTautEvents ? "true" : "false"},
-          {"solver.slider_events", sv.sliderEvents ? "true" : "false"},
-          {"solver.reuse_tangent", sv.reuseTangent ? "true" : "false"},
-          {"solver.linear_solver", sv.symmetricPartSolver ? "symmetric_part" : "auto"},
-          {"solver.search",
-           sv.search == SliderSearch::NearestLength ? "nearest_length" : "material_coordinate"},
-          {"solver.mass", m.massKind == kernels::MassKind::Lumped ? "lumped" : "consistent"},
-          {"solver.safety_factor", fmt::format("{}", sv.safetyFactor)},
-          {"solver.target_dt", fmt::format("{}", sv.targetDt)},
-          {"solver.stiffness_damping", fmt::format("{}", sv.stiffnessDamping)}};
-}
-// energy_momentum's dissipation joins them (absent from other runs' checkpoints).
-std::map<std::string, std::string> solverSettings(const SolverSpec& sv, const Model& m) {
-  auto out = settingsOfEveryScheme(sv, m);
-  if (sv.integrator == IntegratorKind::EnergyMomentum) {
-    out["solver.em_dissipation"] = fmt::format("{}", sv.emDissipation);
-    if (sv.emOrder != 2) out["solver.em_order"] = fmt::format("{}", sv.emOrder);
-  }
-  return out;
-}
-
-std::optional<ReferenceError> compareWithReference(const CaseSpec& spec, const RunResult& r,
-                                                   const ProbeSet& probes) {
-  if (!spec.reference) return std::nullopt;
-  const auto& ref = *spec.reference;
-  const Model& m = spec.model;
-  const int node = probes.probes()[ref.probe].node;
-  const int off = probes.columnOffset(ref.probe);
-  std::vector<Vec3> expected;
-  if (ref.kind == ReferenceKind::Pulley) {
-    const Vec3 d = m.X[node] - m.X[ref.pulley];
-    verification::PulleyReference p{ref.ropeLength, d.norm(), m.gravity.norm(), m.X[ref.pulley],
-                                    d.normalized()};
-    for (double t : r.times) expected.push_back(p.endPosition(t));
-  } else if (ref.kind == ReferenceKind::Hencky) {
-    // Static: the final state against the Foeppl-Hencky centre deflection.
-    const verification::HenckyReference h{ref.E, ref.nu, ref.thickness, std::abs(ref.pressure),
-                                          ref.radius};
-    const double w0 = h.centreDeflection();
-    const Vec3 d = (ref.pressure > 0 ? 1.0 : -1.0) * ref.direction;
-    ReferenceError e;
-    e.kind = std::string(referenceKindName(ref.kind));
-    e.probe = probes.probes()[ref.probe].name;
-    const auto& last = r.rows.back();
-    e.maxError = (Vec3(last[off], last[off + 1], last[off + 2]) - (m.X[node] + w0 * d)).norm();
-    e.motionSize = w0;
-    return e;
-  } else if (ref.kind == ReferenceKind::FreeFall) {
-    for (double t : r.times) expected.push_back(m.X[node] + 0.5 * t * t * m.gravity);
-  } else {
-    verification::BeadEllipseReference b(m.X[ref.anchor1], m.X[ref.anchor2], m.X[node], m.gravity);
-    expected = b.positions(r.times);
-  }
-  ReferenceError e;
-  e.kind = std::string(referenceKindName(ref.kind));
-  e.probe = probes.probes()[ref.probe].name;
-  for (size_t k = 0; k < r.times.size(); ++k) {
-    const Vec3 x(r.rows[k][off], r.rows[k][off + 1], r.rows[k][off + 2]);
-    e.maxError = std::max(e.maxError, (x - expected[k]).norm());
-    e.motionSize = std::max(e.motionSize, (expected[k] - expected.front()).norm());
-  }
-  return e;
-}
-
-class Progress {
- public:
-  explicit Progress(bool on) : on_(on && isatty(STDERR_FILENO)) {}
-  void update(long step, double t, double tEnd, double dt, int newton, double avg, long rejected,
-              bool force = false) {
-    if (!on_) return;
-    const auto now = std::chrono::steady_clock::now();
-    if (!force && now - last_ < std::chrono::milliseconds(200)) return;
-    last_ = now;
-    std::fprintf(stderr,
-                 "\r  step %7ld  t = %-10.6g / %-8.4g dt = %-9.3g newton %2d (avg %.2f)  "
-                 "rejected %ld   ",
-                 step, t, tEnd, dt, newton, avg, rejected);
-  }
-  void finish() {
-    if (on_) std::fputc('\n', stderr);
-  }
-
- private:
-  bool on_;
-  std::chrono::steady_clock::time_point last_{};
-};
 
 ExplicitRunInfo explicitSummary(const StableStepRecord& rec, const Model& m) {
   ExplicitRunInfo e;
@@ -185,22 +92,21 @@ void noteOutputStepCap(const CaseSpec& spec, RunResult& r) {
   }
 }
 
-// A checkpoint to continue from, read and validated whole (file, fields, every term's history)
-// before any output is cut; the state it holds is restored into the stepper.
+// A checkpoint to continue from, read and validated whole (file, fields, every term's history,
+// the case's settings against the checkpointed run's) before anything of the output is touched;
+// the state it holds is restored into the stepper.
 Checkpoint readRestart(const std::string& file, const CaseSpec& spec, std::uint64_t hash,
                        TimeStepper& stepper, StructuralState& state) {
   Checkpoint restart = readCheckpoint(file);
   if (restart.caseName != spec.name || restart.modelHash != hash)
     throw std::runtime_error(file + ": a checkpoint of another case or model");
-  for (const auto& [key, value] : solverSettings(spec.solver, spec.model)) {
-    const auto it = restart.solverSettings.find(key);
-    if (it == restart.solverSettings.end() || it->second != value)
-      throw std::runtime_error(
-          file + ": " + key + " is " + value + " here but " +
-          (it == restart.solverSettings.end() ? std::string("absent") : it->second) +
-          " in the checkpoint: a restart continues the run with its own "
-          "settings");
-  }
+  checkRestartSettings(spec, restart.settings, file);
+  const double t = restart.stepping.snapshot.state.t;
+  if (!stepper.reached(spec.solver.tEnd, t) && spec.solver.tEnd < t)
+    throw std::runtime_error(fmt::format(
+        "{}: is {:.9g}, before the checkpoint's time {:.9g}: a restart goes on from the "
+        "checkpoint to a later end",
+        whereIn(spec.settings, spec.file, "solver.t_end"), spec.solver.tEnd, t));
   try {
     state = stepper.resume(restart.stepping);
   } catch (const HistoryError& e) {
@@ -253,11 +159,36 @@ struct DynamicRun {
     Checkpoint c;
     c.caseName = spec.name;
     c.modelHash = hash;
-    c.solverSettings = solverSettings(spec.solver, spec.model);
+    c.settings = restartFingerprint(spec);
     c.stepping = stepper.save(state);
     c.output = out.mark();
     writeCheckpoint(options.outDir + "/checkpoint.cbor", c);
     ++r.checkpoints;
+  }
+
+  // The output's last row and frame: the state the run ended in when it is one to trust, else
+  // the last row written while the energy balance held (the rows and frames after it removed).
+  // A run that stopped early ends in the state before the step it could not take; that state
+  // is trusted if the balance holds there (it is taken there now when the last one was not).
+  void endOutput(StructuralState& state, const StructuralState& previous) {
+    r.finalTime = state.t;
+    if (r.status == RunStatus::Completed) return;
+    bool good = r.status == RunStatus::Interrupted;
+    if (r.status == RunStatus::Diverged)
+      good = previous.t == state.t
+                 ? monitor.withinBounds()
+                 : monitor.afterStep(previous, state, integrator.equilibrium(state),
+                                     state.t - previous.t) &&
+                       monitor.withinBounds();
+    if (good) {
+      out.lastGoodState(state);
+      return;
+    }
+    const double t = out.cutBackToLastGoodRow();
+    if (std::isnan(t)) return;
+    r.finalTime = t;
+    r.reason += fmt::format(
+        "; the output ends at t = {:.9g}, the last row where the energy balance held", t);
   }
 
   void run(StructuralState& state) {
@@ -269,6 +200,7 @@ struct DynamicRun {
       out.record(state);
       out.frame(state);
     }
+    out.markLastGood();
     StructuralState previous = state;  // the state the balance was last taken at, for the work
     // The balance (a residual of the loads and an energy of the whole model) is taken every
     // integrator.balanceStride() steps, and at every probe row and the last step (EB1,
@@ -276,8 +208,8 @@ struct DynamicRun {
     // an implicit step of that length gets.
     const long stride = integrator.balanceStride();
     long stepsSinceBalance = 0;
-    Progress progress(options.progress);
     const double tEnd = spec.solver.tEnd;
+    Progress progress(options.progress, state.t, tEnd, integrator.takesNominalStep());
     const auto result = stepper.advanceTo(
         state, tEnd, [&](double) { return out.nextStop(); },
         [&](const StructuralState& s, int newton) {
@@ -297,8 +229,7 @@ struct DynamicRun {
           out.afterStep(s, n.steps, last);
           if (options.checkpointEvery > 0 && n.steps % options.checkpointEvery == 0 && !last)
             checkpoint(s);
-          progress.update(n.steps, s.t, tEnd, s.control.dt, newton, n.newtonPerStep(),
-                          n.rejectedSteps);
+          progress.update({n.steps, s.t, s.control.dt, newton, n.newtonPerStep(), n.rejectedSteps});
           if (options.handleSignals && stopRequested() && !last) {
             r.status = RunStatus::Interrupted;
             r.reason = fmt::format("stopped by a signal at t = {:.9g}; restart with --restart {}",
@@ -306,6 +237,17 @@ struct DynamicRun {
             // The checkpoint is the state the output ends with: a restart cuts the output back
             // to it (RunOutput), so rows written after it never reach the restarted run.
             return false;
+          }
+          // Limits a run cannot get round (docs/limits.md): a stable step that shrank, the rows
+          // or frames at their limits.
+          if (!last) {
+            if (auto why =
+                    stopReason(spec, integrator, s, n.steps, out.probeRows(), out.vtuFrames());
+                !why.empty()) {
+              r.status = RunStatus::Diverged;
+              r.reason = std::move(why);
+              return false;
+            }
           }
           return true;
         });
@@ -319,10 +261,10 @@ struct DynamicRun {
     }
     if (r.status == RunStatus::Interrupted) checkpoint(state);
     const auto& n = stepper.counters();
-    progress.update(n.steps, state.t, tEnd, state.control.dt, 0, n.newtonPerStep(), n.rejectedSteps,
+    progress.update({n.steps, state.t, state.control.dt, 0, n.newtonPerStep(), n.rejectedSteps},
                     true);
     progress.finish();
-    if (r.status != RunStatus::Completed) out.lastGoodState(state);
+    endOutput(state, previous);
     r.steps = n.steps, r.rejectedSteps = n.rejectedSteps, r.eventRetries = n.eventRetries;
     r.newtonIterations = n.newtonIterations, r.maxNewtonInStep = n.maxNewtonInStep;
     if (const auto* rec = integrator.stableSteps())
@@ -349,10 +291,11 @@ void reportSystem(StructuralSystem& sys, RunResult& r) {
     r.handovers.push_back(g->state().committedHandovers());
 }
 
-// The flight figures of a run with a canopy probe and a force probe (docs/flight.md).
-void reportFlight(const CaseSpec& spec, const StructuralSystem& sys, RunResult& r) {
-  const auto series = flightSeries(spec.output.probes, r.columns, r.times, r.rows);
-  if (!series) return;
+// The flight figures of a run with a canopy probe and a force probe (docs/flight.md), from the
+// series RunOutput collected as it wrote the rows (the rows themselves are not kept).
+void reportFlight(const CaseSpec& spec, const StructuralSystem& sys, const FlightSeries* series,
+                  RunResult& r) {
+  if (!series || series->t.empty()) return;
   for (const auto& p : spec.output.probes)
     if (p.kind == ProbeKind::Canopy)
       for (const auto* c : sys.termList().canopyFlows())
@@ -406,7 +349,13 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
     if (!dynamic) throw std::runtime_error("static runs cannot be restarted");
     restart = readRestart(options.restartFile, spec, hash, *stepper, state);
   }
-  RunOutput out(spec, sys, options.outDir, restart ? &restart->output : nullptr, r);
+  // An explicit run's step is the stable step: its steps, rows and frames are judged now, before
+  // anything is written (docs/limits.md).
+  if (integrator)
+    checkRunSize(spec, *integrator, restart ? state : sys.initialState(),
+                 restart ? stepper->counters().steps : 0);
+  RunOutput out(spec, sys, options.outDir, restart ? &restart->output : nullptr, r,
+                options.keepRows);
   if (integrator)
     out.setEquilibrium([&](const StructuralState& s) { return integrator->equilibrium(s); });
   EnergyMonitor monitor(sys, sv.energyTolerance);
@@ -414,36 +363,39 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
   try {
     if (!dynamic) {
       runStatics(spec, sys, options, out, state, r);
+      r.finalTime = state.t;
     } else {
       DynamicRun run{spec, options, sys,  *integrator,         *stepper,
                      out,  monitor, hash, restart.has_value(), r};
       run.run(state);
     }
+    out.flush();
+    r.probeRows = out.probeRows();
+    sys.timings().outputBackground = out.backgroundSeconds();
+    r.vtuFrames = out.vtuFrames();
+    reportSystem(sys, r);
+    reportFlight(spec, sys, out.flightSeries(), r);
+    r.work.vtuSeries = spec.output.vtu.write && !options.outDir.empty() ? 1 : 0;
+    r.work.vtuFrames = r.vtuFrames;
+    r.wallTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+    {
+      // The reference is not part of the run: timed apart, not in wall_time.total.
+      const auto ref0 = std::chrono::steady_clock::now();
+      r.reference = out.reference();
+      r.referenceTime =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - ref0).count();
+    }
+    if (!options.outDir.empty()) writeSummary(options.outDir + "/summary.json", spec, r);
   } catch (const OutputError& e) {
-    // A full disk or a removed directory: the rows and frames before the failed write are whole.
+    // A full disk, a file size limit, a removed directory: what the output holds whole is named
+    // from the files themselves (a row cut mid-number was cut off; a torn frame is not listed).
+    const std::string whole = out.wholeSoFar();
     throw OutputError(fmt::format(
-        "{}; stopped at t = {:.9g}; probes.csv is whole up to t = {:.9g}{}", e.what(), state.t,
-        r.times.empty() ? 0.0 : r.times.back(),
+        "{}; stopped at t = {:.9g}{}{}; no summary.json", e.what(), state.t,
+        whole.empty() ? "" : "; " + whole,
         r.checkpoints > 0 ? "; the last checkpoint is in " + options.outDir + "/checkpoint.cbor"
                           : ""));
   }
-  r.finalTime = state.t;
-  out.flush();
-  sys.timings().outputBackground = out.backgroundSeconds();
-  r.vtuFrames = out.vtuFrames();
-  reportSystem(sys, r);
-  reportFlight(spec, sys, r);
-  r.work.vtuSeries = spec.output.vtu.write && !options.outDir.empty() ? 1 : 0;
-  r.work.vtuFrames = r.vtuFrames;
-  r.wallTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-  {
-    // The reference is not part of the run: timed apart, not in wall_time.total.
-    const auto ref0 = std::chrono::steady_clock::now();
-    r.reference = compareWithReference(spec, r, out.probes());
-    r.referenceTime =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - ref0).count();
-  }
-  if (!options.outDir.empty()) writeSummary(options.outDir + "/summary.json", spec, r);
   return r;
 }
 
@@ -538,7 +490,7 @@ void writeSummary(const std::string& path, const CaseSpec& spec, const RunResult
                     {"largest_approach_energy", c.largestApproachEnergy}};
   }
   j["output"] = {
-      {"probe_rows", r.times.size()}, {"vtu_frames", r.vtuFrames}, {"checkpoints", r.checkpoints}};
+      {"probe_rows", r.probeRows}, {"vtu_frames", r.vtuFrames}, {"checkpoints", r.checkpoints}};
   if (!spec.units.empty()) j["units"] = spec.units;
   if (r.flight) {
     const auto& f = *r.flight;
@@ -572,18 +524,7 @@ void writeSummary(const std::string& path, const CaseSpec& spec, const RunResult
                       {"motion_size", e.motionSize},
                       {"relative_max_error", e.relative()}};
   }
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream f(tmp);
-    f << j.dump(2) << "\n";
-    f.flush();
-    if (!f) {
-      f.close();
-      std::filesystem::remove(tmp);
-      throw OutputError(tmp + ": cannot write the summary (disk full?)");
-    }
-  }
-  std::filesystem::rename(tmp, path);
+  replaceFile(path, j.dump(2) + "\n", false);
 }
 
 }  // namespace chute

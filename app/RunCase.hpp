@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "FlightFigures.hpp"
+#include "app/ReferenceTracker.hpp"
 #include "assembly/WorkCounters.hpp"
 #include "case/CaseSpec.hpp"
 #include "solver/Timings.hpp"
@@ -17,8 +18,11 @@
 namespace chute {
 
 struct RunOptions {
-  std::string outDir;     // empty: write nothing
-  bool progress = false;  // one updating status line on stderr
+  std::string outDir;     // empty: write nothing (the rows are then kept in RunResult)
+  bool progress = false;  // a status line on a terminal, progress lines in a log (app/Progress)
+  // Keep every probe row in RunResult::times / rows as well as on disk (tests): a run writing to
+  // outDir otherwise holds none of them, whatever its length.
+  bool keepRows = false;
   bool verboseNewton = false;
   long checkpointEvery = 0;    // steps between checkpoints (outDir/checkpoint.cbor); 0: none
   std::string restartFile;     // continue from this checkpoint
@@ -29,13 +33,6 @@ struct RunOptions {
     o.outDir = std::move(dir);
     return o;
   }
-};
-
-struct ReferenceError {
-  std::string kind, probe;
-  double maxError = 0.0;    // max over output times of |x - x_ref|
-  double motionSize = 0.0;  // max over output times of |x_ref(t) - x_ref(0)|
-  double relative() const { return motionSize > 0 ? maxError / motionSize : maxError; }
 };
 
 // What an explicit run (solver.integrator = "central_difference") reports in summary.json.
@@ -86,6 +83,8 @@ struct RunResult {
          balanceScale = std::numeric_limits<double>::quiet_NaN(),
          externalWork = std::numeric_limits<double>::quiet_NaN();
   std::vector<std::string> columns;
+  long probeRows = 0;  // rows written (probes.csv)
+  // The rows themselves, only when RunOptions::keepRows or nothing is written.
   std::vector<double> times;
   std::vector<std::vector<double>> rows;
   std::optional<ReferenceError> reference;

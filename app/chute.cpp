@@ -5,6 +5,7 @@
 #include <vtkObject.h>
 
 #include <CLI/CLI.hpp>
+#include <csignal>
 #include <cstdio>
 #include <exception>
 #include <string_view>
@@ -20,6 +21,9 @@ int main(int argc, char** argv) {
   // `chute run` handles SIGINT / SIGTERM from its first instruction (checkpoint, valid output);
   // the other verbs keep the default (they end at once).
   if (argc > 1 && std::string_view(argv[1]) == "run") chute::installStopHandlers();
+  // A file size limit (ulimit -f) is a full disk: a write past it fails with EFBIG and is
+  // reported as any failed write (docs/exit-codes.md), instead of the signal ending chute.
+  std::signal(SIGXFSZ, SIG_IGN);
   // VTK's own messages (warnings, its logger) are not chute's one-line errors: verbs check
   // what VTK produced and report it themselves.
   vtkObject::GlobalWarningDisplayOff();

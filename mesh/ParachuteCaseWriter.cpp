@@ -83,6 +83,17 @@ void checkParachuteCaseOptions(const ParachuteCaseOptions& o) {
     bad("--probe-interval", "must be positive and finite");
   if (!(o.vtuInterval >= 0.0 && std::isfinite(o.vtuInterval)))
     bad("--vtu-interval", "must not be negative and must be finite");
+  // As the case reader's [output] checks (docs/limits.md): at most output.max_rows = 1,000,000
+  // probe rows and output.vtu.max_frames = 10,000 frames by default, so that the generated case
+  // is never one `chute run` refuses.
+  if (o.tEnd / o.probeInterval + 1.0 > 1e6)
+    bad("--probe-interval",
+        "--t-end / --probe-interval is more than the 1,000,000 probe rows a "
+        "case writes by default (output.max_rows)");
+  if (o.vtuInterval > 0.0 && o.tEnd / o.vtuInterval + 1.0 > 1e4)
+    bad("--vtu-interval",
+        "--t-end / --vtu-interval is more than the 10,000 frames a case "
+        "writes by default (output.vtu.max_frames)");
   if (o.units != "ft" && o.units != "si") bad("--units", "expected ft or si");
 }
 

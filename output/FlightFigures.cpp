@@ -6,21 +6,15 @@
 
 namespace chute {
 
-std::optional<FlightSeries> flightSeries(const std::vector<ProbeSpec>& probes,
-                                         const std::vector<std::string>& columns,
-                                         const std::vector<double>& times,
-                                         const std::vector<std::vector<double>>& rows) {
+std::optional<FlightSeriesCollector> FlightSeriesCollector::forCase(
+    const std::vector<ProbeSpec>& probes, const std::vector<std::string>& columns) {
   const ProbeSpec* canopy = nullptr;
   const ProbeSpec* force = nullptr;
   for (const auto& p : probes) {
     if (!canopy && p.kind == ProbeKind::Canopy) canopy = &p;
     if (!force && (p.kind == ProbeKind::SupportForce || p.kind == ProbeKind::LinePull)) force = &p;
   }
-  if (!canopy || !force || times.empty()) return std::nullopt;
-  auto column = [&](const std::string& name) -> int {
-    const auto it = std::find(columns.begin(), columns.end(), name);
-    return it == columns.end() ? -1 : static_cast<int>(it - columns.begin());
-  };
+  if (!canopy || !force) return std::nullopt;
   const std::vector<std::pair<std::vector<double> FlightSeries::*, std::string>> wanted{
       {&FlightSeries::force, force->name + ".magnitude"},
       {&FlightSeries::volume, canopy->name + ".volume"},
@@ -29,16 +23,35 @@ std::optional<FlightSeries> flightSeries(const std::vector<ProbeSpec>& probes,
       {&FlightSeries::airspeed, canopy->name + ".airspeed"},
       {&FlightSeries::descent, canopy->name + ".descent_speed"},
       {&FlightSeries::swing, canopy->name + ".swing"}};
-  FlightSeries s;
-  s.t = times;
-  s.held = force->kind == ProbeKind::SupportForce;
+  FlightSeriesCollector c;
+  c.s_.held = force->kind == ProbeKind::SupportForce;
   for (const auto& [member, name] : wanted) {
-    const int c = column(name);
-    if (c < 0) return std::nullopt;
-    auto& series = s.*member;
-    for (const auto& row : rows) series.push_back(row[c]);
+    const auto it = std::find(columns.begin(), columns.end(), name);
+    if (it == columns.end()) return std::nullopt;
+    c.columns_.push_back({member, static_cast<size_t>(it - columns.begin())});
   }
-  return s;
+  return c;
+}
+
+void FlightSeriesCollector::add(double t, const std::vector<double>& row) {
+  s_.t.push_back(t);
+  for (const auto& [member, c] : columns_) (s_.*member).push_back(row[c]);
+}
+
+void FlightSeriesCollector::cutBackTo(size_t rows) {
+  if (rows >= s_.t.size()) return;
+  s_.t.resize(rows);
+  for (const auto& column : columns_) (s_.*column.first).resize(rows);
+}
+
+std::optional<FlightSeries> flightSeries(const std::vector<ProbeSpec>& probes,
+                                         const std::vector<std::string>& columns,
+                                         const std::vector<double>& times,
+                                         const std::vector<std::vector<double>>& rows) {
+  auto c = FlightSeriesCollector::forCase(probes, columns);
+  if (!c || times.empty()) return std::nullopt;
+  for (size_t i = 0; i < rows.size(); ++i) c->add(times[i], rows[i]);
+  return c->series();
 }
 
 namespace {

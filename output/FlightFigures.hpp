@@ -4,6 +4,7 @@
 // descent speed, drag area and coefficient, projected diameter ratio, largest swing.
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "case/CaseSpec.hpp"
@@ -17,8 +18,28 @@ struct FlightSeries {
   bool held = false;  // the force is a support's (the payload held in a wind), else a line pull
 };
 
-// The first `canopy` probe with the first `support_force` or `line_pull` probe, from the rows of
-// a run (rows[i] has the columns of `columns`); nullopt when the case has no such pair.
+// The series collected row by row while a run streams its rows to probes.csv (a run keeps no
+// rows of its own: RunOptions::keepRows). Only the seven columns the figures need are kept, not
+// whole rows: memory grows with the rows (at most output.max_rows) but not with the number of
+// probes, and the figures are the ones whole rows give, number for number.
+class FlightSeriesCollector {
+ public:
+  // For the first `canopy` probe with the first `support_force` or `line_pull` probe of a case
+  // whose rows have the columns `columns`; nullopt when it has no such pair.
+  static std::optional<FlightSeriesCollector> forCase(const std::vector<ProbeSpec>& probes,
+                                                      const std::vector<std::string>& columns);
+  void add(double t, const std::vector<double>& row);
+  // Back to the first `rows` rows (a run's output cut back to its last good row).
+  void cutBackTo(size_t rows);
+  const FlightSeries& series() const { return s_; }
+
+ private:
+  FlightSeries s_;
+  std::vector<std::pair<std::vector<double> FlightSeries::*, size_t>> columns_;
+};
+
+// The same from the rows of a run held whole (rows[i] has the columns of `columns`); nullopt
+// when the case has no such pair or there are no rows.
 std::optional<FlightSeries> flightSeries(const std::vector<ProbeSpec>& probes,
                                          const std::vector<std::string>& columns,
                                          const std::vector<double>& times,

@@ -1,12 +1,13 @@
 #pragma once
-// Probe quantities of a run (docs/output.md: probes.csv, one column per "<probe>.<quantity>")
-// and the CSV file they go to, flushed row by row so a run stopped half-way leaves valid rows.
+// Probe quantities of a run (docs/output.md: probes.csv, one column per "<probe>.<quantity>");
+// the file they go to is ProbeCsv.hpp.
 #include <cstdio>
 #include <limits>
 #include <string>
 #include <vector>
 
 #include "OutputError.hpp"
+#include "ProbeCsv.hpp"
 #include "case/CaseSpec.hpp"
 #include "solver/EquilibriumPoint.hpp"
 #include "solver/StructuralSystem.hpp"
@@ -39,24 +40,6 @@ class ProbeSet {
   const Model* model_;
   std::vector<ProbeSpec> probes_;
   std::vector<int> offset_;
-};
-
-class CsvWriter {
- public:
-  CsvWriter(const std::string& path, const std::vector<std::string>& columns);
-  // Continues the file of a restarted run: its first keepRows rows (those written up to the
-  // checkpoint) are kept and returned through times and rows, whatever follows them is dropped.
-  // Throws if the file has fewer rows or other columns (not the output of this run).
-  CsvWriter(const std::string& path, const std::vector<std::string>& columns, size_t keepRows,
-            std::vector<double>& times, std::vector<std::vector<double>>& rows);
-  ~CsvWriter();
-  CsvWriter(const CsvWriter&) = delete;
-  CsvWriter& operator=(const CsvWriter&) = delete;
-  void row(double t, const std::vector<double>& values);
-
- private:
-  std::string path_;
-  std::FILE* f_ = nullptr;
 };
 
 }  // namespace chute

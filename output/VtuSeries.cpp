@@ -15,6 +15,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "OutputError.hpp"
+#include "OutputFile.hpp"
 #include "VtuRawFrame.hpp"
 #include "VtuVtkFrame.hpp"
 #include "io/InputFile.hpp"
@@ -37,19 +39,6 @@ std::string entryLine(double t, const std::string& file) {
                      file);
 }
 
-void writeAllAt(int fd, const std::string& text, long offset, const std::string& path) {
-  const char* p = text.data();
-  size_t left = text.size();
-  while (left > 0) {
-    const ssize_t n = ::pwrite(fd, p, left, offset);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
-    }
-    p += n, left -= static_cast<size_t>(n), offset += n;
-  }
-}
-
 size_t frameBytes(const SceneFrame& f) {
   size_t n = f.points.size() * sizeof(double) + f.connectivity.size() * sizeof(int);
   for (const auto& a : f.pointData) n += a.values.size() * sizeof(double);
@@ -59,17 +48,19 @@ size_t frameBytes(const SceneFrame& f) {
 
 }  // namespace
 
+bool VtuSeries::isFrameFile(const std::string& file) const {
+  const std::string prefix = name_ + "_";
+  return file.size() == prefix.size() + 10 && file.starts_with(prefix) && file.ends_with(".vtu") &&
+         file.find_first_not_of("0123456789", prefix.size()) == prefix.size() + 6;
+}
+
 VtuSeries::VtuSeries(std::string dir, std::string name, Writing writing)
     : dir_(std::move(dir)), name_(std::move(name)), writing_(writing) {
   std::filesystem::create_directories(dir_);
   // Frames of an earlier run of this case in this directory go first: they would be stale, and
   // writing over them costs more than writing new files (ext4 flushes a file truncated on open).
-  const std::string prefix = name_ + "_";
-  for (const auto& e : std::filesystem::directory_iterator(dir_)) {
-    const std::string f = e.path().filename().string();
-    if (f.size() == prefix.size() + 10 && f.starts_with(prefix) && f.ends_with(".vtu"))
-      std::filesystem::remove(e.path());
-  }
+  for (const auto& e : std::filesystem::directory_iterator(dir_))
+    if (isFrameFile(e.path().filename().string())) std::filesystem::remove(e.path());
   start({});
   startThread();
 }
@@ -82,7 +73,7 @@ VtuSeries::VtuSeries(std::string dir, std::string name, int keepFrames, Writing 
     for (const auto& e : readPvd(pvdPath())) {
       if (static_cast<int>(kept.size()) < keepFrames)
         kept.push_back(e);
-      else
+      else if (isFrameFile(e.file))  // only a frame of this series, never a path it names
         std::filesystem::remove(std::filesystem::path(dir_) / e.file);
     }
   }
@@ -91,6 +82,8 @@ VtuSeries::VtuSeries(std::string dir, std::string name, int keepFrames, Writing 
                              " frames where the checkpoint was taken after " +
                              std::to_string(keepFrames) + " (not this run's output)");
   frames_ = static_cast<int>(kept.size());
+  listed_ = frames_;
+  if (!kept.empty()) lastListedTime_ = kept.back().t;
   start(kept);
   startThread();
 }
@@ -101,12 +94,22 @@ void VtuSeries::start(const std::vector<PvdEntry>& kept) {
   for (const auto& e : kept) text += entryLine(e.t, e.file);
   footerAt_ = static_cast<long>(text.size());
   text += kFooter;
-  // A new file: written whole under a temporary name, then renamed over the old collection.
+  // A new file: written whole under a temporary name, then renamed over the old collection
+  // (whatever was at either path is replaced, never written through: OutputFile.hpp).
   const std::string tmp = path + ".tmp";
-  fd_ = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd_ < 0) throw std::runtime_error("cannot create " + tmp + ": " + std::strerror(errno));
-  writeAllAt(fd_, text, 0, tmp);
-  std::filesystem::rename(tmp, path);
+  if (fd_ >= 0) ::close(fd_);
+  fd_ = createOutputFile(tmp);
+  try {
+    writeAllAt(fd_, text, 0, tmp);
+  } catch (...) {
+    ::unlink(tmp.c_str());
+    throw;
+  }
+  if (::rename(tmp.c_str(), path.c_str()) != 0) {
+    const int err = errno;
+    ::unlink(tmp.c_str());
+    throw OutputError(path + ": cannot replace: " + writeFailure(err));
+  }
 }
 
 VtuSeries::~VtuSeries() {
@@ -162,20 +165,26 @@ void VtuSeries::writerLoop() {
     const auto t0 = std::chrono::steady_clock::now();
     std::exception_ptr error;
     try {
-      if (!writerError_) {  // after an error, frames are dropped
-        pendingEntries_ += writeFile(frame, index);
+      if (!failed_) {  // after an error, frames are dropped (the series ends there)
+        addPending(frame, index);
         // The collection is updated in one write once the queue is empty (or every 32 frames):
         // valid at every moment, and one pwrite instead of one per frame when frames queue up.
-        if (++pendingCount_ >= 32 || queueLooksEmpty()) appendPending();
+        if (pendingCount_ >= 32 || queueLooksEmpty()) appendPending();
       }
     } catch (...) {
       error = std::current_exception();
+      // The frames written whole before the failure still go into the collection (or, if it
+      // cannot take them, are removed).
+      try {
+        appendPending();
+      } catch (...) {
+      }
     }
     const double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     lock.lock();
     queuedBytes_ -= frameBytes(frame);
     backgroundSeconds_ += dt;
-    if (error && !writerError_) writerError_ = error;
+    if (error && !failed_) writerError_ = error, failed_ = true;
     busy_ = false;
     drained_.notify_all();
   }
@@ -198,9 +207,31 @@ bool VtuSeries::queueLooksEmpty() const {
 void VtuSeries::appendPending() {
   // One write: the new entries followed by the closing tags, at the old closing tags.
   if (pendingEntries_.empty()) return;
-  writeAllAt(fd_, pendingEntries_ + kFooter, footerAt_, pvdPath());
+  try {
+    writeAllAt(fd_, pendingEntries_ + kFooter, footerAt_, pvdPath());
+  } catch (const OutputError& e) {
+    // Part of the entries may be in the file: the closing tags go back where they were (space
+    // the file already had), so the collection lists exactly the frames it listed before; the
+    // frames it does not list are removed.
+    const bool restored =
+        ::pwrite(fd_, kFooter, std::strlen(kFooter), footerAt_) ==
+            static_cast<ssize_t>(std::strlen(kFooter)) &&
+        ::ftruncate(fd_, footerAt_ + static_cast<long>(std::strlen(kFooter))) == 0;
+    for (const auto& f : pendingFiles_) ::unlink((dir_ + "/" + f).c_str());
+    pendingEntries_.clear();
+    pendingFiles_.clear();
+    pendingCount_ = 0;
+    throw OutputError(std::string(e.what()) +
+                      (restored ? "" : " (and the collection could not be closed again)"));
+  }
   footerAt_ += static_cast<long>(pendingEntries_.size());
+  {
+    std::lock_guard lock(mutex_);
+    listed_ += pendingCount_;
+    lastListedTime_ = pendingLastTime_;
+  }
   pendingEntries_.clear();
+  pendingFiles_.clear();
   pendingCount_ = 0;
 }
 
@@ -216,15 +247,25 @@ std::string frameText(const SceneFrame& f) {
 
 void VtuSeries::write(SceneFrame f) {
   if (writing_ == Writing::InCaller) {
-    pendingEntries_ = writeFile(f, frames_);
-    appendPending();
-    ++frames_;
+    if (failed_) return;  // the series ended at a failed write (reported then)
+    try {
+      addPending(f, frames_);
+      ++frames_;
+      appendPending();
+    } catch (...) {
+      failed_ = true;
+      try {
+        appendPending();
+      } catch (...) {
+      }
+      throw;
+    }
     return;
   }
   std::unique_lock lock(mutex_);
   rethrowWriterError();
   // A bounded queue: a writer that cannot keep up holds the run back instead of filling memory.
-  drained_.wait(lock, [&] { return queuedBytes_ < kMaxQueuedBytes || writerError_ != nullptr; });
+  drained_.wait(lock, [&] { return queuedBytes_ < kMaxQueuedBytes || failed_; });
   rethrowWriterError();
   queuedBytes_ += frameBytes(f);
   queue_.emplace_back(std::move(f), frames_);
@@ -234,20 +275,51 @@ void VtuSeries::write(SceneFrame f) {
   if (wake) queued_.notify_one();
 }
 
-std::string VtuSeries::writeFile(const SceneFrame& f, int index) {
+void VtuSeries::addPending(const SceneFrame& f, int index) {
   const std::string file = fmt::format("{}_{:06d}.vtu", name_, index);
   const std::string path = dir_ + "/" + file;
   const std::string text = frameText(f);
-  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);  // new file
-  if (fd < 0) throw std::runtime_error("cannot create " + path + ": " + std::strerror(errno));
+  const int fd = createOutputFile(path);  // a new file, never one written through
   try {
     writeAllAt(fd, text, 0, path);
   } catch (...) {
+    // A torn frame is not left behind: it is in no collection and goes.
     ::close(fd);
+    ::unlink(path.c_str());
     throw;
   }
-  ::close(fd);
-  return entryLine(f.t, file);
+  if (::close(fd) != 0) {
+    const int err = errno;
+    ::unlink(path.c_str());
+    throw OutputError(path + ": cannot write: " + writeFailure(err));
+  }
+  pendingEntries_ += entryLine(f.t, file);
+  pendingFiles_.push_back(file);
+  pendingLastTime_ = f.t;
+  ++pendingCount_;
+}
+
+int VtuSeries::listedFrames() const {
+  std::lock_guard lock(mutex_);
+  return listed_;
+}
+
+double VtuSeries::lastListedTime() const {
+  std::lock_guard lock(mutex_);
+  return lastListedTime_;
+}
+
+void VtuSeries::cutBackTo(int frames) {
+  flush();
+  if (frames >= this->frames()) return;
+  std::vector<PvdEntry> kept = readPvd(pvdPath());
+  for (size_t k = static_cast<size_t>(std::max(frames, 0)); k < kept.size(); ++k)
+    if (isFrameFile(kept[k].file)) ::unlink((dir_ + "/" + kept[k].file).c_str());
+  kept.resize(std::min(kept.size(), static_cast<size_t>(std::max(frames, 0))));
+  start(kept);
+  std::lock_guard lock(mutex_);
+  frames_ = listed_ = static_cast<int>(kept.size());
+  lastListedTime_ = kept.empty() ? std::numeric_limits<double>::quiet_NaN() : kept.back().t;
 }
 
 std::vector<PvdEntry> readPvd(const std::string& path) {

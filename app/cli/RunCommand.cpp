@@ -42,13 +42,12 @@ int runCase(const RunArgs& a) {
   try {
     r = chute::runCase(spec, opt);
   } catch (const OutputError& e) {  // a full disk: what was written before is whole
-    fmt::print(stderr, "chute: run: {}\n", e.what());
+    fmt::print(stderr, "chute: run: {}\n", oneLineMessage(e.what()));
     return kExitOutputFailed;
   } catch (const std::runtime_error& e) {  // a checkpoint that does not fit, an unwritable dir
-    fmt::print(stderr, "chute: {}\n", e.what());
+    fmt::print(stderr, "chute: {}\n", oneLineMessage(e.what()));
     return kExitBadInput;
   }
-  for (const auto& note : r.notes) fmt::print(stderr, "chute: {}: note: {}\n", spec.name, note);
   if (!a.quiet) {
     fmt::print(
         "{}: {} at t = {:.6g}: {} steps, {} rejected, {:.2f} Newton iterations/step, "
@@ -61,10 +60,16 @@ int runCase(const RunArgs& a) {
                  100 * r.reference->relative(), r.reference->motionSize);
     fmt::print("  output in {}\n", opt.outDir);
   }
+  // A run that failed says so in one line (docs/exit-codes.md); its notes are in summary.json.
   if (r.status != RunStatus::Completed) {
-    fmt::print(stderr, "chute: {}: {}\n", spec.name, r.reason);
+    fmt::print(stderr, "chute: {}: {}{}\n", spec.name, oneLineMessage(r.reason),
+               r.notes.empty() ? ""
+                               : fmt::format(" ({} note{} in summary.json)", r.notes.size(),
+                                             r.notes.size() > 1 ? "s" : ""));
     return r.status == RunStatus::Interrupted ? kExitInterrupted : kExitRunFailed;
   }
+  for (const auto& note : r.notes)
+    fmt::print(stderr, "chute: {}: note: {}\n", spec.name, oneLineMessage(note));
   return 0;
 }
 

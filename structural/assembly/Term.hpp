@@ -50,6 +50,9 @@ struct EvalPoint {
   // captured air of a canopy, docs/flight.md FL3). nullptr: x is the step's.
   const Eigen::VectorXd* undamped = nullptr;
   const Eigen::VectorXd& stepPositions() const { return undamped ? *undamped : x; }
+  // A Newton iteration's Jacobian may give tension-only parts on the kink their taut tangent
+  // (RG10); off for the iteration that confirms convergence with the exact tangent.
+  bool kinkTangent = false;
 
   // The state (x, v, a) at t as it is: residual r(x, v, a, t), Jacobian dr/dx (output, the
   // energy balance, checks).

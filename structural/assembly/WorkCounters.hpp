@@ -22,6 +22,7 @@ struct WorkCounters {
   long sceneFrames = 0;   // output frames built (geometry, fields, reactions)
   long vtuSeries = 0;     // VTU series opened (VTK's writer exists only inside one)
   long vtuFrames = 0;     // VTU files written
+  long kinkTangents = 0;  // RG10: tension-only parts that took the taut tangent on the kink
 
   WorkCounters& operator+=(const WorkCounters& o) {
     lineElastic += o.lineElastic, sliding += o.sliding, lineMass += o.lineMass;
@@ -29,7 +30,7 @@ struct WorkCounters {
     faceDrag += o.faceDrag, whirlDamping += o.whirlDamping;
     contact += o.contact, contactLists += o.contactLists;
     sliderSearch += o.sliderSearch, energy += o.energy, sceneFrames += o.sceneFrames;
-    vtuSeries += o.vtuSeries, vtuFrames += o.vtuFrames;
+    vtuSeries += o.vtuSeries, vtuFrames += o.vtuFrames, kinkTangents += o.kinkTangents;
     return *this;
   }
 };

@@ -28,6 +28,7 @@ CaseSpec readCaseFromString(const std::string& text, const std::string& file,
               "mesh", "events", "air", "initial", "contact"});
   CaseSpec c;
   c.file = file;
+  c.settings = caseio::settingsOf(root, file);
   c.name = top.string("name", std::filesystem::path(file).stem().string());
   // The name is the default output directory out/<name>/: one plain path
   // component.
@@ -55,7 +56,13 @@ CaseSpec readCaseFromString(const std::string& text, const std::string& file,
   caseio::readEvents(m, top);
   if (top.has("contact")) caseio::readContact(m, top.table("contact"));
   caseio::readSolver(c, top.table("solver"));
-  if (top.has("output")) caseio::readOutput(c, top.table("output"));
+  if (top.has("output")) {
+    caseio::readOutput(c, top.table("output"));
+  } else {
+    // No [output]: a row every step, judged against the limits as any output (docs/limits.md).
+    static const toml::value kNoOutput = toml::table{};
+    caseio::readOutput(c, TomlTable(kNoOutput, "output", file));
+  }
   if (top.has("reference")) caseio::readReference(c, top.table("reference"));
   if (mesh) holdUnusedMeshNodes(m, *mesh);
   const long equations = DofMap(m).numEquations();

@@ -6,6 +6,7 @@
 #include <string_view>
 #include <vector>
 
+#include "case/CaseSettings.hpp"
 #include "model/Model.hpp"
 #include "model/SliderSearch.hpp"
 #include "solver/IntegratorKind.hpp"
@@ -109,17 +110,21 @@ struct VtuSpec {
   int everySteps = 1;
   double interval = 0.0;  // > 0: output times at multiples of this instead of every N steps
   std::vector<std::string> fields;  // point fields (empty: all)
+  long maxFrames = 10000;           // most frames a run writes (docs/limits.md)
 };
 
 struct OutputSpec {
   int everySteps = 1;
-  double interval = 0.0;  // > 0: output times at multiples of this instead of every N steps
+  double interval = 0.0;   // > 0: output times at multiples of this instead of every N steps
+  long maxRows = 1000000;  // most probe rows a run writes (docs/limits.md)
   std::vector<ProbeSpec> probes;
   VtuSpec vtu;
 };
 
 struct CaseSpec {
   std::string file, name, description, units;
+  // Every key the case gives (after --set), with its text and origin (case/CaseSettings.hpp).
+  CaseSettings settings;
   Model model;
   SolverSpec solver;
   OutputSpec output;

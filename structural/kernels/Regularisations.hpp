@@ -33,6 +33,8 @@ inline constexpr double kSlackTautBand = 1e-6;
 // RG5: Jacobian-only spring kCableSlackTangent E A0 / L between the ends of a slack tension-only
 // cable or sliding-element part, so massless nodes between slack parts leave the matrix regular.
 inline constexpr double kCableSlackTangent = 1e-8;
+// RG10: a tension-only part slack by less than kSlackTautBand (on the kink) also takes its taut
+// axial tangent E A0 / L D D^T in the Jacobian only (terms/LineElementAssembly.hpp).
 
 // RG6: Jacobian-only membrane tension kMembraneSlackTangent E t0 in every direction of a slack or
 // wrinkled membrane element, so flat or slack fabric leaves the matrix regular.

@@ -189,12 +189,35 @@ double CentralDifference::chooseStep(double lastStep, const Eigen::VectorXd& x, 
   return dt;
 }
 
+std::optional<StepEstimate> CentralDifference::estimateStep(const StructuralState& s) {
+  if (sys_->numEquations() == 0) return std::nullopt;
+  const Eigen::VectorXd& massEq = lumpedMass(s.x, s.t);
+  const auto est = chute::stableStep(sys_->stiffnessBound(s.x, s.t), nodalMass(massEq), freeNode_);
+  StepEstimate e;
+  e.undamped = est.dt;
+  e.limitingNode = est.node;
+  // EX5: a step that leaves the band is set to 0.9 of the stable step.
+  e.dt = std::min(maxStep_,
+                  0.9 * settings_.safety * dampedStableStep(est.dt, settings_.stiffnessDamping));
+  return e;
+}
+
 StepResult CentralDifference::step(StructuralState& s, double stop, StepCounters& counters) {
   if (counters.steps % kStableStepEvery == 0 || sys_->model().hasCutAt(s.t))
     s.control.dt = chooseStep(s.control.dt, s.x, s.t);
   StepResult result;
   const double h = std::min(s.control.dt, stop - s.t);
   result.reachesStop = h == stop - s.t;
+  if (!(h > 0.0) || s.t + h == s.t) {
+    // A stable step lost in the time's rounding (an absurd stiffness, density or damping) would
+    // repeat the same state for ever.
+    std::ostringstream why;
+    why.precision(9);
+    why << "the stable step " << s.control.dt << " does not move time at t = " << s.t;
+    result.accepted = false;
+    result.failure = why.str();
+    return result;
+  }
   const NewtonReport rep = advance(s, h);
   if (!rep.converged) {
     std::ostringstream why;

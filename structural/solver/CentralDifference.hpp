@@ -51,6 +51,9 @@ class CentralDifference final : public TimeIntegrator {
   static constexpr long kBalanceStride = 10;
   long balanceStride() const override { return kBalanceStride; }
   const StableStepRecord* stableSteps() const override { return &record_; }
+  // The step chooseStep would settle on from s (0.9 x safety x the damped stable step, at most
+  // the case's dt), without recording it.
+  std::optional<StepEstimate> estimateStep(const StructuralState& s) override;
 
   // The step to take from positions x at time t, given the last step taken (the nominal step at
   // the start): safety x the stable step (with damping), with hysteresis (EX5).

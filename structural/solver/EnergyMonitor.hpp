@@ -64,6 +64,9 @@ class EnergyMonitor {
   double balance() const { return energy_ - energy0_ - work_; }  // B(t_n)
   double scale() const { return fullScale(); }                   // S
   double largestBalance() const { return largest_; }             // max B so far
+  // Whether the last afterStep found B within its bounds (EB1, EB2): a state to trust, where a
+  // run stopped as unstable may be cut back to.
+  bool withinBounds() const { return stepsOver_ == 0 && stepsGrowing_ == 0; }
   const std::string& reason() const { return reason_; }
 
  private:

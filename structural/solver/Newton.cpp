@@ -31,14 +31,23 @@ NewtonReport Newton::solve(Eigen::VectorXd& x, double tol, NewtonProblem& proble
   // A factorisation serves one step only: a restarted run then solves exactly as the run it
   // continues. (Carried across steps it saved 9 % more factorisations on the C-9.)
   bool factorHeld = false;
+  // RG10: in the first iteration (the linearised step) tension-only parts on the kink take their
+  // taut tangent, so a line at zero strain is pulled straight at once instead of one part per
+  // iteration; the later iterations are exact Newton. That Jacobian is stiffer than the
+  // residual's derivative there: a first update that looks converged is confirmed by one
+  // iteration with the exact tangent (exact).
+  bool exact = false;
   for (int it = 0; it < settings_.maxIterations; ++it) {
     lastChanges = sys_->updateState(x);
     rep.stateChanges += lastChanges;
-    const EvalPoint pt = problem.point();
+    EvalPoint pt = problem.point();
+    pt.kinkTangent = it == 0 && !exact;
     // Modified Newton: the step's factorisation serves while nothing discrete changed; its
     // update is then judged by its contraction below.
     bool stale = settings_.reuseTangent && factorHeld && lastChanges == 0;
+    const long kinks = sys_->workCounters().kinkTangents;
     sys_->assemble(pt, !stale);
+    bool kinkTangent = sys_->workCounters().kinkTangents != kinks;
     const Eigen::VectorXd& R = sys_->residual();
     const double rn = R.norm();
     rep.residualNorms.push_back(rn);
@@ -59,6 +68,7 @@ NewtonReport Newton::solve(Eigen::VectorXd& x, double tol, NewtonProblem& proble
         if (stale) {
           stale = false;
           sys_->assemble(pt, true);
+          kinkTangent = sys_->workCounters().kinkTangents != kinks;
           continue;
         }
         rep.failure = "linear solve failed";
@@ -70,6 +80,7 @@ NewtonReport Newton::solve(Eigen::VectorXd& x, double tol, NewtonProblem& proble
       if (std::isfinite(un) && un <= settings_.reuseContraction * previousUpdate) break;
       stale = false;
       sys_->assemble(pt, true);
+      kinkTangent = sys_->workCounters().kinkTangents != kinks;
     }
     previousUpdate = dxEq.lpNorm<Eigen::Infinity>();
     dx.setZero();
@@ -114,6 +125,10 @@ NewtonReport Newton::solve(Eigen::VectorXd& x, double tol, NewtonProblem& proble
     if (crossed) problem.afterUpdate();
     // Not below what round-off lets the assembled forces resolve (a stiff short part, FR16).
     if (lastChanges == 0 && !crossed && un <= std::max(tol, sys_->displacementFloor())) {
+      if (kinkTangent && !exact) {
+        exact = true;  // confirm with the exact tangent (RG10)
+        continue;
+      }
       if (sys_->onConverged(x)) problem.afterUpdate();  // moved negligibly onto an event
       rep.converged = true;
       return rep;

@@ -22,6 +22,9 @@ double dampedStableStep(double undampedStep, double beta) {
   if (!(beta > 0.0) || !std::isfinite(undampedStep)) return undampedStep;
   const double omega = 2.0 / undampedStep;
   const double xi = 0.5 * beta * omega;
+  // sqrt(1 + xi^2) - xi loses digits to cancellation once xi > 1 and is 0 in floating point
+  // beyond ~1e8 (a step that would not move time): there its equal 1 / (sqrt(1 + xi^2) + xi).
+  if (xi > 1.0) return undampedStep / (std::sqrt(1.0 + xi * xi) + xi);
   return undampedStep * (std::sqrt(1.0 + xi * xi) - xi);
 }
 

@@ -46,6 +46,14 @@ struct StableStepRecord {
   double totalAddedMass = 0.0;
 };
 
+// The step an explicit scheme would take from a state, and why (how long a run will take, asked
+// before it starts: docs/limits.md).
+struct StepEstimate {
+  double dt = 0.0;        // the step taken: safety x the damped stable step (EX5, EX7), <= dt
+  double undamped = 0.0;  // 2 / omega_max at the limiting node, no safety, no damping
+  int limitingNode = -1;
+};
+
 class TimeIntegrator {
  public:
   virtual ~TimeIntegrator() = default;
@@ -81,6 +89,9 @@ class TimeIntegrator {
   virtual long balanceStride() const { return 1; }
   // An explicit scheme's record of its stable steps (nullptr: none).
   virtual const StableStepRecord* stableSteps() const { return nullptr; }
+  // The step an explicit scheme would take from s (nullopt: an implicit scheme, whose step is the
+  // case's dt).
+  virtual std::optional<StepEstimate> estimateStep(const StructuralState&) { return std::nullopt; }
 };
 
 }  // namespace chute

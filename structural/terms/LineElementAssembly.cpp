@@ -42,14 +42,15 @@ void assembleCable(const Model& m, int a, int b, double L, int material, const E
       // A slack cable over the whole step: the RG5 spring keeps the matrix regular.
       kernels::PolylineResult<2> slack;
       slack.strain = dg.strain1;
-      addSlackTangent<2>(slack, mat, L, {0, 1}, p.cx, J);
+      addSlackTangent<2>(slack, mat, L, {0, 1}, p.cx, J, false);
     }
   } else {
     const auto res = kernels::cableForce(pos(p.x, a), pos(p.x, b), L, mat, wantJ);
     r = res.force;
     if (wantJ) {
       J = p.cx * res.stiffness;
-      addSlackTangent<2>(res, mat, L, {0, 1}, p.cx, J);
+      if (addSlackTangent<2>(res, mat, L, {0, 1}, p.cx, J, p.kinkTangent))
+        ++out.work().kinkTangents;
     }
   }
   if (mat.density > 0.0) {

@@ -31,11 +31,20 @@ inline kernels::Vec9 gather3(const Eigen::VectorXd& v, int a, int b, int c) {
 // A slack tension-only part has no stiffness at all, so a massless node between slack parts
 // would make the Newton matrix singular. The Jacobian (never the residual) gets a spring of
 // kCableSlackTangent E A / L between the part's ends (RG5): converged states are untouched.
+// A part on the kink, slack by less than the slack / taut band (RG4), also gets the taut axial
+// stiffness E A0 / L D D^T when onKink (RG10: the first Newton iteration of a step, EvalPoint::
+// kinkTangent; res.dLength is the kernel's, so not for the discrete-gradient results of the
+// energy-momentum scheme): without it a straight line of parts at zero strain is pulled taut
+// one part per Newton iteration. Returns whether RG10 applied (the
+// Jacobian is then not the residual's exact derivative: Newton confirms its convergence with one
+// iteration without it).
 template <int N>
-void addSlackTangent(const kernels::PolylineResult<N>& res, const kernels::LineMaterial& mat,
+bool addSlackTangent(const kernels::PolylineResult<N>& res, const kernels::LineMaterial& mat,
                      double L, const std::array<int, N>& pathToLocal, double cx,
-                     Eigen::Matrix<double, 3 * N, 3 * N>& J) {
-  if (!mat.tensionOnly || mat.compressionStiffnessRatio > 0.0 || res.strain > 0.0) return;
+                     Eigen::Matrix<double, 3 * N, 3 * N>& J, bool onKink = true) {
+  if (!mat.tensionOnly || mat.compressionStiffnessRatio > 0.0 || res.strain > 0.0) return false;
+  const bool kink = onKink && res.strain > -kernels::kSlackTautBand;
+  if (kink) J += cx * (mat.E * mat.area / L) * res.dLength * res.dLength.transpose();
   const Eigen::Matrix3d k =
       cx * kernels::kCableSlackTangent * mat.E * mat.area / L * Eigen::Matrix3d::Identity();
   for (int seg = 0; seg + 1 < N; ++seg) {
@@ -45,6 +54,7 @@ void addSlackTangent(const kernels::PolylineResult<N>& res, const kernels::LineM
     J.template block<3, 3>(3 * a, 3 * b) -= k;
     J.template block<3, 3>(3 * b, 3 * a) -= k;
   }
+  return kink;
 }
 
 // Internal force, inertia and gravity of one two-node cable, scattered through the assembler.

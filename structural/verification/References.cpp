@@ -43,20 +43,23 @@ std::vector<Vec3> BeadEllipseReference::positions(const std::vector<double>& tim
                                                   double h) const {
   std::vector<Vec3> out;
   out.reserve(times.size());
-  Eigen::Vector2d y(theta0_, 0.0);
-  double t = 0.0;
-  for (double target : times) {
-    if (target < t) throw std::invalid_argument("reference times must ascend from 0");
-    while (t < target) {
-      const double dt = std::min(h, target - t);
-      const Eigen::Vector2d k1 = rhs(y), k2 = rhs(y + 0.5 * dt * k1), k3 = rhs(y + 0.5 * dt * k2),
-                            k4 = rhs(y + dt * k3);
-      y += dt / 6.0 * (k1 + 2 * k2 + 2 * k3 + k4);
-      t = (target - t - dt) < 1e-15 ? target : t + dt;
-    }
-    out.push_back(at(y[0]));
-  }
+  Walk w = release();
+  for (double target : times) out.push_back(walkTo(w, target, h));
   return out;
+}
+
+Vec3 BeadEllipseReference::walkTo(Walk& w, double target, double h) const {
+  if (target < w.t) throw std::invalid_argument("reference times must ascend from 0");
+  Eigen::Vector2d& y = w.y;
+  double& t = w.t;
+  while (t < target) {
+    const double dt = std::min(h, target - t);
+    const Eigen::Vector2d k1 = rhs(y), k2 = rhs(y + 0.5 * dt * k1), k3 = rhs(y + 0.5 * dt * k2),
+                          k4 = rhs(y + dt * k3);
+    y += dt / 6.0 * (k1 + 2 * k2 + 2 * k3 + k4);
+    t = (target - t - dt) < 1e-15 ? target : t + dt;
+  }
+  return at(y[0]);
 }
 
 }  // namespace chute::verification

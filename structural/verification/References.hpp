@@ -27,6 +27,14 @@ class BeadEllipseReference {
   BeadEllipseReference(const Vec3& f1, const Vec3& f2, const Vec3& bead0, const Vec3& gravity);
   // Positions at ascending times (t >= 0); step h of the RK4 integration.
   std::vector<Vec3> positions(const std::vector<double>& times, double h = 1e-5) const;
+  // The same integration one time at a time (a run's rows as they come): the state of a walk
+  // from the release, and the position at the next time (>= the walk's), the walk moved there.
+  struct Walk {
+    Eigen::Vector2d y;  // (theta, theta_dot)
+    double t = 0.0;
+  };
+  Walk release() const { return {Eigen::Vector2d(theta0_, 0.0), 0.0}; }
+  Vec3 walkTo(Walk& w, double target, double h = 1e-5) const;
   double semiMajor() const { return a_; }
   double semiMinor() const { return b_; }
 

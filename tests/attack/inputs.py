@@ -447,7 +447,9 @@ def corpus(ctx):
     deep = b"\x81" * 400000 + b"\x00"
     add(restart_input(ctx, "payload nested 400000 deep, checksum right", cbor.dumps(
         {"format": 2, "payload": deep, "checksum": cbor.fnv1a(deep)})))
-    add(restart_input(ctx, "format 3", cbor.dumps(dict(cbor.loads(good), format=3))))
+    add(restart_input(ctx, "format 2 (before every key was in it)",
+                      cbor.dumps(dict(cbor.loads(good), format=2))))
+    add(restart_input(ctx, "format 4", cbor.dumps(dict(cbor.loads(good), format=4))))
 
     def setter(key, value):
         def edit(p):
@@ -467,8 +469,10 @@ def corpus(ctx):
                        ("a term's reals NaN", lambda p: p["terms"][0].__setitem__(
                            "reals", [float("nan")] * len(p["terms"][0]["reals"]))),
                        ("model hash changed", setter("model_hash", 1)),
-                       ("solver dt changed", lambda p: p["solver"].__setitem__(
+                       ("solver dt changed", lambda p: p["settings"].__setitem__(
                            "solver.dt", "0.001")),
+                       ("gravity changed", lambda p: p["settings"].__setitem__(
+                           "loads.gravity", "[0.0, 0.0, -1.0]")),
                        ("probe rows 1e15", lambda p: p["output"].__setitem__("probe_rows",
                                                                              10 ** 15)),
                        ("x is a string", setter("x", "x")),

@@ -196,7 +196,7 @@ TEST(PayOnly, NoWorkForWhatTheSceneDoesNotDeclare) {
     // One energy evaluation per probe row (the probes and the drift share it), and the energy
     // balance's (solver/EnergyMonitor.hpp): one per step, one at the start, two for the floor
     // m |g| L of its scale (every scene here has gravity).
-    EXPECT_EQ(w.energy, static_cast<long>(row.r.times.size()) + row.r.steps + 1 + 2);
+    EXPECT_EQ(w.energy, row.r.probeRows + row.r.steps + 1 + 2);
     // No scene here declares [contact]: no contact work at all.
     EXPECT_EQ(w.contact, 0);
     EXPECT_EQ(w.contactLists, 0);

@@ -12,10 +12,14 @@
 #include <sstream>
 #include <string>
 
+#include "FlightFigures.hpp"
 #include "ParachuteCaseWriter.hpp"
 #include "ParachuteGenerator.hpp"
 #include "app/RunCase.hpp"
 #include "case/CaseSpec.hpp"
+#include "solver/StructuralSystem.hpp"
+#include "support/TempDir.hpp"
+#include "terms/CanopyFlowTerm.hpp"
 
 using namespace chute;
 using namespace chute::mesh;
@@ -112,4 +116,71 @@ TEST(GeneratedFlight, EverySolverSettingOfTheGeneratedCaseSaysWhy) {
   // integrator, dt, stiffness_damping, t_end (the airflow's loads run with central differences
   // only, so the implicit alternative's settings are not written)
   EXPECT_EQ(settings, 4);
+}
+
+// The flight figures of summary.json come from the columns RunOutput collects as it streams the
+// rows (a run writing to a directory keeps no rows): they must be those of the whole rows, number
+// for number, and a restarted run's those of the uninterrupted run (its rows up to the
+// checkpoint are read back from probes.csv, written in round-trip precision).
+TEST(GeneratedFlight, FlightFiguresOfStreamedRowsAreThoseOfTheWholeRows) {
+  ParachuteSpec s = small(8, 1.5, 4);
+  s.start = "inflated";  // the lines pull from the start: every figure is under way
+  const std::string msh = ::testing::TempDir() + "streamed_flight.msh";
+  const std::string toml = ::testing::TempDir() + "streamed_flight.toml";
+  ParachuteCaseOptions o;
+  o.units = "si";
+  writeParachuteCase(s, generateParachute(s, msh), toml, msh, o);
+  const CaseSpec spec = readCase(toml, {"solver.t_end=0.12", "output.vtu.write=false"});
+  const auto whole = chute::testing::freshTempDir("chute_test_flight_", "whole");
+  RunOptions keep = RunOptions::writingTo(whole.string());
+  keep.keepRows = true;
+  const RunResult a = runCase(spec, keep);
+  ASSERT_EQ(a.status, RunStatus::Completed) << a.reason;
+  ASSERT_TRUE(a.flight.has_value());
+  // The figures as they were made before rows were streamed: from every row, kept whole.
+  const auto series = flightSeries(spec.output.probes, a.columns, a.times, a.rows);
+  ASSERT_TRUE(series.has_value());
+  StructuralSystem sys(spec.model, spec.solver.search);
+  ASSERT_EQ(sys.termList().canopyFlows().size(), 1u);
+  const CanopyFlowTerm& canopy = *sys.termList().canopyFlows().front();
+  const FlightFigures b = flightFigures(*series, canopy.nominalDiameter(), canopy.nominalArea(),
+                                        spec.model.totalMass() * spec.model.gravity.norm());
+  const auto same = [](const FlightFigures& x, const FlightFigures& y) {
+    return x.peakForce == y.peakForce && x.peakForceTime == y.peakForceTime &&
+           x.steadyFrom == y.steadyFrom && x.steadyForce == y.steadyForce &&
+           x.steadyVariation == y.steadyVariation && x.steadyDescentSpeed == y.steadyDescentSpeed &&
+           x.steadyAirspeed == y.steadyAirspeed && x.dragArea == y.dragArea &&
+           x.dragCoefficient == y.dragCoefficient &&
+           x.projectedDiameterRatio == y.projectedDiameterRatio &&
+           x.openingForceFactor == y.openingForceFactor && x.fillingTime == y.fillingTime &&
+           x.fillingDistance == y.fillingDistance && x.largestSwing == y.largestSwing &&
+           x.held == y.held;
+  };
+  std::printf(
+      "%zu rows: peak opening force %.6g N at %.4f s, descent %.4g m/s, C_D0 %.4g; "
+      "streamed %s the whole rows'\n",
+      a.rows.size(), a.flight->peakForce, a.flight->peakForceTime, a.flight->steadyDescentSpeed,
+      a.flight->dragCoefficient, same(*a.flight, b) ? "equal to" : "DIFFERENT from");
+  EXPECT_TRUE(same(*a.flight, b));
+  EXPECT_GT(a.flight->peakForce, 0.0);
+
+  // Streamed without keeping rows, and restarted from a checkpoint halfway.
+  const auto split = chute::testing::freshTempDir("chute_test_flight_", "split");
+  RunOptions withCheckpoints = RunOptions::writingTo(split.string());
+  withCheckpoints.checkpointEvery = std::max(1L, a.steps / 2);
+  const RunResult c = runCase(spec, withCheckpoints);
+  ASSERT_EQ(c.status, RunStatus::Completed);
+  ASSERT_GT(c.checkpoints, 0);
+  EXPECT_TRUE(c.rows.empty());  // nothing kept
+  ASSERT_TRUE(c.flight.has_value());
+  EXPECT_TRUE(same(*c.flight, b));
+  RunOptions restart = RunOptions::writingTo(split.string());
+  restart.restartFile = (split / "checkpoint.cbor").string();
+  const RunResult d = runCase(spec, restart);
+  ASSERT_EQ(d.status, RunStatus::Completed);
+  ASSERT_TRUE(d.flight.has_value());
+  std::printf("streamed: %s; restarted after %ld checkpoints: %s\n",
+              same(*c.flight, b) ? "equal" : "DIFFERENT", c.checkpoints,
+              same(*d.flight, b) ? "equal" : "DIFFERENT");
+  EXPECT_TRUE(same(*d.flight, b));
 }

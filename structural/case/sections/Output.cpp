@@ -1,6 +1,7 @@
 // [output]: output intervals, [[output.probes]] and [output.vtu].
 #include <algorithm>
 #include <climits>
+#include <optional>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -156,21 +157,79 @@ ProbeSpec readProbe(const Model& m, TomlTable t) {
 
 }  // namespace
 
+namespace {
+
+// Most probe rows and VTU frames a run may write unless the case raises the limit, and the most
+// it may be raised to (docs/limits.md): a typo in an interval must not fill a disk.
+constexpr long kMaxRowsLimit = 1000000000;
+constexpr long kMaxFramesLimit = 10000000;
+constexpr double kMaxSteps = 1e9;
+
+// What output times do to a dynamic run's size, judged before it starts (docs/limits.md): rows
+// and frames at an interval, an implicit run's steps capped by an interval shorter than dt, and
+// rows or frames every N implicit steps. (An explicit run's step is known once the model is
+// built: app/RunLimits.cpp.)
+void checkOutputSize(const CaseSpec& c, TomlTable& o, TomlTable* v) {
+  const auto& sv = c.solver;
+  if (sv.type != AnalysisType::Dynamic) return;
+  const auto& out = c.output;
+  const bool implicitStep = sv.integrator != IntegratorKind::CentralDifference;
+  double step = sv.dt;  // an implicit run's longest step: dt, capped by the output intervals
+  if (implicitStep && out.interval > 0.0) step = std::min(step, out.interval);
+  if (implicitStep && out.vtu.write && out.vtu.interval > 0.0)
+    step = std::min(step, out.vtu.interval);
+  if (out.interval > 0.0 && sv.tEnd / out.interval + 1.0 > static_cast<double>(out.maxRows))
+    o.fail("interval", "t_end / interval is " + shortNumber(sv.tEnd / out.interval) +
+                           " probe rows, more than output.max_rows = " +
+                           std::to_string(out.maxRows) + " (raise it to write them)");
+  if (v && out.vtu.write && out.vtu.interval > 0.0 &&
+      sv.tEnd / out.vtu.interval + 1.0 > static_cast<double>(out.vtu.maxFrames))
+    v->fail("interval", "t_end / interval is " + shortNumber(sv.tEnd / out.vtu.interval) +
+                            " VTU frames, more than output.vtu.max_frames = " +
+                            std::to_string(out.vtu.maxFrames) + " (raise it to write them)");
+  if (!implicitStep) return;
+  if (sv.tEnd / step > kMaxSteps) {
+    const bool vtuCaps = out.vtu.write && out.vtu.interval > 0.0 && out.vtu.interval == step;
+    (vtuCaps && v ? *v : o)
+        .fail("interval", "caps the step at " + shortNumber(step) +
+                              " (steps land on output times): t_end / " + shortNumber(step) +
+                              " = " + shortNumber(sv.tEnd / step) + " steps, more than " +
+                              shortNumber(kMaxSteps));
+  }
+  const double steps = sv.tEnd / step;
+  if (out.interval <= 0.0 && steps / out.everySteps + 1.0 > static_cast<double>(out.maxRows))
+    o.fail("every", "a row every " + std::to_string(out.everySteps) + " of " + shortNumber(steps) +
+                        " steps is more than output.max_rows = " + std::to_string(out.maxRows) +
+                        " probe rows (raise it, or give interval)");
+  if (v && out.vtu.write && out.vtu.interval <= 0.0 &&
+      steps / out.vtu.everySteps + 1.0 > static_cast<double>(out.vtu.maxFrames))
+    v->fail("every",
+            "a frame every " + std::to_string(out.vtu.everySteps) + " of " + shortNumber(steps) +
+                " steps is more than output.vtu.max_frames = " + std::to_string(out.vtu.maxFrames) +
+                " VTU frames (raise it, or give interval)");
+}
+
+}  // namespace
+
 void readOutput(CaseSpec& c, TomlTable o) {
   const Model& m = c.model;
   c.output.everySteps = static_cast<int>(o.integer("every", 1, 1, INT_MAX));
   if (o.has("interval")) c.output.interval = o.positive("interval");
   if (o.has("interval") && o.has("every")) o.fail("every", "give either every or interval");
+  c.output.maxRows = o.integer("max_rows", c.output.maxRows, 1, kMaxRowsLimit);
   std::set<std::string> names;
   for (auto& p : o.tables("probes")) {
     c.output.probes.push_back(readProbe(m, p));
     if (!names.insert(c.output.probes.back().name).second)
       p.fail("name", "duplicate probe name '" + c.output.probes.back().name + "'");
   }
+  std::optional<TomlTable> vtuTable;
   if (o.has("vtu")) {
-    TomlTable v = o.table("vtu");
+    vtuTable.emplace(o.table("vtu"));
+    TomlTable& v = *vtuTable;
     auto& vtu = c.output.vtu;
     vtu.write = v.boolean("write", true);
+    vtu.maxFrames = v.integer("max_frames", vtu.maxFrames, 1, kMaxFramesLimit);
     vtu.everySteps = static_cast<int>(v.integer("every", 1, 1, INT_MAX));
     if (v.has("interval")) vtu.interval = v.positive("interval");
     if (v.has("interval") && v.has("every")) v.fail("every", "give either every or interval");
@@ -185,6 +244,7 @@ void readOutput(CaseSpec& c, TomlTable o) {
     }
     v.finish();
   }
+  checkOutputSize(c, o, vtuTable ? &*vtuTable : nullptr);
   o.finish();
 }
 

@@ -427,14 +427,16 @@ void SlidingGroupTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
       if (wantJ && dg.strain0 <= 0.0 && dg.strain1 <= 0.0) {
         kernels::PolylineResult<3> slack;
         slack.strain = dg.strain1;
-        addSlackTangent<3>(slack, mat, L, {0, 2, 1}, p.cx, J);
+        addSlackTangent<3>(slack, mat, L, {0, 2, 1}, p.cx, J, false);
       }
     } else {
       const auto res = kernels::slidingForce(x1, x2, x3, L, mat, wantJ);
       r = res.force;
       if (wantJ) {
         J = p.cx * res.stiffness;
-        addSlackTangent<3>(res, mat, L, {0, 2, 1}, p.cx, J);  // path 1 -> slider -> 2
+        // path 1 -> slider -> 2
+        if (addSlackTangent<3>(res, mat, L, {0, 2, 1}, p.cx, J, p.kinkTangent))
+          ++out.work().kinkTangents;
       }
     }
     if (mat.density > 0.0 && p.inertia && !g.frictionOf(s)) {
