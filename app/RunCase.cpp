@@ -21,6 +21,7 @@
 #include "app/RestartSettings.hpp"
 #include "app/RunLimits.hpp"
 #include "app/RunOutput.hpp"
+#include "app/SanityNotes.hpp"
 #include "app/StopSignals.hpp"
 #include "case/SolverSetup.hpp"
 #include "solver/EnergyMonitor.hpp"
@@ -329,6 +330,7 @@ std::ostream& operator<<(std::ostream& out, RunStatus s) {
 RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
   const auto wall0 = std::chrono::steady_clock::now();
   RunResult r;
+  r.notes = sanityNotes(spec);  // values outside their physical range, much slower settings
   const Model& m = spec.model;
   const SolverSpec& sv = spec.solver;
   StructuralSystem sys(m, sv.search);

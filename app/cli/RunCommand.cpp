@@ -8,6 +8,7 @@
 
 #include "OutputError.hpp"
 #include "app/RunCase.hpp"
+#include "app/SanityNotes.hpp"
 #include "app/cli/Command.hpp"
 #include "case/CaseError.hpp"
 #include "case/CaseSpec.hpp"
@@ -38,6 +39,11 @@ int runCase(const RunArgs& a) {
   opt.checkpointEvery = a.checkpointEvery;
   opt.restartFile = a.restart;
   opt.handleSignals = true;
+  // Notes on the case (values outside their physical range, settings much slower than the
+  // alternative) as the run starts, on stdout; on stderr once it has completed (summary.json too).
+  if (!a.quiet)
+    for (const auto& note : sanityNotes(spec))
+      fmt::print("{}: note: {}\n", spec.name, oneLineMessage(note));
   RunResult r;
   try {
     r = chute::runCase(spec, opt);

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdint>
+#include <cstdlib>
 #include <sstream>
 #include <stdexcept>
 
@@ -79,6 +80,41 @@ std::string didYouMean(const std::string& key, const std::vector<std::string>& k
   }
   if (best.empty() || bestD > std::max<int>(2, static_cast<int>(key.size()) / 3)) return "";
   return " (did you mean '" + best + "'?)";
+}
+
+std::string nameSuggestion(const std::string& name, const std::vector<std::string>& known,
+                           const std::string& plural) {
+  if (known.empty()) return " (there are no " + plural + ")";
+  auto lower = [](std::string s) {
+    for (auto& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return s;
+  };
+  const std::string key = lower(name);
+  // Distance with case ignored, ties broken by the exact spelling's distance.
+  std::vector<std::pair<std::pair<int, int>, const std::string*>> ranked;
+  const int reach = std::max<int>(1, static_cast<int>(name.size()) / 3);
+  for (const auto& k : known) {
+    // A name far longer or shorter cannot be within reach: skip the distance (a mesh may have
+    // a million node names).
+    if (std::abs(static_cast<long>(k.size()) - static_cast<long>(name.size())) > reach) continue;
+    const int d = editDistance(key, lower(k));
+    if (d <= reach) ranked.push_back({{d, editDistance(name, k)}, &k});
+  }
+  std::sort(ranked.begin(), ranked.end(),
+            [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::string close;
+  const size_t shown = std::min<size_t>(ranked.size(), 3);
+  for (size_t i = 0; i < shown; ++i)
+    close += (i == 0 ? "'" : i + 1 == shown ? " or '" : ", '") + *ranked[i].second + "'";
+  constexpr size_t kListAll = 6;  // up to this many are named in full
+  std::string all;
+  if (known.size() <= kListAll)
+    for (const auto& k : known) all += (all.empty() ? "" : ", ") + k;
+  if (!close.empty())
+    return " (did you mean " + close + "? " +
+           (all.empty() ? std::to_string(known.size()) + " " + plural : "known: " + all) + ")";
+  if (!all.empty()) return " (known: " + all + ")";
+  return " (none of the " + std::to_string(known.size()) + " " + plural + " is close)";
 }
 
 void applyOverride(toml::value& root, const std::string& file, const std::string& assignment) {

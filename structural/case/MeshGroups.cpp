@@ -7,6 +7,7 @@
 
 #include "MeshError.hpp"
 #include "MshReader.hpp"
+#include "case/CaseText.hpp"
 #include "case/sections/SectionLookup.hpp"
 
 namespace chute {
@@ -21,14 +22,17 @@ int lineMaterialRef(const Model& m, TomlTable& t) {
   const std::string name = t.string("material");
   for (size_t i = 0; i < m.materialName.size(); ++i)
     if (m.materialName[i] == name) return static_cast<int>(i);
-  t.fail("material", "unknown material '" + name + "'");
+  t.fail("material", "unknown material '" + name + "'" +
+                         caseio::nameSuggestion(name, m.materialName, "line materials"));
 }
 
 int membraneMaterialRef(const Model& m, TomlTable& t) {
   const std::string name = t.string("material");
   for (size_t i = 0; i < m.membraneMaterialName.size(); ++i)
     if (m.membraneMaterialName[i] == name) return static_cast<int>(i);
-  t.fail("material", "no membrane material '" + name + "' (kind = \"membrane\")");
+  t.fail("material",
+         "no membrane material '" + name + "' (kind = \"membrane\")" +
+             caseio::nameSuggestion(name, m.membraneMaterialName, "membrane materials"));
 }
 
 const MeshImport& need(const MeshImport* mesh, TomlTable& t) {
@@ -54,9 +58,14 @@ int addLineSet(Model& m, TomlTable& t, const std::string& name, bool sliding) {
 const mesh::MeshGroup& MeshImport::group(TomlTable& t, const std::string& key, int dim) const {
   const std::string name = t.string(key);
   const mesh::MeshGroup* g = mesh.group(name, dim);
-  if (!g)
-    t.fail(key,
-           "no physical group '" + name + "' in " + file + " (groups: " + mesh.groupList() + ")");
+  if (!g) {
+    // The closest few of the groups of this dimension (a generated parachute has 75), not all.
+    std::vector<std::string> names;
+    for (const auto& h : mesh.groups)
+      if (h.dim == dim) names.push_back(h.name);
+    t.fail(key, "no physical group '" + name + "' in " + file +
+                    caseio::nameSuggestion(name, names, std::string(roleOfDim(dim)) + " groups"));
+  }
   if (g->dim != dim)
     t.fail(key, "physical group '" + name + "' in " + file + " is " + roleOfDim(g->dim) +
                     "; this needs " + roleOfDim(dim));
@@ -190,7 +199,8 @@ void readMeshSlidingGroup(Model& m, const MeshImport* mesh, TomlTable t, int /*i
   for (const auto& s : t.strings("sliders")) {
     auto it = m.nodeByName.find(s);
     if (it == m.nodeByName.end())
-      t.fail("sliders", "unknown node '" + s + "' (a node name or a single-node physical point)");
+      t.fail("sliders", "unknown node '" + s + "' (a node name or a single-node physical point)" +
+                            caseio::nameSuggestion(s, caseio::nodeNames(m), "nodes"));
     if (std::find(def.chain.begin(), def.chain.end(), it->second) != def.chain.end())
       t.fail("sliders", "slider '" + s + "' is a node of the chain '" + g.name + "'");
     def.sliders.push_back(it->second);

@@ -98,7 +98,7 @@ Eigen::VectorXd CouplingInterface::faceCentres() const {
 
 void CouplingInterface::initializeWithLoads() {
   if (stepper_->counters().steps > 0 || state_.t != 0.0)
-    throw CouplingError("initializeWithLoads: only before the first advance");
+    throw CallOrderError("initializeWithLoads: only before the first advance");
   state_ = stepper_->start();
 }
 
@@ -117,6 +117,9 @@ double CouplingInterface::advance(double dt) {
     throw CouplingError("advance: a window of " + num(dt) + " would take more than " +
                         num(kMaxStepsPerWindow) + " steps of dt_min");
   // As `chute run` (TimeStepper): the window's end is a stop, and so are the case's cut events.
+  // A window that fails leaves the state it started from (the last good window's end): a flow
+  // solver may retry it with other loads or a shorter window, without a checkpoint of its own.
+  const WindowCheckpoint start = sys_->saveState(state_);
   const auto before = stepper_->counters();
   const auto result = stepper_->advanceTo(
       state_, target, [](double) { return std::numeric_limits<double>::infinity(); },
@@ -129,7 +132,12 @@ double CouplingInterface::advance(double dt) {
   counters_.rejectedSteps += after.rejectedSteps - before.rejectedSteps;
   counters_.eventRetries += after.eventRetries - before.eventRetries;
   counters_.newtonIterations += after.newtonIterations - before.newtonIterations;
-  if (result.outcome == TimeStepper::Outcome::BelowMinimum) throw CouplingError(result.reason);
+  if (result.outcome == TimeStepper::Outcome::BelowMinimum) {
+    state_ = sys_->loadState(start);
+    stepper_->counters() = before;
+    throw CouplingError(result.reason +
+                        "; the structure is back at the window's start, t = " + num(state_.t));
+  }
   return dt;
 }
 

@@ -47,6 +47,11 @@ class NoCheckpointError : public CouplingError {
  public:
   using CouplingError::CouplingError;
 };
+// A call made when it cannot be (initializeWithLoads after the first advance).
+class CallOrderError : public CouplingError {
+ public:
+  using CouplingError::CouplingError;
+};
 
 // Everything a time window changes, kept in memory: the structure's state and step control with
 // every term's history (StructuralSystem::saveState, the snapshot checkpoints and step
@@ -101,7 +106,9 @@ class CouplingInterface {
   double preferredTimeStep() const { return spec_.solver.dt; }  // the case's solver.dt
   // Advances the structure over [t, t + dt] in steps of at most the case's dt (cut on rejection
   // and at slider events as `chute run` does); returns the step taken (dt). Throws
-  // CouplingError if a step falls below dt_min: the state is then the last converged sub-step.
+  // CouplingError if a step falls below dt_min: the state (time, positions, every term's
+  // history, the step counters) is then restored to the window's start, the end of the last
+  // good window, and the next advance starts from there.
   double advance(double dt);
 
   // ---- checkpoints (requiresWritingCheckpoint / requiresReadingCheckpoint) ----

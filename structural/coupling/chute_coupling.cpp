@@ -40,6 +40,9 @@ int guarded(const chute_coupling* h, F&& f) {
   } catch (const chute::coupling::NoCheckpointError& e) {
     *err = e.what();
     return CHUTE_ERROR_STATE;
+  } catch (const chute::coupling::CallOrderError& e) {
+    *err = e.what();
+    return CHUTE_ERROR_STATE;
   } catch (const chute::coupling::CouplingError& e) {
     *err = e.what();
     return CHUTE_ERROR_SOLVER;
@@ -125,6 +128,24 @@ int chute_coupling_face_vertices(const chute_coupling* h, int* faces) {
       for (int i = 0; i < 4; ++i) faces[4 * f + i] = s.surface().faceVertices[f][i];
   });
 }
+int chute_coupling_face_sizes(const chute_coupling* h, int* sizes) {
+  return guarded(h, [&](CouplingInterface& s) {
+    if (!sizes) throw std::invalid_argument("null output array");
+    std::copy(s.surface().faceSize.begin(), s.surface().faceSize.end(), sizes);
+  });
+}
+int chute_coupling_vertex_nodes(const chute_coupling* h, int* nodes) {
+  return guarded(h, [&](CouplingInterface& s) {
+    if (!nodes) throw std::invalid_argument("null output array");
+    std::copy(s.surface().node.begin(), s.surface().node.end(), nodes);
+  });
+}
+int chute_coupling_face_elements(const chute_coupling* h, int* elements) {
+  return guarded(h, [&](CouplingInterface& s) {
+    if (!elements) throw std::invalid_argument("null output array");
+    std::copy(s.surface().element.begin(), s.surface().element.end(), elements);
+  });
+}
 int chute_coupling_reference_coordinates(const chute_coupling* h, double* xyz) {
   return guarded(h, [&](CouplingInterface& s) { copyOut(s.referenceCoordinates(), xyz); });
 }
@@ -145,6 +166,39 @@ int chute_coupling_face_normals(const chute_coupling* h, double* xyz) {
 }
 int chute_coupling_face_areas(const chute_coupling* h, double* areas) {
   return guarded(h, [&](CouplingInterface& s) { copyOut(s.faceAreas(), areas); });
+}
+int chute_coupling_face_area_vectors(const chute_coupling* h, double* xyz) {
+  return guarded(h, [&](CouplingInterface& s) { copyOut(s.faceAreaVectors(), xyz); });
+}
+int chute_coupling_face_centres(const chute_coupling* h, double* xyz) {
+  return guarded(h, [&](CouplingInterface& s) { copyOut(s.faceCentres(), xyz); });
+}
+int chute_coupling_face_means(const chute_coupling* h, const double* vertex_xyz, double* face_xyz) {
+  return guarded(h, [&](CouplingInterface& s) {
+    copyOut(s.surface().faceMeans(copyIn(vertex_xyz, 3L * s.numVertices())), face_xyz);
+  });
+}
+int chute_coupling_face_pressures(const chute_coupling* h, double* p) {
+  return guarded(h, [&](CouplingInterface& s) { copyOut(s.loads().facePressures(), p); });
+}
+int chute_coupling_vertex_pressures(const chute_coupling* h, double* p) {
+  return guarded(h, [&](CouplingInterface& s) { copyOut(s.loads().vertexPressures(), p); });
+}
+int chute_coupling_vertex_forces(const chute_coupling* h, double* f) {
+  return guarded(h, [&](CouplingInterface& s) { copyOut(s.loads().vertexForces(), f); });
+}
+int chute_coupling_initialize_with_loads(chute_coupling* h) {
+  return guarded(h, [&](CouplingInterface& s) { s.initializeWithLoads(); });
+}
+int chute_coupling_counters(const chute_coupling* h, long* steps, long* rejected,
+                            long* event_retries, long* newton_iterations) {
+  return guarded(h, [&](CouplingInterface& s) {
+    const auto& c = s.counters();
+    if (steps) *steps = c.steps;
+    if (rejected) *rejected = c.rejectedSteps;
+    if (event_retries) *event_retries = c.eventRetries;
+    if (newton_iterations) *newton_iterations = c.newtonIterations;
+  });
 }
 int chute_coupling_set_face_pressures(chute_coupling* h, const double* p) {
   return guarded(h, [&](CouplingInterface& s) { s.setFacePressures(copyIn(p, s.numFaces())); });
@@ -186,6 +240,12 @@ int chute_coupling_save_checkpoint(chute_coupling* h) {
 }
 int chute_coupling_restore_checkpoint(chute_coupling* h) {
   return guarded(h, [&](CouplingInterface& s) { s.restoreCheckpoint(); });
+}
+int chute_coupling_has_checkpoint(const chute_coupling* h, int* saved) {
+  return guarded(h, [&](CouplingInterface& s) {
+    if (!saved) throw std::invalid_argument("null output");
+    *saved = s.hasCheckpoint() ? 1 : 0;
+  });
 }
 
 }  // extern "C"

@@ -22,8 +22,10 @@ extern "C" {
 enum chute_status {
   CHUTE_OK = 0,
   CHUTE_ERROR_INPUT = 1,   /* bad case file, argument or array size */
-  CHUTE_ERROR_SOLVER = 2,  /* the structure could not advance (step below dt_min) */
-  CHUTE_ERROR_STATE = 3,   /* e.g. restoring without a saved checkpoint */
+  CHUTE_ERROR_SOLVER = 2,  /* the structure could not advance (a step below dt_min: the state
+                              is back at the window's start), or a window refused */
+  CHUTE_ERROR_STATE = 3,   /* a call out of order: restoring without a saved checkpoint,
+                              initializing with loads after the first advance */
   CHUTE_ERROR_INTERNAL = 4 /* anything else */
 };
 
@@ -44,6 +46,12 @@ CHUTE_COUPLING_API int chute_coupling_num_vertices(const chute_coupling* h, int*
 CHUTE_COUPLING_API int chute_coupling_num_faces(const chute_coupling* h, int* n);
 /* 4 vertex indices per face, the 4th -1 for a triangle. */
 CHUTE_COUPLING_API int chute_coupling_face_vertices(const chute_coupling* h, int* faces);
+/* 1 per face: 3 (triangle) or 4 (quadrilateral). */
+CHUTE_COUPLING_API int chute_coupling_face_sizes(const chute_coupling* h, int* sizes);
+/* 1 per vertex: the model node it is (0-based, in the order of the case's nodes and mesh). */
+CHUTE_COUPLING_API int chute_coupling_vertex_nodes(const chute_coupling* h, int* nodes);
+/* 1 per face: the model membrane element it is (0-based). */
+CHUTE_COUPLING_API int chute_coupling_face_elements(const chute_coupling* h, int* elements);
 CHUTE_COUPLING_API int chute_coupling_reference_coordinates(const chute_coupling* h, double* xyz);
 
 /* Write data (writeData): the state at the current time. */
@@ -53,22 +61,48 @@ CHUTE_COUPLING_API int chute_coupling_velocities(const chute_coupling* h, double
 CHUTE_COUPLING_API int chute_coupling_accelerations(const chute_coupling* h, double* xyz);
 CHUTE_COUPLING_API int chute_coupling_face_normals(const chute_coupling* h, double* xyz);
 CHUTE_COUPLING_API int chute_coupling_face_areas(const chute_coupling* h, double* areas);
+/* 3 per face: |A| n, the face's area times its unit normal (the direction pressure pushes). */
+CHUTE_COUPLING_API int chute_coupling_face_area_vectors(const chute_coupling* h, double* xyz);
+/* 3 per face: the mean of its vertices' current coordinates. */
+CHUTE_COUPLING_API int chute_coupling_face_centres(const chute_coupling* h, double* xyz);
+/* 3 per face from 3 per vertex: the mean of a vertex quantity over each face's vertices (the
+ * face velocity a flow model sees from chute_coupling_velocities). */
+CHUTE_COUPLING_API int chute_coupling_face_means(const chute_coupling* h, const double* vertex_xyz,
+                                                 double* face_xyz);
 
 /* Read data (readData): loads for the next advance, held over the window. */
 CHUTE_COUPLING_API int chute_coupling_set_face_pressures(chute_coupling* h, const double* p);
 CHUTE_COUPLING_API int chute_coupling_set_vertex_pressures(chute_coupling* h, const double* p);
 CHUTE_COUPLING_API int chute_coupling_set_vertex_forces(chute_coupling* h, const double* f);
+/* The loads held for the next advance, as last set (zero before any). */
+CHUTE_COUPLING_API int chute_coupling_face_pressures(const chute_coupling* h, double* p);
+CHUTE_COUPLING_API int chute_coupling_vertex_pressures(const chute_coupling* h, double* p);
+CHUTE_COUPLING_API int chute_coupling_vertex_forces(const chute_coupling* h, double* f);
+/* preCICE's initial data: before the first advance, the loads set now act from t = 0 and the
+ * start's acceleration is recomputed under them. CHUTE_ERROR_STATE after the first advance. */
+CHUTE_COUPLING_API int chute_coupling_initialize_with_loads(chute_coupling* h);
 
 /* Time (getMaxTimeStepSize, advance). */
 CHUTE_COUPLING_API int chute_coupling_time(const chute_coupling* h, double* t);
 CHUTE_COUPLING_API int chute_coupling_preferred_time_step(const chute_coupling* h, double* dt);
 CHUTE_COUPLING_API int chute_coupling_end_time(const chute_coupling* h, double* t);
-/* Advances by dt (sub-stepping inside); *taken (may be NULL) receives the step taken. */
+/* Advances by dt (sub-stepping inside); *taken (may be NULL) receives the step taken.
+ * CHUTE_ERROR_SOLVER: a step fell below dt_min. The structure is then restored to the state it
+ * had when this advance was called (time, positions, velocities, every history: the end of the
+ * last good window), so the next advance, with other loads or a shorter dt, starts from there;
+ * no checkpoint needs to be restored. A dt that is not positive and finite, too short to move
+ * time or longer than 1e9 steps of dt_min is refused the same way and changes nothing. */
 CHUTE_COUPLING_API int chute_coupling_advance(chute_coupling* h, double dt, double* taken);
+/* Steps taken so far by all advances, steps rejected (and retried shorter), steps cut at an
+ * event, Newton iterations; any pointer may be NULL. */
+CHUTE_COUPLING_API int chute_coupling_counters(const chute_coupling* h, long* steps, long* rejected,
+                                               long* event_retries, long* newton_iterations);
 
 /* Checkpoints (requiresWritingCheckpoint / requiresReadingCheckpoint): in-memory deep copies. */
 CHUTE_COUPLING_API int chute_coupling_save_checkpoint(chute_coupling* h);
 CHUTE_COUPLING_API int chute_coupling_restore_checkpoint(chute_coupling* h);
+/* *saved = 1 once a checkpoint has been saved, else 0. */
+CHUTE_COUPLING_API int chute_coupling_has_checkpoint(const chute_coupling* h, int* saved);
 
 #ifdef __cplusplus
 }

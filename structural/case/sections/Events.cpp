@@ -3,6 +3,8 @@
 #include <cmath>
 #include <string>
 
+#include "case/CaseText.hpp"
+#include "case/sections/SectionLookup.hpp"
 #include "case/sections/Sections.hpp"
 
 namespace chute::caseio {
@@ -13,7 +15,9 @@ void readEvents(Model& m, TomlTable& top) {
     const std::string set = t.string("cut");
     auto it = std::find_if(m.lineSets.begin(), m.lineSets.end(),
                            [&](const LineSet& s) { return s.name == set; });
-    if (it == m.lineSets.end()) t.fail("cut", "unknown cable set '" + set + "'");
+    if (it == m.lineSets.end())
+      t.fail("cut", "unknown cable set '" + set + "'" +
+                        nameSuggestion(set, lineSetNames(m, true, false), "cable sets"));
     if (it->sliding)
       t.fail("cut", "'" + set + "' is a sliding group; only [[cables]] sets can be cut");
     if (std::isfinite(it->cutAt)) t.fail("cut", "'" + set + "' is cut twice");

@@ -2,7 +2,9 @@
 #include <cmath>
 #include <string>
 
+#include "case/CaseText.hpp"
 #include "case/MeshGroups.hpp"
+#include "case/sections/SectionLookup.hpp"
 #include "case/sections/Sections.hpp"
 #include "terms/CanopyFlowTerm.hpp"
 
@@ -21,7 +23,9 @@ void readLoads(Model& m, const MeshImport* mesh, TomlTable l) {
     const std::string set = t.string("membranes");
     for (size_t k = 0; k < m.membraneSets.size(); ++k)
       if (m.membraneSets[k].name == set) p.set = static_cast<int>(k);
-    if (p.set < 0) t.fail("membranes", "unknown membrane set '" + set + "'");
+    if (p.set < 0)
+      t.fail("membranes", "unknown membrane set '" + set + "'" +
+                              nameSuggestion(set, membraneSetNames(m), "membrane sets"));
     p.pressure = t.number("pressure");
     p.rampTime = t.nonNegative("ramp_time", 0.0);
     if (t.has("element_factors")) {
@@ -52,7 +56,10 @@ void readLoads(Model& m, const MeshImport* mesh, TomlTable l) {
       const std::string edge = t.string("edge");
       auto it = m.nodeSets.find(edge);
       if (it == m.nodeSets.end() || it->second.size() < 2)
-        t.fail("edge", "no node set '" + edge + "' of two or more nodes");
+        t.fail("edge",
+               "no node set '" + edge + "' of two or more nodes" +
+                   (it == m.nodeSets.end() ? nameSuggestion(edge, nodeSetNames(m), "node sets")
+                                           : std::string()));
       const auto& ns = it->second;
       for (size_t k = 0; k + 1 < ns.size(); ++k) d.edges.push_back({ns[k], ns[k + 1]});
       if (t.boolean("closed", false)) d.edges.push_back({ns.back(), ns.front()});
@@ -60,7 +67,9 @@ void readLoads(Model& m, const MeshImport* mesh, TomlTable l) {
       const std::string set = t.string("set");
       for (size_t k = 0; k < m.lineSets.size(); ++k)
         if (m.lineSets[k].name == set) d.lineSet = static_cast<int>(k);
-      if (d.lineSet < 0) t.fail("set", "unknown cable set or sliding group '" + set + "'");
+      if (d.lineSet < 0)
+        t.fail("set", "unknown cable set or sliding group '" + set + "'" +
+                          nameSuggestion(set, lineSetNames(m, true, true), "line sets"));
     }
     const double diameter = t.positive("diameter");
     const double cd = t.positive("cd");
@@ -76,7 +85,9 @@ void readLoads(Model& m, const MeshImport* mesh, TomlTable l) {
     const std::string set = t.string("membranes");
     for (size_t k = 0; k < m.membraneSets.size(); ++k)
       if (m.membraneSets[k].name == set) d.set = static_cast<int>(k);
-    if (d.set < 0) t.fail("membranes", "unknown membrane set '" + set + "'");
+    if (d.set < 0)
+      t.fail("membranes", "unknown membrane set '" + set + "'" +
+                              nameSuggestion(set, membraneSetNames(m), "membrane sets"));
     const double cd = t.positive("cd");
     const double rho = t.positive("air_density");
     d.coefficient = 0.5 * rho * cd;

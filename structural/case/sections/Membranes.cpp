@@ -9,6 +9,7 @@
 
 #include "ElementShape.hpp"
 #include "StructuredMeshes.hpp"
+#include "case/CaseText.hpp"
 #include "case/MeshGroups.hpp"
 #include "case/sections/SectionLookup.hpp"
 #include "case/sections/Sections.hpp"
@@ -67,7 +68,9 @@ void readMembraneSet(Model& m, TomlTable t) {
           if (!v.is_string()) t.failAt(v, key, "expected a node name");
           auto it = m.nodeByName.find(v.as_string().str);
           if (it == m.nodeByName.end())
-            t.failAt(v, key, "unknown node '" + v.as_string().str + "'");
+            t.failAt(v, key,
+                     "unknown node '" + v.as_string().str + "'" +
+                         nameSuggestion(v.as_string().str, nodeNames(m), "nodes"));
           e.nodes[i] = it->second;
           if (seen.insert(it->second).second) all.push_back(it->second);
         }

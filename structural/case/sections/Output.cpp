@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "case/CaseText.hpp"
 #include "case/sections/SectionLookup.hpp"
 #include "case/sections/Sections.hpp"
 
@@ -54,6 +55,13 @@ namespace caseio {
 
 namespace {
 
+bool onAMembrane(const Model& m, int node) {
+  for (const auto& e : m.membranes)
+    for (int k = 0; k < e.numNodes; ++k)
+      if (e.nodes[k] == node) return true;
+  return false;
+}
+
 ProbeSpec readProbe(const Model& m, TomlTable t) {
   ProbeSpec p;
   p.name = t.string("name");
@@ -90,7 +98,9 @@ ProbeSpec readProbe(const Model& m, TomlTable t) {
         int set = -1;
         for (size_t i = 0; i < m.lineSets.size(); ++i)
           if (m.lineSets[i].name == name) set = static_cast<int>(i);
-        if (set < 0) t.fail("sets", "unknown cable set or sliding group '" + name + "'");
+        if (set < 0)
+          t.fail("sets", "unknown cable set or sliding group '" + name + "'" +
+                             nameSuggestion(name, lineSetNames(m, true, true), "line sets"));
         p.lineSets.push_back(set);
       }
     } else {
@@ -100,6 +110,10 @@ ProbeSpec readProbe(const Model& m, TomlTable t) {
   }
   if (atNode) {
     p.node = nodeRef(m, t, "node", t.string("node", p.name));
+    if (p.kind == ProbeKind::MembraneStress && !onAMembrane(m, p.node))
+      t.fail("node", "node '" + m.nodeName[p.node] +
+                         "' is on no membrane element: a membrane_stress probe averages the "
+                         "stresses of the membrane elements at its node");
   } else if (p.kind == ProbeKind::SupportForce) {
     p.nodes = caseio::nodesOf(m, t);
     for (int n : p.nodes) {
@@ -122,7 +136,9 @@ ProbeSpec readProbe(const Model& m, TomlTable t) {
     const std::string g = t.string("group");
     for (size_t i = 0; i < m.groups.size(); ++i)
       if (m.groups[i].name == g) p.group = static_cast<int>(i);
-    if (p.group < 0) t.fail("group", "unknown sliding group '" + g + "'");
+    if (p.group < 0)
+      t.fail("group", "unknown sliding group '" + g + "'" +
+                          nameSuggestion(g, lineSetNames(m, false, true), "sliding groups"));
     const auto& sl = m.groups[p.group].sliders;
     const int node = nodeRef(m, t, "slider", t.string("slider", m.nodeName[sl.front()]));
     auto it = std::find(sl.begin(), sl.end(), node);
@@ -132,7 +148,9 @@ ProbeSpec readProbe(const Model& m, TomlTable t) {
     const std::string set = t.string("set");
     for (size_t i = 0; i < m.lineSets.size(); ++i)
       if (m.lineSets[i].name == set) p.lineSet = static_cast<int>(i);
-    if (p.lineSet < 0) t.fail("set", "unknown cable set or sliding group '" + set + "'");
+    if (p.lineSet < 0)
+      t.fail("set", "unknown cable set or sliding group '" + set + "'" +
+                        nameSuggestion(set, lineSetNames(m, true, true), "line sets"));
     long count = 0;
     for (const auto& c : m.cables) count += c.set == p.lineSet;
     for (const auto& g : m.groups) count += g.set == p.lineSet ? g.numElements() : 0;
@@ -143,7 +161,10 @@ ProbeSpec readProbe(const Model& m, TomlTable t) {
       if (auto it = m.nodeSets.find(name); it != m.nodeSets.end() && !it->second.empty())
         return it->second;
       if (auto it = m.nodeByName.find(name); it != m.nodeByName.end()) return {it->second};
-      t.fail(key, "no node or node set '" + name + "'");
+      std::vector<std::string> known = nodeSetNames(m), nodes = nodeNames(m);
+      known.insert(known.end(), nodes.begin(), nodes.end());
+      t.fail(key, "no node or node set '" + name + "'" +
+                      nameSuggestion(name, known, "nodes and node sets"));
     };
     p.nodes = nodesOf("set", t.string("set"));
     const auto axis = t.strings("axis");

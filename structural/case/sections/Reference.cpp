@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "case/CaseText.hpp"
 #include "case/sections/SectionLookup.hpp"
 #include "case/sections/Sections.hpp"
 #include "verification/References.hpp"
@@ -36,15 +37,22 @@ void readReference(CaseSpec& c, TomlTable r) {
   const std::string probe = r.string("probe");
   for (size_t p = 0; p < c.output.probes.size(); ++p)
     if (c.output.probes[p].name == probe) ref.probe = static_cast<int>(p);
-  if (ref.probe < 0 || c.output.probes[ref.probe].kind != ProbeKind::NodePosition)
-    r.fail("probe", "no node_position probe named '" + probe + "'");
+  if (ref.probe < 0 || c.output.probes[ref.probe].kind != ProbeKind::NodePosition) {
+    std::vector<std::string> names;
+    for (const auto& pr : c.output.probes)
+      if (pr.kind == ProbeKind::NodePosition) names.push_back(pr.name);
+    r.fail("probe", "no node_position probe named '" + probe + "'" +
+                        nameSuggestion(probe, names, "node_position probes"));
+  }
   if (ref.kind == ReferenceKind::Pulley) {
     ref.pulley = nodeRef(m, r, "pulley", r.string("pulley"));
     const std::string group = r.string("group");
     for (const auto& g : m.groups)
       if (g.name == group)
         for (double L : g.refLength) ref.ropeLength += L;
-    if (ref.ropeLength <= 0.0) r.fail("group", "unknown sliding group '" + group + "'");
+    if (ref.ropeLength <= 0.0)
+      r.fail("group", "unknown sliding group '" + group + "'" +
+                          nameSuggestion(group, lineSetNames(m, false, true), "sliding groups"));
   } else if (ref.kind == ReferenceKind::Hencky) {
     const std::string set = r.string("membranes");
     int setId = -1;

@@ -26,9 +26,33 @@ double length(TomlTable& t, const std::string& key) {
   return x;
 }
 
+std::vector<std::string> nodeNames(const Model& m) {
+  std::vector<std::string> out;
+  out.reserve(m.nodeByName.size());
+  for (const auto& [name, id] : m.nodeByName) out.push_back(name);
+  return out;
+}
+std::vector<std::string> nodeSetNames(const Model& m) {
+  std::vector<std::string> out;
+  for (const auto& [name, nodes] : m.nodeSets) out.push_back(name);
+  return out;
+}
+std::vector<std::string> membraneSetNames(const Model& m) {
+  std::vector<std::string> out;
+  for (const auto& s : m.membraneSets) out.push_back(s.name);
+  return out;
+}
+std::vector<std::string> lineSetNames(const Model& m, bool cables, bool sliding) {
+  std::vector<std::string> out;
+  for (const auto& s : m.lineSets)
+    if (s.sliding ? sliding : cables) out.push_back(s.name);
+  return out;
+}
+
 int nodeRef(const Model& m, TomlTable& t, const std::string& key, const std::string& name) {
   auto it = m.nodeByName.find(name);
-  if (it == m.nodeByName.end()) t.fail(key, "unknown node '" + name + "'");
+  if (it == m.nodeByName.end())
+    t.fail(key, "unknown node '" + name + "'" + nameSuggestion(name, nodeNames(m), "nodes"));
   return it->second;
 }
 
@@ -39,7 +63,8 @@ int materialRef(const Model& m, TomlTable& t) {
   for (const auto& membrane : m.membraneMaterialName)
     if (membrane == name)
       t.fail("material", "'" + name + "' is a membrane material, not a line one");
-  t.fail("material", "unknown material '" + name + "'" + didYouMean(name, m.materialName));
+  t.fail("material", "unknown material '" + name + "'" +
+                         nameSuggestion(name, m.materialName, "line materials"));
 }
 
 int membraneMaterialRef(const Model& m, TomlTable& t) {
@@ -47,7 +72,7 @@ int membraneMaterialRef(const Model& m, TomlTable& t) {
   for (size_t i = 0; i < m.membraneMaterialName.size(); ++i)
     if (m.membraneMaterialName[i] == name) return static_cast<int>(i);
   t.fail("material", "no membrane material '" + name + "' (kind = \"membrane\")" +
-                         didYouMean(name, m.membraneMaterialName));
+                         nameSuggestion(name, m.membraneMaterialName, "membrane materials"));
 }
 
 // Cables, sliding groups and membranes name the nodes they generate after themselves, and probes
@@ -81,7 +106,9 @@ std::vector<int> nodesOf(const Model& m, TomlTable& t) {
   if (t.has("set")) {
     const std::string set = t.string("set");
     auto it = m.nodeSets.find(set);
-    if (it == m.nodeSets.end()) t.fail("set", "unknown node set '" + set + "'");
+    if (it == m.nodeSets.end())
+      t.fail("set",
+             "unknown node set '" + set + "'" + nameSuggestion(set, nodeSetNames(m), "node sets"));
     out.insert(out.end(), it->second.begin(), it->second.end());
   }
   if (out.empty()) t.fail("nodes", "give nodes = [...] or set = \"...\"");

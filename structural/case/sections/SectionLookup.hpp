@@ -37,6 +37,13 @@ std::string setName(const Model& m, TomlTable& t, const std::string& fallback);
 // Fails when adding `extra` nodes would take the model past kMaxNodes.
 void checkNodeBudget(const Model& m, TomlTable& t, const std::string& key, long extra);
 
+// The names a case can refer to, for did-you-mean suggestions (CaseText.hpp, nameSuggestion).
+std::vector<std::string> nodeNames(const Model& m);
+std::vector<std::string> nodeSetNames(const Model& m);
+std::vector<std::string> membraneSetNames(const Model& m);
+// Line sets: cable sets and / or sliding groups.
+std::vector<std::string> lineSetNames(const Model& m, bool cables, bool sliding);
+
 // The nodes of `nodes = [...]` and / or `set = "..."`; fails if neither names any.
 std::vector<int> nodesOf(const Model& m, TomlTable& t);
 

@@ -96,14 +96,17 @@ void readSolver(CaseSpec& c, TomlTable s) {
       s.fail(s.has("dt_min") ? "dt_min" : "dt",
              "the least step (dt_min = " + shortNumber(sv.dtMin) +
                  ") is lost in rounding near t_end: keep it above t_end * 1e-15");
+    // Load stepping is the static solve's (a dynamic run's loads follow time and their ramps).
+    s.notUsed({"load_steps", "initial_load_factor"},
+              "by dynamic runs (load steps are the static solve's: type = \"static\")");
   } else {
     s.notUsed({"dt", "t_end", "rho_inf", "integrator", "mass_damping", "dt_min", "em_dissipation",
                "safety_factor", "target_dt", "stiffness_damping", "energy_tolerance"},
               "by static runs (type = \"static\")");
+    sv.loadSteps = static_cast<int>(s.integer("load_steps", 1, 1, 1000000));
+    sv.initialLoadFactor = s.positive("initial_load_factor", 0.0 + 1.0);
+    if (sv.initialLoadFactor > 1.0) s.fail("initial_load_factor", "must be in (0, 1]");
   }
-  sv.loadSteps = static_cast<int>(s.integer("load_steps", 1, 1, 1000000));
-  sv.initialLoadFactor = s.positive("initial_load_factor", 0.0 + 1.0);
-  if (sv.initialLoadFactor > 1.0) s.fail("initial_load_factor", "must be in (0, 1]");
   m.massKind = s.choice("mass", "lumped", {"lumped", "consistent"}) == "lumped"
                    ? kernels::MassKind::Lumped
                    : kernels::MassKind::Consistent;
