@@ -56,6 +56,16 @@ inline double dOutsidePressureCoefficient(double c, double cb) {
   return c >= 0.0 ? dBase : dBase + 2.0 * (1.0 - cb) * c;
 }
 
+// FL8's resistance of the air to a face's own normal motion, as a pressure against it:
+// (1/2) rho Cn |u_n| u_n (halfRhoCn = (1/2) rho Cn), and its derivative in u_n. The coupling
+// demo's flow law (coupling/QuasiSteadyFlow) uses the same.
+inline double normalMotionPressure(double halfRhoCn, double un) {
+  return halfRhoCn * std::abs(un) * un;
+}
+inline double dNormalMotionPressure(double halfRhoCn, double un) {
+  return 2.0 * halfRhoCn * std::abs(un);
+}
+
 // What the face loads share over the whole canopy at an evaluation (FL1-FL3).
 struct CanopyFlowState {
   Eigen::Vector3d canopyVelocity = Eigen::Vector3d::Zero();  // v_c: area-weighted mean
