@@ -52,6 +52,7 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--results", default=os.path.join(ROOT, "bench/results"))
     ap.add_argument("--c9", default="")
+    ap.add_argument("--note", default="", help="a line on the trees that made the figures")
     a = ap.parse_args()
     R = a.results
     out = []
@@ -60,6 +61,8 @@ def main():
     w("Made by `bench/flight/compare.py` from `flight_*.csv` (made by `bench/flight/flight_runs.py`;"
       " SI, sea level, 100 ft³/ft²/min cloth unless said). `C_b` = −0.83 calibrated on `d5_g20`"
       " alone ([docs/flight.md](../../docs/flight.md#calibration)); everything else is a prediction.\n")
+    if a.note:
+        w(a.note + "\n")
 
     cal = rows(os.path.join(R, "flight_calibrate.csv"))
     if cal:

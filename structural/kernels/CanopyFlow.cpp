@@ -60,11 +60,10 @@ CanopyFaceLoad<NumNodes> canopyFaceLoad(const std::array<Eigen::Vector3d, NumNod
   for (const auto& vi : v) vf += vi;
   vf /= NumNodes;
   const Vec3 rel = vf - s.canopyVelocity;
-  const double c = n.dot(s.flowDirection);
-  const double un = rel.dot(n);
-  out.staticDifference =
-      s.insideGauge - s.dynamicPressure * outsidePressureCoefficient(c, s.baseCoefficient);
-  out.netPressure = out.staticDifference - normalMotionPressure(s.normalDrag, un);
+  const FacePressure fp = facePressure(n, vf, s);
+  const double c = fp.c, un = fp.un;
+  out.staticDifference = fp.staticDifference;
+  out.netPressure = fp.netPressure;
   const double share = 1.0 / NumNodes;
   for (int i = 0; i < NumNodes; ++i)
     out.residual.template segment<3>(3 * i) = -share * out.netPressure * A;

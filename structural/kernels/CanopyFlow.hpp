@@ -76,6 +76,24 @@ struct CanopyFlowState {
   double normalDrag = 0.0;       // (1/2) rho Cn of the fabric's own normal motion (FL8)
 };
 
+// FL7-FL8 for one face from its outward unit normal n and its mean velocity vf: the static
+// difference p_in - p_a - q Cout(n . U_hat), and the net pressure that also takes the fabric's
+// normal motion relative to the canopy. canopyFaceLoad and the term's residual-only path share it.
+struct FacePressure {
+  double staticDifference = 0.0, netPressure = 0.0;
+  double c = 0.0, un = 0.0;  // n . U_hat, (vf - v_c) . n
+};
+inline FacePressure facePressure(const Eigen::Vector3d& n, const Eigen::Vector3d& vf,
+                                 const CanopyFlowState& s) {
+  FacePressure f;
+  f.c = n.dot(s.flowDirection);
+  f.un = (vf - s.canopyVelocity).dot(n);
+  f.staticDifference =
+      s.insideGauge - s.dynamicPressure * outsidePressureCoefficient(f.c, s.baseCoefficient);
+  f.netPressure = f.staticDifference - normalMotionPressure(s.normalDrag, f.un);
+  return f;
+}
+
 // FL8: the net outward pressure on a face and what the cloth lets through. With n = A / |A| the
 // face's outward unit normal and u_n = (v_f - v_c) . n its normal velocity relative to the canopy
 // (v_f the mean of its nodes' velocities):
