@@ -127,7 +127,7 @@ CanopyFlowTerm::CanopyFlowTerm(const Model& m, int flow) : m_(&m), def_(&m.canop
   const Geometry g = geometry(x0, Eigen::VectorXd::Zero(x0.size()), false);
   captured_ = m.air.density * (std::max(g.volume, 0.0) + volumeFloor_) *
               std::pow(1.0 + def_->initialInsideGauge / m.air.pressure, 1.0 / def_->gamma);
-  inertiaMass_ = apparentMass(x0);
+  inertiaMass_ = apparentMass(x0) + captured_;  // FL11: the air around it and the air inside
   committedShares_ = areaShares(x0);
 }
 
@@ -453,12 +453,16 @@ double CanopyFlowTerm::frequencySquaredBound(const Eigen::VectorXd& x, double t,
 }
 
 void CanopyFlowTerm::commit(const CommitPoint& c) {
-  // FL11-FL12: the next step's inertia is the apparent mass at the step's end; the kinetic energy
-  // the air it gained has at the nodes' velocities came with it, not from a force's work.
+  // FL11-FL12: the next step's inertia is the air moving with the canopy at the step's end (the
+  // apparent mass around it and the captured air inside); the kinetic energy the air it gained
+  // has at the nodes' velocities came with it, not from a force's work.
   // The step's own evaluation was at c.x: its volume and shares serve.
   const bool evaluatedHere = c.dt > 0.0 && trialTime_ == c.t && scratchTime_ == c.t;
+  // FL9: the captured air as the step's evaluation found it at the step's end.
+  if (c.dt > 0.0 && trialTime_ == c.t) captured_ = trialMass_;
   const double before = inertiaMass_;
-  inertiaMass_ = evaluatedHere ? apparentMassOfVolume(scratchVolume_) : apparentMass(c.x);
+  inertiaMass_ =
+      (evaluatedHere ? apparentMassOfVolume(scratchVolume_) : apparentMass(c.x)) + captured_;
   massRate_ = c.dt > 0.0 ? (inertiaMass_ - before) / c.dt : 0.0;
   std::vector<double> shares = evaluatedHere ? shares_ : areaShares(c.x);
   if (c.v) {
@@ -470,8 +474,6 @@ void CanopyFlowTerm::commit(const CommitPoint& c) {
     supplied_ += 0.5 * gained;
   }
   committedShares_ = std::move(shares);
-  // FL9: the captured air as the step's evaluation found it at the step's end.
-  if (c.dt > 0.0 && trialTime_ == c.t) captured_ = trialMass_;
 }
 
 void CanopyFlowTerm::save(History& h) const {
