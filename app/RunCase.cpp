@@ -23,6 +23,7 @@
 #include "solver/StaticLoadStepper.hpp"
 #include "solver/TimeStepper.hpp"
 #include "terms/CanopyFlowTerm.hpp"
+#include "terms/contact/ContactTerm.hpp"
 #include "terms/sliding/SlidingGroupTerm.hpp"
 #include "verification/HenckyReference.hpp"
 #include "verification/References.hpp"
@@ -138,6 +139,30 @@ ExplicitRunInfo explicitSummary(const StableStepRecord& rec, const Model& m) {
   e.addedMass = rec.addedMass;
   e.totalAddedMass = rec.totalAddedMass;
   return e;
+}
+
+// What fabric contact met (docs/contact.md CT13), and a note when it met more than it holds.
+void noteContact(const ContactTerm& c, const Model& m, RunResult& r) {
+  const auto& rec = c.record();
+  ContactRunInfo& i = r.contact.emplace();
+  i.thickness = m.contact.thickness;
+  i.builds = rec.builds, i.treeBuilds = rec.treeBuilds, i.candidates = rec.candidates;
+  i.largestActive = rec.largestActive, i.closest = rec.closest;
+  i.largestApproachPerStep = rec.largestApproachPerStep;
+  i.largestApproachEnergy = rec.largestApproachEnergy;
+  if (i.largestApproachPerStep > 0.5)
+    r.notes.push_back(fmt::format(
+        "contact: a pair closed {:.3g} contact thicknesses in one step (docs/contact.md CT13): "
+        "steps too long for the thickness; fabric may have passed through (shorten solver.dt, "
+        "or raise contact.thickness)",
+        i.largestApproachPerStep));
+  // Per pair; a point in face contact is held by several (docs/contact.md CT13).
+  if (i.largestApproachEnergy > 4.0)
+    r.notes.push_back(fmt::format(
+        "contact: a pair in contact approached with {:.3g} times the energy the contact stops "
+        "(docs/contact.md CT13): fabric may have passed through; raise contact.thickness or "
+        "contact.stiffness_scale",
+        i.largestApproachEnergy));
 }
 
 // Output times are stops every step lands on (TimeStepper::advanceTo), so an output interval
@@ -302,6 +327,7 @@ struct DynamicRun {
     r.newtonIterations = n.newtonIterations, r.maxNewtonInStep = n.maxNewtonInStep;
     if (const auto* rec = integrator.stableSteps())
       r.explicitRun = explicitSummary(*rec, spec.model);
+    if (const ContactTerm* c = sys.termList().contact()) noteContact(*c, spec.model, r);
     r.balanceMax = monitor.largestBalance(), r.balanceScale = monitor.scale();
     r.externalWork = monitor.work();
     // Central differences solve no linear system.
@@ -461,6 +487,8 @@ void writeSummary(const std::string& path, const CaseSpec& spec, const RunResult
                {"drag_kernels", w.drag},
                {"face_drag_kernels", w.faceDrag},
                {"slider_searches", w.sliderSearch},
+               {"contact_pair_kernels", w.contact},
+               {"contact_builds", w.contactLists},
                {"energy_evaluations", w.energy},
                {"scene_frames", w.sceneFrames},
                {"vtu_series", w.vtuSeries},
@@ -497,6 +525,17 @@ void writeSummary(const std::string& path, const CaseSpec& spec, const RunResult
                      {"stable_step_history", history},
                      {"added_mass", added},
                      {"added_mass_total", e.totalAddedMass}};
+  }
+  if (r.contact) {
+    const auto& c = *r.contact;
+    j["contact"] = {{"thickness", c.thickness},
+                    {"broad_phase_builds", c.builds},
+                    {"tree_builds", c.treeBuilds},
+                    {"candidates_at_end", c.candidates},
+                    {"most_pairs_in_contact", c.largestActive},
+                    {"closest_over_thickness", c.closest},
+                    {"largest_approach_per_step", c.largestApproachPerStep},
+                    {"largest_approach_energy", c.largestApproachEnergy}};
   }
   j["output"] = {
       {"probe_rows", r.times.size()}, {"vtu_frames", r.vtuFrames}, {"checkpoints", r.checkpoints}};

@@ -57,6 +57,13 @@ enum class RunStatus {
 std::string_view runStatusName(RunStatus s);
 std::ostream& operator<<(std::ostream& out, RunStatus s);  // its name (test messages)
 
+// What a run with fabric contact ([contact]) reports in summary.json (docs/contact.md CT13).
+struct ContactRunInfo {
+  double thickness = 0.0;
+  long builds = 0, treeBuilds = 0, candidates = 0, largestActive = 0;
+  double closest = 1.0, largestApproachPerStep = 0.0, largestApproachEnergy = 0.0;
+};
+
 struct RunResult {
   RunStatus status = RunStatus::Completed;
   std::string reason;
@@ -84,6 +91,7 @@ struct RunResult {
   std::optional<ReferenceError> reference;
   std::optional<ExplicitRunInfo> explicitRun;
   std::optional<FlightFigures> flight;  // a canopy with a force probe (docs/flight.md)
+  std::optional<ContactRunInfo> contact;
   // An output interval shorter than solver.dt caps every implicit step (steps land on output
   // times): the cap (NaN: none) and a note saying so, on stderr and in summary.json.
   double outputStepCap = std::numeric_limits<double>::quiet_NaN();

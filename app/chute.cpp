@@ -13,6 +13,7 @@
 #include "app/StopSignals.hpp"
 #include "app/cli/Command.hpp"
 #include "app/cli/Dispatch.hpp"
+#include "app/cli/VersionText.hpp"
 
 int main(int argc, char** argv) {
   using namespace chute::cli;
@@ -24,6 +25,8 @@ int main(int argc, char** argv) {
   vtkObject::GlobalWarningDisplayOff();
   vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
   CLI::App app{"chute: structural finite elements for parachute systems"};
+  app.set_version_flag("--version", versionText(),
+                       "print chute's version, build, compiler and library versions and exit");
   app.require_subcommand(1);
   const std::vector<Command> commands = {addRunCommand(app),           addRenderCommand(app),
                                          addPlotCommand(app),          addCoupleCommand(app),

@@ -22,7 +22,8 @@ class GmshScope {
 };
 
 // Runs f (a call into the gmsh API); turns whatever gmsh throws into a MeshError that starts with
-// `what` and ends with gmsh's last error message.
+// `what` and ends with gmsh's last error message. chute's own std::invalid_argument (a bad option
+// found while building) passes unchanged: it is bad input, not a failure of gmsh.
 template <class F>
 auto callGmsh(const std::string& what, F&& f) -> decltype(f());
 
@@ -33,6 +34,8 @@ auto callGmsh(const std::string& what, F&& f) -> decltype(f()) {
   try {
     return f();
   } catch (const MeshError&) {
+    throw;
+  } catch (const std::invalid_argument&) {  // chute's own refusal of a bad option inside f
     throw;
   } catch (...) {
     const std::string e = gmshLastError();

@@ -7,6 +7,7 @@
 #include "MshReader.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <charconv>
 #include <climits>
@@ -22,6 +23,7 @@
 #include <tuple>
 #include <unordered_map>
 
+#include "ElementShape.hpp"
 #include "MeshError.hpp"
 #include "io/InputFile.hpp"
 
@@ -91,6 +93,8 @@ class Cursor {
                     (binary_ ? " (binary data, byte " + std::to_string(pos_) + ")" : ""));
   }
   const std::string& name() const { return name_; }
+  long line() const { return line_; }
+  bool binary() const { return binary_; }
   std::size_t remaining() const { return data_.size() - pos_; }
   void setBinary(bool b) { binary_ = b; }
 
@@ -263,6 +267,17 @@ class Parser {
  private:
   using Key = std::pair<int, int>;  // (dimension, tag)
 
+  // The elements of one (dimension, entity, type), in file order: their nodes (nodesPerElement
+  // each), tags and the lines they were read on (binary: their section's header line).
+  struct Block {
+    std::vector<std::size_t> nodes, tags;
+    std::vector<long> lines;
+    // MSH 2 only: the physical tag each element was first written under, and for each physical
+    // tag the element its next copy would repeat.
+    std::vector<int> firstPhysical;
+    std::map<int, std::size_t> nextCopy;
+  };
+
   // A count read in the current mode (ASCII token or binary size_t).
   std::size_t count(const std::string& what, std::size_t limit, std::size_t bytesEach,
                     bool binary) {
@@ -409,14 +424,19 @@ class Parser {
               std::to_string(read));
   }
 
-  // One element's nodes into its (dimension, entity, type) block; every node must exist.
-  void addElement(int dim, int entity, int type, const std::size_t* nodes, int nn) {
+  // One element's nodes into its (dimension, entity, type) block; every node must exist. Returns
+  // its index in the block.
+  std::size_t addElement(int dim, int entity, int type, std::size_t tag, const std::size_t* nodes,
+                         int nn) {
     auto& block = blocks_[{dim, entity, type}];
     for (int k = 0; k < nn; ++k) {
       if (!nodeIndex_.count(nodes[k]))
         c_.fail("$Elements: node " + std::to_string(nodes[k]) + " is not in $Nodes");
-      block.push_back(nodes[k]);
+      block.nodes.push_back(nodes[k]);
     }
+    block.tags.push_back(tag);
+    block.lines.push_back(c_.line());
+    return block.tags.size() - 1;
   }
 
   int elementType(const std::string& what, bool binary) {
@@ -431,7 +451,7 @@ class Parser {
     std::size_t nodes[125];
     if (!binary_) {
       for (std::size_t i = 0; i < n; ++i) {
-        tagValue("$Elements tag", false, false);
+        const std::size_t tag = tagValue("$Elements tag", false, false);
         const int type = elementType("$Elements type", false);
         const int nt = c_.integer<int>("$Elements number of tags", 0, 1000);
         int physical = 0, entity = 0;
@@ -442,7 +462,7 @@ class Parser {
         }
         const int nn = nodesPerElement(type);
         for (int k = 0; k < nn; ++k) nodes[k] = tagValue("$Elements node", false, false);
-        addElement2(type, physical, entity, nodes, nn);
+        addElement2(type, physical, entity, tag, nodes, nn);
       }
       return;
     }
@@ -457,7 +477,7 @@ class Parser {
       const int nn = nodesPerElement(type);
       c_.need("$Elements block", m, 4 * static_cast<std::size_t>(1 + nt + nn));
       for (std::size_t i = 0; i < m; ++i) {
-        c_.bin<int>("$Elements tag");
+        const std::size_t tag = static_cast<std::size_t>(c_.bin<int>("$Elements tag"));
         int physical = 0, entity = 0;
         for (int k = 0; k < nt; ++k) {
           const int t = c_.bin<int>("$Elements tag");
@@ -465,18 +485,33 @@ class Parser {
           if (k == 1) entity = t;
         }
         for (int k = 0; k < nn; ++k) nodes[k] = tagValue("$Elements node", true, false);
-        addElement2(type, physical, entity, nodes, nn);
+        addElement2(type, physical, entity, tag, nodes, nn);
       }
       read += m;
     }
   }
   // MSH 2: the entity is the element's elementary tag; its physical groups are those of its
-  // elements (gmsh's reader does the same).
-  void addElement2(int type, int physical, int entity, const std::size_t* nodes, int nn) {
+  // elements (gmsh's reader does the same). gmsh writes the elements of an entity once per
+  // physical group of the entity, each pass in the same order under new element numbers: an
+  // element of a later pass with the nodes of the element at the same place of the first pass is
+  // that element again, not another one. (Read as two, a line in the groups 'lines' and 'line_0'
+  // made a doubled chain: "group 'line_0' branches at node 326".) Copies in another order are
+  // kept and refused as elements with the same nodes (build()).
+  void addElement2(int type, int physical, int entity, std::size_t tag, const std::size_t* nodes,
+                   int nn) {
     const int dim = dimOfType(type);
-    addElement(dim, entity, type, nodes, nn);
     auto& phys = entityPhysicals_[{dim, entity}];
     if (physical != 0) phys.insert(std::abs(physical));
+    auto& block = blocks_[{dim, entity, type}];
+    std::size_t& next = block.nextCopy.try_emplace(physical, 0).first->second;
+    if (next < block.tags.size() && block.firstPhysical[next] != physical &&
+        std::equal(nodes, nodes + nn, block.nodes.begin() + static_cast<long>(next * nn))) {
+      ++next;
+      return;
+    }
+    addElement(dim, entity, type, tag, nodes, nn);
+    block.firstPhysical.push_back(physical);
+    next = block.tags.size();
   }
 
   void readElements4() {
@@ -502,9 +537,9 @@ class Parser {
       const std::size_t m = count("$Elements block size", n - read,
                                   (b ? 8 : 2) * static_cast<std::size_t>(1 + nn), b);
       for (std::size_t i = 0; i < m; ++i) {
-        tagValue("$Elements tag", b, true);
+        const std::size_t tag = tagValue("$Elements tag", b, true);
         for (int j = 0; j < nn; ++j) nodes[j] = tagValue("$Elements node", b, true);
-        addElement(dim, entity, type, nodes, nn);
+        addElement(dim, entity, type, tag, nodes, nn);
       }
       read += m;
     }
@@ -545,8 +580,93 @@ class Parser {
         const double x = realValue("$NodeData value", binary_, true);
         if (k < 3) v[k] = x;
       }
-      if (view) (*view)[tag] = v;
+      if (view && !view->emplace(tag, v).second)
+        c_.fail("$NodeData '" + clip(name) + "': node " + std::to_string(tag) + " appears twice");
     }
+  }
+
+  // An element that cannot be used, or two elements of one group on the same nodes: refused
+  // naming the file, the line the element was read on, its tag and its group.
+  [[noreturn]] void failElement(const Block& b, std::size_t e, int type, const std::string& group,
+                                const std::string& why) const {
+    const char* kind = type == 1   ? "line"
+                       : type == 2 ? "triangle"
+                       : type == 3 ? "quadrangle"
+                                   : "point";
+    throw MeshError(c_.name() + ":" + std::to_string(b.lines[e]) + ": element " +
+                    std::to_string(b.tags[e]) + " (" + kind + ") of physical group '" + group +
+                    "': " + why + (binary_ ? " (binary data)" : ""));
+  }
+
+  // Every element of a block that is in a physical group: distinct nodes, a length or an area,
+  // convex quadrangles (ElementShape.hpp). A degenerate element ran to a non-finite residual
+  // (exit 3, output written) or, a non-convex quadrangle, to a wrong answer (exit 0).
+  void checkShapes(const Block& b, int type, const std::string& group) const {
+    const int nn = nodesPerElement(type);
+    if (type == 15) return;
+    Vec3 x[4];
+    for (std::size_t e = 0; e < b.tags.size(); ++e) {
+      const std::size_t* tags = b.nodes.data() + e * nn;
+      for (int k = 0; k < nn; ++k) x[k] = xyz_[nodeIndex_.at(tags[k])];
+      const ShapeProblem p = elementShapeProblem(x, tags, nn);
+      if (p) failElement(b, e, type, group, p.text(p.node < 0 ? "" : std::to_string(tags[p.node])));
+    }
+  }
+
+  // Two elements of one group on the same set of nodes (a repeated element, or two overlapping
+  // ones): the group's stiffness, mass and load would count that place twice.
+  void checkRepeats(const MeshGroup& g,
+                    const std::vector<std::pair<const Block*, std::size_t>>& from,
+                    const std::vector<int>& types) const {
+    if (g.dim == 0) return;
+    std::vector<std::pair<std::array<std::size_t, 4>, std::size_t>> keys;
+    keys.reserve(g.elements.size());
+    for (std::size_t i = 0; i < g.elements.size(); ++i) {
+      std::array<std::size_t, 4> k{0, 0, 0, 0};
+      std::copy(g.elements[i].begin(), g.elements[i].end(), k.begin());
+      for (std::size_t a = 1; a < g.elements[i].size(); ++a)  // at most 4: insertion sort
+        for (std::size_t b = a; b > 0 && k[b - 1] > k[b]; --b) std::swap(k[b - 1], k[b]);
+      keys.emplace_back(k, i);
+    }
+    std::sort(keys.begin(), keys.end());
+    for (std::size_t i = 1; i < keys.size(); ++i)
+      if (keys[i].first == keys[i - 1].first) {
+        const std::size_t a = std::min(keys[i].second, keys[i - 1].second);
+        const std::size_t b = std::max(keys[i].second, keys[i - 1].second);
+        failElement(*from[b].first, from[b].second, types[b], g.name,
+                    "the same nodes as element " +
+                        std::to_string(from[a].first->tags[from[a].second]) + " of the group");
+      }
+  }
+
+  // The elements of a surface group go round their common edges in opposite senses (one
+  // orientation over the surface): an element turned over has its normal -- and the pressure on
+  // it -- the other way. Two elements that run a common edge the same way are refused.
+  void checkOrientation(const MeshGroup& g,
+                        const std::vector<std::pair<const Block*, std::size_t>>& from,
+                        const std::vector<int>& types) const {
+    if (g.dim != 2) return;
+    struct Edge {
+      std::size_t a, b, element;
+      bool operator<(const Edge& o) const { return std::tie(a, b) < std::tie(o.a, o.b); }
+    };
+    std::vector<Edge> edges;
+    for (std::size_t i = 0; i < g.elements.size(); ++i) {
+      const auto& e = g.elements[i];
+      for (std::size_t k = 0; k < e.size(); ++k) edges.push_back({e[k], e[(k + 1) % e.size()], i});
+    }
+    std::sort(edges.begin(), edges.end());
+    for (std::size_t i = 1; i < edges.size(); ++i)
+      if (edges[i].a == edges[i - 1].a && edges[i].b == edges[i - 1].b) {
+        const std::size_t x = std::min(edges[i].element, edges[i - 1].element);
+        const std::size_t y = std::max(edges[i].element, edges[i - 1].element);
+        failElement(*from[y].first, from[y].second, types[y], g.name,
+                    "turned over against element " +
+                        std::to_string(from[x].first->tags[from[x].second]) +
+                        " (both run their common edge from node " + std::to_string(edges[i].a) +
+                        " to node " + std::to_string(edges[i].b) +
+                        "): orient the surface's elements one way");
+      }
   }
 
   GmshMesh build() {
@@ -555,6 +675,8 @@ class Parser {
     for (const auto& [entity, phys] : entityPhysicals_)
       for (int p : phys) groups[{entity.first, p}].push_back(entity.second);
     std::set<std::size_t> used;
+    std::set<const Block*> checked;
+    std::map<std::pair<int, std::string>, int> names;  // (dim, name) -> physical tag
     std::size_t copies = 0;
     for (const auto& [key, entities] : groups) {
       MeshGroup g;
@@ -564,6 +686,14 @@ class Parser {
       g.name = named != physicalNames_.end() && !named->second.empty()
                    ? named->second
                    : "physical_" + std::to_string(g.dim) + "d_" + std::to_string(g.tag);
+      // A case maps groups by name: of two surfaces named 'canopy' one was silently dropped.
+      if (const auto [at, fresh] = names.emplace(std::pair{g.dim, g.name}, g.tag); !fresh)
+        throw MeshError(c_.name() + ": physical groups " + std::to_string(at->second) + " and " +
+                        std::to_string(g.tag) + " (" + std::to_string(g.dim) +
+                        "-D) are both named '" + g.name +
+                        "': a name must be unique among the groups of one dimension");
+      std::vector<std::pair<const Block*, std::size_t>> from;  // each element's block and index
+      std::vector<int> types;
       for (int entity : entities) {
         for (auto it = blocks_.lower_bound({g.dim, entity, INT_MIN});
              it != blocks_.end() && std::get<0>(it->first) == g.dim &&
@@ -577,7 +707,8 @@ class Parser {
                             " nodes): only first-order points, lines, triangles and "
                             "quadrangles are supported");
           const auto nn = static_cast<std::size_t>(nodesPerElement(type));
-          const auto& v = it->second;
+          const Block& b = it->second;
+          const auto& v = b.nodes;
           // An element is copied into every group of its entity: a few bytes of physical tags
           // must not multiply a large block into terabytes.
           copies += v.size() / nn;
@@ -586,12 +717,18 @@ class Parser {
                             std::to_string(lim_.maxElements) +
                             " elements in all (the limit on elements; an element counts once "
                             "per group)");
+          if (checked.insert(&b).second) checkShapes(b, type, g.name);
           for (std::size_t e = 0; e < v.size(); e += nn) {
-            g.elements.emplace_back(v.begin() + e, v.begin() + e + nn);
-            used.insert(v.begin() + e, v.begin() + e + nn);
+            g.elements.emplace_back(v.begin() + static_cast<long>(e),
+                                    v.begin() + static_cast<long>(e + nn));
+            used.insert(v.begin() + static_cast<long>(e), v.begin() + static_cast<long>(e + nn));
+            from.emplace_back(&b, e / nn);
+            types.push_back(type);
           }
         }
       }
+      checkRepeats(g, from, types);
+      checkOrientation(g, from, types);
       mesh.groups.push_back(std::move(g));
     }
     for (std::size_t t : used) {
@@ -612,7 +749,7 @@ class Parser {
   std::vector<Vec3> xyz_;
   std::map<Key, std::string> physicalNames_;
   std::map<Key, std::set<int>> entityPhysicals_;
-  std::map<std::tuple<int, int, int>, std::vector<std::size_t>> blocks_;
+  std::map<std::tuple<int, int, int>, Block> blocks_;
   std::map<std::string, NodeVectors> views_;
 };
 

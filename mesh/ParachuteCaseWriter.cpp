@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "ParachuteMaterials.hpp"
+#include "TomlText.hpp"
 
 namespace chute::mesh {
 
@@ -36,12 +37,39 @@ void checkParachuteCaseOptions(const ParachuteCaseOptions& o) {
   };
   if (!std::isnan(o.pressure) && !(std::isfinite(o.pressure) && std::abs(o.pressure) <= 1e6))
     bad("--pressure", "must be finite and at most 1e6");
+  // 0 (none) or within 1e-5 to 1e5 times the default (1e-6 to 1e4 psf, 4.8e-5 to 4.8e5 Pa; a
+  // 500-knot deployment at sea level is 850 psf): the explicit step of the generated case blew
+  // up at 1e5 psf, and at 1e-12 psf its energies were rounding noise the energy balance refused.
+  if (!std::isnan(o.pressure) && o.pressure != 0.0 && (o.units == "ft" || o.units == "si")) {
+    const double q = parachuteMaterials(o.units).defaultPressure;
+    auto g = [](double x) {
+      char b[32];
+      std::snprintf(b, sizeof b, "%g", x);
+      return std::string(b);
+    };
+    if (std::abs(o.pressure) < 1e-5 * q * (1 - 1e-12) ||
+        std::abs(o.pressure) > 1e5 * q * (1 + 1e-12))
+      bad("--pressure", "0 or between " + g(1e-5 * q) + " and " + g(1e5 * q) +
+                            " in magnitude (1e-5 to 1e5 times the default " + g(q) + ")");
+  }
   if (!(o.dt > 0.0 && o.dt <= 1e3)) bad("--dt", "must be in (0, 1e3]");
   if (!(o.tEnd > 0.0 && o.tEnd <= 1e6)) bad("--t-end", "must be in (0, 1e6]");
+  // As the case reader's [solver] checks (docs/limits.md): one step at least, at most 1e9.
+  if (o.dt > o.tEnd) bad("--dt", "is larger than --t-end: not one step fits");
+  if (o.tEnd / o.dt > 1e9) bad("--dt", "--t-end / --dt is more than 1e9 steps");
   if (!(o.rampTime >= 0.0 && o.rampTime <= 1e6)) bad("--ramp-time", "must be in [0, 1e6]");
-  if (!std::isnan(o.speed) && !(o.speed > 0.0 && o.speed <= 1e4))
-    bad("--speed", "must be in (0, 1e4]");
   const double metre = o.units == "si" ? 1.0 : 1.0 / 0.3048;  // case length units per m
+  // NaN is the default (20 m/s); given: above 0 and at most 200 m/s (656 ft/s, Mach 0.6 at sea
+  // level, 390 knots), the outside flow of the airflow's loads being subsonic and incompressible
+  // (docs/flight.md). Measured on a small generated parachute (8 gores, D = 2 ft): held at
+  // 274 m/s its canopy flow broke down within 0.01 s, at 244 m/s it flew. Held, the wind is the
+  // only load: at least 0.01 m/s (a dynamic pressure 1e-5 times --pressure's default, the
+  // least --pressure takes); at 1e-4 m/s its energies were rounding noise the energy balance
+  // refused. Free, gravity loads it from any speed.
+  if (!std::isnan(o.speed) && !(o.speed > 0.0 && o.speed <= 200.0 * metre))
+    bad("--speed", "must be above 0 and at most 200 m/s (656 ft/s)");
+  if (o.held && !std::isnan(o.speed) && !(o.speed >= 0.01 * metre))
+    bad("--speed", "held, the wind must be at least 0.01 m/s (0.0328 ft/s)");
   if (!(std::isfinite(o.altitude) && o.altitude >= -500.0 * metre && o.altitude <= 11000.0 * metre))
     bad("--altitude", "must be within the standard atmosphere's troposphere (-500 m to 11 km)");
   if (!(o.clothPermeability >= 0.0 && o.clothPermeability <= 1e4))
@@ -50,8 +78,11 @@ void checkParachuteCaseOptions(const ParachuteCaseOptions& o) {
     bad("--held", "goes with the airflow's loads, not --pressure");
   if (!std::isnan(o.speed) && !std::isnan(o.pressure))
     bad("--speed", "goes with the airflow's loads, not --pressure");
-  if (!(o.probeInterval > 0.0)) bad("--probe-interval", "must be positive");
-  if (!(o.vtuInterval >= 0.0)) bad("--vtu-interval", "must not be negative");
+  // Finite: an infinite interval would be written as a number TOML does not have.
+  if (!(o.probeInterval > 0.0 && std::isfinite(o.probeInterval)))
+    bad("--probe-interval", "must be positive and finite");
+  if (!(o.vtuInterval >= 0.0 && std::isfinite(o.vtuInterval)))
+    bad("--vtu-interval", "must not be negative and must be finite");
   if (o.units != "ft" && o.units != "si") bad("--units", "expected ft or si");
 }
 
@@ -104,8 +135,8 @@ void writeHeader(std::ostream& f, const CaseContext& c, const GeneratedParachute
   else
     f << " --speed " << num(c.speed) << " --altitude " << num(c.o.altitude)
       << (c.held ? " --held" : "");
-  f << " --out " << msh << " --case " << caseFile << "\n";
-  if (!c.o.commandLine.empty()) f << "#   " << c.o.commandLine << "\n";
+  f << " --out " << commentText(msh) << " --case " << commentText(caseFile) << "\n";
+  if (!c.o.commandLine.empty()) f << "#   " << commentText(c.o.commandLine) << "\n";
   if (c.legacyPressure)
     f << "# Flight: the frame of the falling payload (payload held, gravity 0, the air streaming "
          "up\n# at the speed whose dynamic pressure is the canopy pressure), the settings that "
@@ -120,8 +151,8 @@ void writeHeader(std::ostream& f, const CaseContext& c, const GeneratedParachute
          "(docs/flight.md); the summary reports the opening force,\n# filling time, descent "
          "speed and drag coefficient.";
   f << " Materials: docs/meshing.md, \"Materials of a\n# generated case\". Run:  chute run "
-    << std::filesystem::path(caseFile).filename().string() << "\n";
-  f << "name = \"" << name << "\"\n"
+    << commentText(std::filesystem::path(caseFile).filename().string()) << "\n";
+  f << "name = " << tomlString(name, "--case") << "\n"
     << "description = \"Flat circular canopy, " << spec.gores << " gores, D = " << spec.diameter
     << " " << c.lu << ", " << spec.start << " start, generated by chute mesh parachute\"\n"
     << "units = \"" << c.mat.unitsLabel << "\"\n\n";
@@ -362,11 +393,11 @@ void writeParachuteCase(const ParachuteSpec& spec, const GeneratedParachute& gen
   namespace fs = std::filesystem;
   const fs::path dir = fs::absolute(caseFile).parent_path();
   const std::string mshRef = fs::relative(fs::absolute(msh), dir).generic_string();
-  const std::string name = fs::path(caseFile).stem().string();
+  const std::string name = caseNameOf(caseFile, "parachute");
 
   std::ostringstream f;
   writeHeader(f, c, generated, caseFile, msh, name);
-  f << "[mesh]\nfile = \"" << mshRef << "\"\n";
+  f << "[mesh]\nfile = " << tomlString(mshRef, "--out") << "\n";
   if (c.mesh.views.count("initial_displacement"))
     f << "initial_displacement = \"initial_displacement\"   # the " << spec.start
       << " start; the reference is the flat pattern\n";

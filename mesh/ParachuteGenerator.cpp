@@ -5,6 +5,7 @@
 #include <Eigen/Geometry>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <stdexcept>
 
@@ -14,20 +15,62 @@
 
 namespace chute::mesh {
 
+namespace {
+std::string shortNumber(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", x);
+  return text;
+}
+}  // namespace
+
 void ParachuteSpec::validate() const {
   auto bad = [](const std::string& option, const std::string& why) {
     throw std::invalid_argument(option + ": " + why);
   };
   checkFinite();
   if (gores < 4) bad("--gores", "give at least 4 gores");
-  if (!(diameter > 0.0)) bad("--diameter", "must be positive");
-  if (ventDiameter < 0.0 || ventDiameter >= diameter)
-    bad("--vent-diameter", "must be in [0, diameter)");
-  if (!(lineLength > diameter / 2))
+  // Squares of lengths far below 1e-6 D underflow (the canopy's height over the confluence,
+  // sqrt(L^2 - R^2), became 0 at D = 1e-300).
+  if (!(diameter >= 1e-6)) bad("--diameter", "must be at least 1e-6");
+  // Every feature the geometry is built of is at least kLeastFeature D, or absent (0): a vent,
+  // a canopy ring, a slider or a riser of 1e-9 D is below gmsh's geometric tolerance (its
+  // meshing threw inside a parallel region and aborted chute) or a model no step can run.
+  const double least = kLeastFeature * diameter;
+  const std::string leastText = "at least D/" + std::to_string(int(1.0 / kLeastFeature));
+  auto feature = [&](const char* option, double x, bool zeroAllowed) {
+    // (1 - 1e-12): D/1000 typed as a number is not refused for its last bit.
+    if (x < 0.0 || (x == 0.0 && !zeroAllowed) || (x > 0.0 && x < least * (1.0 - 1e-12)))
+      bad(option, (zeroAllowed ? "0 or " : "") + leastText + " (" + shortNumber(least) + "), got " +
+                      shortNumber(x));
+  };
+  feature("--vent-diameter", ventDiameter, true);
+  if (ventDiameter > diameter - least * (1.0 - 1e-12))
+    bad("--vent-diameter", "leaves no canopy: the ring (diameter - vent) must be " + leastText);
+  feature("--slider", sliderSide, true);
+  feature("--riser-length", riserLength, true);
+  feature("--bundle-radius", bundleRadius, true);
+  feature("--slider-drop", sliderDrop, true);
+  if (payloadBox[0] != 0.0 || payloadBox[1] != 0.0 || payloadBox[2] != 0.0)
+    for (const double edge : payloadBox) feature("--payload-box", edge, false);
+  if (payloadMass != 0.0 && !(payloadMass >= kLeastMass))
+    bad("--payload-mass", "0 or at least " + shortNumber(kLeastMass));
+  if (!(lineLength > diameter / 2) ||
+      lineLength * lineLength - diameter * diameter / 4 < least * least)
     bad("--line-length",
         "must exceed the canopy radius (the flat pattern's lines run from the "
-        "skirt to the confluence on the axis)");
+        "skirt to the confluence on the axis, at least D/1000 below the canopy)");
   if (lineElements < 1) bad("--line-elements", "must be at least 1");
+  // Line, riser and slider elements at least a tenth of the canopy's: the explicit step is set
+  // by the shortest element (docs/explicit.md), and lines far finer than the canopy made the
+  // generated case take hours for a second of flight (3,000 elements a line of 2 ft: over a
+  // minute for 4 ms) or trip the energy monitor at its first steps (10,000).
+  auto fineness = [&](const char* option, double length, int elements) {
+    if (length / elements < 0.1 * elementSize)
+      bad(option, "elements of " + shortNumber(length / elements) +
+                      ", shorter than a tenth of --element-size (" + shortNumber(elementSize) +
+                      "): at most " +
+                      std::to_string(static_cast<long long>(10 * length / elementSize)) + " here");
+  };
   if (!(elementSize > 0.0) || elementSize > diameter / 2)
     bad("--element-size", "must be in (0, diameter / 2]");
   if (sliderSide < 0.0) bad("--slider", "the slider side must be positive");
@@ -41,6 +84,12 @@ void ParachuteSpec::validate() const {
       riserLength <= 0.5 * std::hypot(payloadBox[0], payloadBox[1]))
     bad("--riser-length", "must exceed half the diagonal of the box's top face");
   if (riserElements < 1) bad("--riser-elements", "must be at least 1");
+  if (elementSize > 0.0 && elementSize <= diameter / 2) {
+    fineness("--line-elements", lineLength, lineElements);
+    if (riserLength > 0.0) fineness("--riser-elements", riserLength, riserElements);
+    if (sliderSide > 0.0 && sliderDivisions >= 1)
+      fineness("--slider-divisions", sliderSide, sliderDivisions);
+  }
   if (start != "flat" && start != "folded" && start != "inflated" && start != "packed")
     bad("--start", "expected flat, folded, inflated or packed");
   if (!(inflatedRatio > 2.0 / std::numbers::pi && inflatedRatio < 1.0))
@@ -103,9 +152,44 @@ void ParachuteSpec::checkLimits() const {
                               " elements, more than the limit of " +
                               std::to_string(static_cast<long long>(maxElements)) +
                               " (--max-elements)");
+  // Nodes: about half the canopy's triangles, the lines' inner nodes, the slider's grid. More
+  // than a case reads by default ([mesh] max_nodes) is refused for a case (checkForCase).
+  const double nodes = canopy / 2 + double(gores) * lineElements + 4.0 * riserElements +
+                       double(sliderDivisions + 1) * (sliderDivisions + 1) + 64.0;
+  if (caseLimits.maxNodes > 0 && nodes > double(caseLimits.maxNodes))
+    bad(sliderDivisions * sliderDivisions > canopy ? "--slider-divisions" : "--element-size",
+        "about " + std::to_string(static_cast<long long>(nodes)) + " nodes, more than the " +
+            std::to_string(caseLimits.maxNodes) + " a case reads ([mesh] max_nodes)");
 }
 
 namespace {
+
+// A case is written for the mesh: it must be one `chute run` takes with its default limits
+// (docs/limits.md), or the user gets a case that is refused.
+void checkForCase(const ParachuteSpec& spec, const GmshMesh& m) {
+  const CaseLimits& lim = spec.caseLimits;
+  if (lim.maxNodes == 0) return;
+  std::size_t inGroups = 0;
+  for (const auto& g : m.groups) inGroups += g.elements.size();
+  const std::size_t nodes = m.nodeTags.size();
+  // At least one node is held (the confluence or the payload): 3 (nodes - 1) bounds the
+  // equations from above.
+  const std::size_t equations = 3 * (nodes - 1);
+  auto refuse = [](const std::string& what) {
+    throw std::invalid_argument("--case: the mesh has " + what +
+                                ": the case would be refused; mesh coarser (--element-size, "
+                                "--line-elements, --slider-divisions) or leave out --case");
+  };
+  if (nodes > lim.maxNodes)
+    refuse(std::to_string(nodes) + " nodes, more than the " + std::to_string(lim.maxNodes) +
+           " a case reads ([mesh] max_nodes)");
+  if (inGroups > lim.maxElements)
+    refuse(std::to_string(inGroups) + " elements in its groups, more than the " +
+           std::to_string(lim.maxElements) + " a case reads ([mesh] max_elements)");
+  if (lim.maxEquations > 0 && equations > lim.maxEquations)
+    refuse("up to " + std::to_string(equations) + " equations, more than the " +
+           std::to_string(lim.maxEquations) + " a run takes (solver.max_equations)");
+}
 
 int physical(int dim, const std::vector<int>& tags, const std::string& name) {
   const int g = gmsh::model::addPhysicalGroup(dim, tags);
@@ -286,6 +370,7 @@ GeneratedParachute generateParachute(const ParachuteSpec& spec, const std::strin
     } else {
       out.maxStartStretch = 1.0;
     }
+    checkForCase(spec, out.mesh);
     if (!msh.empty()) writeCurrentMesh(msh, out.mesh.views);
   });
   return out;

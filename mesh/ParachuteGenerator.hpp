@@ -13,12 +13,24 @@
 //   slider (2-D), slider_edges (1-D), grommet_<k>, grommets (0-D, k = 0..3);
 //   risers (1-D), payload_box (1-D trusses), payload (0-D: the payload point or box corners).
 #include <array>
+#include <cstddef>
 #include <string>
 #include <vector>
 
 #include "GmshMesh.hpp"
 
 namespace chute::mesh {
+
+// The least size of any feature of a generated parachute (vent, canopy ring, slider, riser,
+// box edge, bundle radius, slider drop, height of the canopy over the confluence), relative to
+// the diameter, and the least positive payload mass (docs/limits.md).
+inline constexpr double kLeastFeature = 1e-3;
+inline constexpr double kLeastMass = 1e-6;
+
+// The limits of the run a generated case goes to (0: no case is written, nothing checked).
+struct CaseLimits {
+  std::size_t maxNodes = 0, maxElements = 0, maxEquations = 0;
+};
 
 struct ParachuteSpec {
   int gores = 0;              // gores and suspension lines (>= 4)
@@ -43,6 +55,7 @@ struct ParachuteSpec {
   double packLength = 0.0;     // packed (PackedStart.hpp): bag length (0: D / 12)
   double packDiameter = 0.0;   // packed: bag diameter (0: D / 25)
   double packGap = 0.0;        // packed: least gap between layers (0: D / 8500, ~1 mm on a C-9)
+  CaseLimits caseLimits;       // a case is written: the mesh must fit the run's default limits
 
   bool hasSlider() const { return sliderSide > 0.0; }
   bool hasBox() const { return payloadBox[0] > 0.0; }

@@ -9,12 +9,15 @@
 
 #include <cerrno>
 #include <chrono>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <sstream>
 #include <stdexcept>
 
 #include "VtuRawFrame.hpp"
 #include "VtuVtkFrame.hpp"
+#include "io/InputFile.hpp"
 
 namespace chute {
 
@@ -248,8 +251,10 @@ std::string VtuSeries::writeFile(const SceneFrame& f, int index) {
 }
 
 std::vector<PvdEntry> readPvd(const std::string& path) {
+  // Read whole first (a regular file of bounded size, without blocking on a FIFO), then parsed.
+  std::istringstream in(io::readInputFile(path, 64ull << 20));
   vtkNew<vtkXMLDataParser> parser;
-  parser->SetFileName(path.c_str());
+  parser->SetStream(&in);
   if (!parser->Parse()) throw std::runtime_error(path + ": not a readable .pvd collection");
   vtkXMLDataElement* root = parser->GetRootElement();
   vtkXMLDataElement* coll = root ? root->FindNestedElementWithName("Collection") : nullptr;
@@ -262,6 +267,10 @@ std::vector<PvdEntry> readPvd(const std::string& path) {
     if (!e->GetScalarAttribute("timestep", p.t) || !e->GetAttribute("file"))
       throw std::runtime_error(path + ": a DataSet without timestep or file");
     p.file = e->GetAttribute("file");
+    if (!std::isfinite(p.t) || p.file.empty())
+      throw std::runtime_error(path +
+                               ": a DataSet with a time that is not a finite number or "
+                               "no file");
     out.push_back(p);
   }
   return out;

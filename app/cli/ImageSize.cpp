@@ -2,6 +2,8 @@
 
 #include <regex>
 
+#include "render/ImageOutput.hpp"
+
 namespace chute::cli {
 
 std::optional<std::string> parseImageSize(const std::string& text, int& width, int& height) {
@@ -9,9 +11,7 @@ std::optional<std::string> parseImageSize(const std::string& text, int& width, i
   std::smatch m;
   if (!std::regex_match(text, m, kSize)) return "expected WxH in pixels, got '" + text + "'";
   const int w = std::stoi(m[1]), h = std::stoi(m[2]);
-  if (w < 16 || h < 16 || w > kMaxImageSide || h > kMaxImageSide)
-    return "each side must be 16 to " + std::to_string(kMaxImageSide) + " pixels, got '" + text +
-           "'";
+  if (const auto bad = render::imageSizeProblem(w, h)) return *bad;
   width = w;
   height = h;
   return std::nullopt;

@@ -27,9 +27,11 @@
 #include "GeoScript.hpp"
 #include "GmshSession.hpp"
 #include "MeshError.hpp"
+#include "MshReader.hpp"
 #include "ParachuteCaseWriter.hpp"
 #include "ParachuteGenerator.hpp"
 #include "app/cli/Command.hpp"
+#include "case/CaseSpec.hpp"
 #include "case/TomlDepth.hpp"
 #include "io/InputFile.hpp"
 
@@ -88,6 +90,21 @@ bool sameFile(const std::string& x, const std::string& y) {
   std::error_code ec;
   if (fs::weakly_canonical(x, ec) == fs::weakly_canonical(y, ec) && !ec) return true;
   return fs::exists(x, ec) && fs::exists(y, ec) && fs::equivalent(x, y, ec);
+}
+
+// Why `path` cannot be written as an output file ("" if it can): it must end in `extension`
+// (when given), not be a directory, and its directory must exist, so that a mistyped path is
+// refused before minutes of meshing rather than by the last write.
+std::string outputPathProblem(const std::string& path, const std::string& extension) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!extension.empty() && fs::path(path).extension() != extension)
+    return "'" + path + "': name a " + extension + " file";
+  if (fs::is_directory(path, ec)) return "'" + path + "' is a directory";
+  const fs::path parent = fs::path(path).parent_path();
+  if (!parent.empty() && !fs::is_directory(parent, ec))
+    return "'" + path + "': no directory " + parent.string();
+  return "";
 }
 
 }  // namespace
@@ -219,6 +236,15 @@ int prepare(CLI::App* p, Outputs& o, mesh::ParachuteSpec& spec, const std::strin
     fmt::print(stderr, "chute: mesh {}: --out: give the .msh file to write\n", verb);
     return kExitBadInput;
   }
+  if (const std::string bad = outputPathProblem(o.out, ".msh"); !bad.empty()) {
+    fmt::print(stderr, "chute: mesh {}: --out: {}\n", verb, bad);
+    return kExitBadInput;
+  }
+  if (!o.caseFile.empty())
+    if (const std::string bad = outputPathProblem(o.caseFile, ""); !bad.empty()) {
+      fmt::print(stderr, "chute: mesh {}: --case: {}\n", verb, bad);
+      return kExitBadInput;
+    }
   if (!o.caseFile.empty() && sameFile(o.caseFile, o.out)) {
     fmt::print(stderr, "chute: mesh {}: --case: '{}' is the --out mesh file\n", verb, o.caseFile);
     return kExitBadInput;
@@ -324,6 +350,13 @@ Command addMeshCommand(CLI::App& app) {
             if (const int status = prepare(p, a->o, a->spec, "parachute"); status >= 0)
               return status;
             if (!a->box.empty()) a->spec.payloadBox = {a->box[0], a->box[1], a->box[2]};
+            if (!a->o.caseFile.empty()) {
+              // The case must be one `chute run` takes with its default limits (limits.md).
+              a->spec.caseLimits.maxNodes = mesh::MshLimits{}.maxNodes;
+              a->spec.caseLimits.maxElements = mesh::MshLimits{}.maxElements;
+              a->spec.caseLimits.maxEquations =
+                  static_cast<std::size_t>(CaseSpec{}.solver.maxEquations);
+            }
             mesh::GeneratedParachute g;
             try {
               if (!a->o.caseFile.empty()) mesh::checkParachuteCaseOptions(a->o.caseOptions);

@@ -10,31 +10,27 @@
 #include "app/cli/Command.hpp"
 #include "app/cli/ImageSize.hpp"
 #include "io/InputFile.hpp"
+#include "render/ImageOutput.hpp"
+#include "render/ProbeCsv.hpp"
 #include "render/ProbePlot.hpp"
 
 namespace chute::cli {
 
 namespace {
 
-// Probes and reference CSVs larger than this are not plotted (docs/limits.md).
-constexpr std::uintmax_t kMaxCsvBytes = 1ull << 30;
-
 // Why the inputs and output of a plot cannot be used, checked before any is read; "" if they can.
 std::string problemOf(const render::PlotOptions& o) {
   namespace fs = std::filesystem;
   for (const auto& dir : o.runDirs) {
     const std::string csv = (fs::path(dir) / "probes.csv").string();
-    if (const auto p = io::inputFileProblem(csv, kMaxCsvBytes)) return csv + ": " + *p;
+    if (const auto p = io::inputFileProblem(csv, render::kMaxCsvBytes)) return csv + ": " + *p;
   }
   if (!o.reference.empty())
-    if (const auto p = io::inputFileProblem(o.reference, kMaxCsvBytes))
+    if (const auto p = io::inputFileProblem(o.reference, render::kMaxCsvBytes))
       return "--reference: " + o.reference + ": " + *p;
-  std::error_code ec;
-  if (fs::is_directory(o.out, ec)) return "--out: " + o.out + " is a directory; name a .png file";
-  if (fs::path(o.out).extension() != ".png") return "--out: " + o.out + ": name a .png file";
-  const fs::path parent = fs::path(o.out).parent_path();
-  if (!parent.empty() && !fs::is_directory(parent, ec))
-    return "--out: " + o.out + ": no directory " + parent.string();
+  if (fs::path(o.out).extension() != ".png" && !fs::is_directory(o.out))
+    return "--out: " + o.out + ": name a .png file";
+  if (const std::string bad = render::imageFileProblem(o.out); !bad.empty()) return "--out: " + bad;
   return "";
 }
 
@@ -53,7 +49,8 @@ Command addPlotCommand(CLI::App& app) {
       ->required();
   cmd->add_option("--reference", a->o.reference, "CSV with t and reference columns");
   cmd->add_option("--title", a->o.title, "chart title");
-  cmd->add_option("--size", a->size, "image size WxH (each side 16 to 8192)")
+  cmd->add_option("--size", a->size,
+                  "image size WxH (each side 16 to 8192, at most 33,554,432 pixels)")
       ->default_val("1200x700");
   cmd->add_option("--out", a->o.out, "PNG file")->default_val("plot.png");
   return {cmd, [a] {
@@ -67,6 +64,9 @@ Command addPlotCommand(CLI::App& app) {
             }
             try {
               render::plotProbes(a->o);
+            } catch (const render::ImageWriteError& e) {
+              fmt::print(stderr, "chute: plot: {}\n", e.what());
+              return kExitRunFailed;
             } catch (const std::runtime_error& e) {
               fmt::print(stderr, "chute: plot: {}\n", e.what());
               return kExitBadInput;

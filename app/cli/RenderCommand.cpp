@@ -8,6 +8,7 @@
 
 #include "app/cli/Command.hpp"
 #include "app/cli/ImageSize.hpp"
+#include "render/ImageOutput.hpp"
 #include "render/SnapshotRenderer.hpp"
 
 namespace chute::cli {
@@ -43,6 +44,9 @@ Command addRenderCommand(CLI::App& app) {
             try {
               for (const auto& f : render::renderSnapshots(a->o))
                 if (!a->quiet) fmt::print("{}\n", f);
+            } catch (const render::ImageWriteError& e) {
+              fmt::print(stderr, "chute: render: {}\n", e.what());
+              return kExitRunFailed;
             } catch (const std::runtime_error& e) {
               fmt::print(stderr, "chute: render: {}\n", e.what());
               return kExitBadInput;

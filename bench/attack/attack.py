@@ -31,7 +31,8 @@ HOSTILE_NUMBERS = ["0", "-1", "1e308", "-1e308", "5e-324", "nan", "inf", "-inf",
                    "2147483648", "9223372036854775808", "1e-300", "\"x\"", "[]", "{}", "true",
                    "-0.0", "1e100", "99999999999999999999"]
 HOSTILE_ARGS = ["", "-1", "0", "nan", "inf", "1e308", "5e-324", "abc", "x" * 5000, "\u00e9",
-                "/dev/zero", "--", "-", "1e9", "100000000", "20000x20000", "0x0", "8x8"]
+                "/dev/zero", "--", "-", "1e9", "100000000", "20000x20000", "0x0", "8x8",
+                "8192x8192", "4096x4096", "t"]
 NUMBER = re.compile(rb"(?<![A-Za-z_.])-?\d+(\.\d+)?([eE][-+]?\d+)?")
 
 
@@ -260,6 +261,103 @@ def arg_inputs(ctx, rng, n):
     return out
 
 
+def parachute_inputs(ctx, rng, n):
+    """`chute mesh parachute` over classes of values of every geometric option (tiny,
+    subnormal, huge, near a bound, NaN, inf, negative, zero) on five kinds of parachute; a
+    generated case must fly two steps (tests/attack/parachute_check.py)."""
+    variants = {"plain": [], "slider": ["--slider", "0.3", "--start", "folded"],
+                "box": ["--payload-mass", "1", "--payload-box", "0.2,0.2,0.2", "--riser-length",
+                        "0.5"],
+                "vent": ["--vent-diameter", "0.4", "--start", "inflated"],
+                "point": ["--payload-mass", "1", "--riser-length", "0.5", "--slider", "0.3"]}
+    near = {"--diameter": ["1e-6", "9.99e-7", "0.8", "3.999"],
+            "--vent-diameter": ["1.999999999", "1.998", "1.9981", "0.002", "0.0019999"],
+            "--line-length": ["1.000000001", "1.0000005", "1.01"],
+            "--element-size": ["1", "1.0000001", "0.001"],
+            "--slider": ["0.002", "0.0019", "1.5", "3", "100"],
+            "--payload-mass": ["1e-6", "9e-7"],
+            "--riser-length": ["0.1415", "0.1414", "0.002"],
+            "--bundle-radius": ["0.999999", "0.002", "0.0019"],
+            "--slider-drop": ["1.9999", "2", "5", "0.002"],
+            "--line-slack": ["0.4999", "0.49"],
+            "--inflated-ratio": ["0.63662", "0.6367", "0.99999999"],
+            "--gores": ["3", "4", "1000", "1001"], "--line-elements": ["10000", "10001"],
+            "--slider-divisions": ["999", "1000", "1001"], "--riser-elements": ["10001"],
+            "--dt": ["2", "2.0000001", "1e-12"], "--t-end": ["0.002", "1e6"],
+            "--pressure": ["-1", "1e6", "0", "1e5", "1e4", "1e-6", "1e-12"],
+            "--ramp-time": ["1e6", "0"]}
+    common = ["5e-324", "1e-300", "1e-12", "1e-9", "-1", "-0.0", "0", "1e6", "1e308", "nan",
+              "inf", "-inf"]
+    base = ["--gores", "8", "--diameter", "2", "--line-length", "2", "--element-size", "0.4",
+            "--line-elements", "4"]
+    combos = [(o, v) for o, vs in near.items() for v in common + vs]
+    rng.shuffle(combos)
+    out = []
+    for k, (option, value) in enumerate(combos[:n]):
+        vname = rng.choice(sorted(variants))
+        args = base + variants[vname]
+        if option in args:
+            i = args.index(option)
+            args = args[:i] + args[i + 2:]
+        args = args + [option, value]
+        out.append(inputs.parachute_check(ctx, "%s %s %s" % (vname, option, value), args,
+                                          ANY_CLEAN))
+    return out
+
+
+def mesh_damage_inputs(ctx, rng, n):
+    """Every kind of element or group damage (tests/attack/mshedit.py) at random places of both
+    seeds in the four formats: each must be refused."""
+    out = []
+    tries = 0
+    while len(out) < n and tries < 10 * n:
+        tries += 1
+        i = inputs.damaged_mesh_input(ctx, rng.choice(["flat", "chute"]), rng.choice(["22", "41"]),
+                                      rng.random() < 0.5, rng.choice(inputs.mshedit.KINDS), rng,
+                                      str(tries))
+        if i:
+            out.append(i)
+    return out
+
+
+def frame_inputs(ctx, rng, n):
+    """A run's VTU series with one frame or the .pvd mutated (bytes changed, cut, numbers
+    replaced): `chute render` draws it or refuses it, never crashes or hangs."""
+    out = []
+    for k in range(n):
+        d = ctx.path("frames_%d" % k)
+        shutil.rmtree(d, ignore_errors=True)
+        shutil.copytree(ctx.vtu_run, d)
+        pvd = [f for f in os.listdir(d) if f.endswith(".pvd")][0]
+        target = pvd if rng.random() < 0.2 else rng.choice(ctx.frames)
+        path = os.path.join(d, target)
+        data, kind = mutate_bytes(rng, open(path, "rb").read(), text=target.endswith(".pvd"))
+        with open(path, "wb") as f:
+            f.write(data)
+        out.append(inputs.render_input(ctx, "frames %d: %s %s" % (k, target[-12:], kind), d,
+                                       ANY_CLEAN, "--size", "320x180"))
+    return out
+
+
+def big_csv_input(ctx):
+    """A 900 MiB probes.csv (3 million rows, under the 1 GiB limit): plotted within the memory
+    limit (it ran out of 4 GiB when held whole)."""
+    d = ctx.path("big_csv")
+    os.makedirs(d, exist_ok=True)
+    columns = ["c%d.x" % k for k in range(15)]
+    with open(os.path.join(d, "probes.csv"), "w") as f:
+        f.write("t," + ",".join(columns) + "\n")
+        tail = "," + ",".join(["0.12345678901234567"] * 14) + "\n"
+        row = 0
+        while f.tell() < 900 * 2 ** 20:
+            f.write("".join("%r,%r%s" % (i * 1e-5, (i % 977) * 1e-3, tail)
+                            for i in range(row, row + 20000)))
+            row += 20000
+    return Input("plot CSV", "a 900 MiB probes.csv", [ctx.chute, "plot", d, "--columns",
+                                                      "c0.x,c7.x", "--out",
+                                                      ctx.path("big_csv.png")], OK, None, 120)
+
+
 HOSTILE_VALUES = [float("nan"), float("inf"), float("-inf"), -1, 0, 1e308, -1e308, 5e-324, -0.0,
                   2 ** 63 - 1, 2 ** 64 - 1, -2 ** 63, 2 ** 31, "x", "", [], {}, None, True,
                   b"\x00" * 9, 1.5, [float("nan")] * 3, [[[[[]]]]]]
@@ -350,6 +448,8 @@ def main():
     ap.add_argument("--seed", type=int, default=20)
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--mem-mb", type=int, default=4096)
+    ap.add_argument("--no-big-csv", dest="big_csv", action="store_false",
+                    help="leave out the 900 MiB probes.csv (about 1 GB of disk, a minute)")
     a = ap.parse_args()
     rng = random.Random(a.seed)
     ctx = inputs.Context(os.path.abspath(a.chute), SOURCE, harness.fresh_dir(a.work))
@@ -360,7 +460,9 @@ def main():
             set_inputs(ctx, rng, int(200 * s)) + msh_inputs(ctx, rng, int(300 * s)) +
             geo_inputs(ctx, rng) + csv_inputs(ctx, rng, int(100 * s)) +
             arg_inputs(ctx, rng, int(200 * s)) + checkpoint_inputs(ctx, rng, int(150 * s)) +
-            capi_inputs(ctx, rng, int(60 * s)))
+            capi_inputs(ctx, rng, int(60 * s)) + parachute_inputs(ctx, rng, int(250 * s)) +
+            mesh_damage_inputs(ctx, rng, int(150 * s)) + frame_inputs(ctx, rng, int(300 * s)) +
+            ([big_csv_input(ctx)] if a.big_csv else []))
     print("%d inputs, %s build" % (len(todo), "ASan/UBSan" if asan else "plain"), flush=True)
     start = time.time()
     table = harness.Table()

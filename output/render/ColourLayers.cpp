@@ -1,13 +1,17 @@
 #include "render/ColourLayers.hpp"
 
+#include <vtkAbstractArray.h>
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
+#include <vtkFieldData.h>
 #include <vtkPointData.h>
+#include <vtkStringArray.h>
 #include <vtkUnstructuredGrid.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <set>
 #include <stdexcept>
 #include <utility>
 
@@ -44,9 +48,37 @@ double valueOf(vtkDataArray* a, vtkIdType i, int component) {
     s += a->GetComponent(i, c) * a->GetComponent(i, c);
   return std::sqrt(s);
 }
+
+// splitmix64: the sample's generator (fixed seed: the same series gives the same scale).
+std::uint64_t nextRandom(std::uint64_t& state) {
+  std::uint64_t z = (state += 0x9e3779b97f4a7c15ull);
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+  return z ^ (z >> 31);
+}
+
+bool isNotApplicable(const ColourLayer& l, double v) {
+  return std::isnan(l.notApplicable) ? std::isnan(v) : v == l.notApplicable;
+}
+
+// The name of a code of a categorical field: from the table of fields, or for parts the frame's
+// part_names, or numbered.
+std::string codeName(const std::string& field, double code, vtkUnstructuredGrid* g) {
+  for (const auto& c : vtuField(field).categories)
+    if (c.code == code) return c.name;
+  if (field == "part") {
+    auto* names = vtkStringArray::SafeDownCast(g->GetFieldData()->GetAbstractArray("part_names"));
+    if (names && code >= 0 && code < names->GetNumberOfValues())
+      return names->GetValue(static_cast<vtkIdType>(code));
+  }
+  char text[32];
+  std::snprintf(text, sizeof text, "%s %g", field == "slider_group" ? "group" : "code", code);
+  return text;
+}
 }  // namespace
 
-std::vector<ColourLayer> colourLayers(const std::string& colour, vtkUnstructuredGrid* grid) {
+std::vector<ColourLayer> colourLayers(const std::string& colour, vtkUnstructuredGrid* grid,
+                                      const UnitSystem& units) {
   const int membrane = static_cast<int>(CellKind::Membrane);
   const int mass = static_cast<int>(CellKind::PointMass);
   bool onPoints = false;
@@ -56,13 +88,39 @@ std::vector<ColourLayer> colourLayers(const std::string& colour, vtkUnstructured
     // the strain, well inside a colour band, and S is what the VTU carries.
     findField(grid, "principal_stress", onPoints);
     findField(grid, "axial_force", onPoints);
-    return {layer(membrane, membrane, "principal_stress", 0, "membrane stress S1", 99.0),
-            layer(static_cast<int>(CellKind::Cable), static_cast<int>(CellKind::SlidingActivePart),
-                  "axial_force", 0, "line force", 99.0),
-            layer(mass, mass, "", -1, "", 100.0)};
+    const FieldInfo stress = vtuField("principal_stress"), force = vtuField("axial_force");
+    return {
+        layer(membrane, membrane, "principal_stress", 0,
+              withUnit(stress.title + " " + stress.components[0], stress.quantity, units), 99.0),
+        layer(static_cast<int>(CellKind::Cable), static_cast<int>(CellKind::SlidingActivePart),
+              "axial_force", 0, withUnit(force.title, force.quantity, units), 99.0),
+        layer(mass, mass, "", -1, "", 100.0)};
   }
-  const bool vector = findField(grid, colour, onPoints)->GetNumberOfComponents() > 1;
-  return {layer(1, mass, colour, -1, vector ? "|" + colour + "|" : colour, 100.0)};
+  const int components = findField(grid, colour, onPoints)->GetNumberOfComponents();
+  const FieldInfo info = vtuField(colour);
+  if (info.quantity == Quantity::Category && components == 1) {
+    ColourLayer l = layer(1, mass, colour, 0, info.title, 100.0);
+    l.categorical = true;
+    l.notApplicable = info.notApplicable;
+    return {l};
+  }
+  // A field with named components by its first (the largest principal value), a vector by its
+  // magnitude.
+  if (components > 1 && !info.components.empty())
+    return {layer(1, mass, colour, 0,
+                  withUnit(info.title + " " + info.components[0], info.quantity, units), 100.0)};
+  const std::string title = components > 1 ? "|" + info.title + "|" : info.title;
+  return {layer(1, mass, colour, -1, withUnit(title, info.quantity, units), 100.0)};
+}
+
+void sampleValue(ColourLayer& l, double v) {
+  ++l.counted;
+  if (l.values.size() < kSampleSize) {
+    l.values.push_back(static_cast<float>(v));
+    return;
+  }
+  const std::uint64_t k = nextRandom(l.random) % l.counted;
+  if (k < kSampleSize) l.values[k] = static_cast<float>(v);
 }
 
 void widenRanges(std::vector<ColourLayer>& layers, vtkUnstructuredGrid* grid) {
@@ -75,9 +133,20 @@ void widenRanges(std::vector<ColourLayer>& layers, vtkUnstructuredGrid* grid) {
     const bool keep = layer.percentile < 100.0;
     auto take = [&](vtkIdType i) {
       const double v = valueOf(a, i, layer.component);
+      if (layer.categorical) {
+        if (isNotApplicable(layer, v)) {
+          layer.notApplicableSeen = true;
+          return;
+        }
+        if (!std::isfinite(v)) return;
+        const bool listed = std::any_of(layer.categories.begin(), layer.categories.end(),
+                                        [v](const Category& c) { return c.code == v; });
+        if (!listed && layer.categories.size() <= kMaxCategories)
+          layer.categories.push_back({v, codeName(layer.field, v, grid)});
+      }
       if (!std::isfinite(v)) return;
       lo = std::min(lo, v), hi = std::max(hi, v);
-      if (keep) layer.values.push_back(static_cast<float>(v));
+      if (keep) sampleValue(layer, v);
     };
     if (onPoints || !kind) {
       for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i) take(i);
@@ -97,6 +166,16 @@ void widenRanges(std::vector<ColourLayer>& layers, vtkUnstructuredGrid* grid) {
 
 void finishRanges(std::vector<ColourLayer>& layers) {
   for (auto& layer : layers) {
+    if (layer.categorical) {
+      if (layer.categories.size() <= kMaxCategories) {
+        // The categories that occur, in code order: the legend names what is drawn.
+        std::sort(layer.categories.begin(), layer.categories.end(),
+                  [](const Category& a, const Category& b) { return a.code < b.code; });
+        continue;
+      }
+      layer.categorical = false;  // too many to name: a scale over the codes
+      layer.categories.clear();
+    }
     if (!layer.seen) continue;
     layer.largest = layer.range[1];
     if (layer.percentile < 100.0 && !layer.values.empty()) {

@@ -1,7 +1,11 @@
 #pragma once
 // `chute plot`: time histories of probe columns from one or several runs, overlaid, to a PNG
-// (VTK's chart module, off-screen), with a legend, the case's units, and an optional reference
-// curve read from a CSV file whose first column is t.
+// (VTK's chart module, off-screen), with an optional reference curve read from a CSV file whose
+// first column is t. One quantity per panel: the columns are grouped by what they measure
+// (render/Quantities.hpp), each group in a panel of its own, its axis titled with the quantity
+// and the unit of the case's `units` ("skirt radius (ft)"); the panels share the time axis
+// ("t (s)"). Each panel's legend stands outside its axes, on the right, where it covers no data.
+// The probes are streamed (render/ProbeCsv.hpp): memory does not grow with the file.
 #include <string>
 #include <vector>
 
@@ -16,14 +20,7 @@ struct PlotOptions {
   int width = 1200, height = 700;
 };
 
-struct CsvTable {
-  std::vector<std::string> names;
-  std::vector<std::vector<double>> columns;   // columns[0] is t
-  int column(const std::string& name) const;  // -1 if absent
-};
-// Reads a numeric CSV with a header row; throws std::runtime_error naming the file and line.
-CsvTable readCsv(const std::string& path);
-
+// Throws std::runtime_error naming the file (and line) or the option at fault.
 void plotProbes(const PlotOptions& options);
 
 }  // namespace chute::render

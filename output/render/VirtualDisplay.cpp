@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -52,9 +53,14 @@ VirtualDisplay::VirtualDisplay() {
   // Xvfb picks a free display itself and writes its number to -displayfd when it is ready.
   int fds[2];
   if (::pipe2(fds, O_CLOEXEC) != 0) throw std::runtime_error("cannot start Xvfb: pipe failed");
+  const pid_t parent = ::getpid();
   pid_ = ::fork();
   if (pid_ < 0) throw std::runtime_error("cannot start Xvfb: fork failed");
   if (pid_ == 0) {
+    // The server ends with chute whatever ends chute: a crash, an abort, SIGKILL (no handler
+    // runs then). A parent already gone before this line leaves no one to signal it: stop.
+    ::prctl(PR_SET_PDEATHSIG, SIGTERM);
+    if (::getppid() != parent) ::_exit(0);
     ::dup2(fds[1], 3);  // dup2 clears close-on-exec on the copy
     const int devnull = ::open("/dev/null", O_RDWR);
     if (devnull >= 0) ::dup2(devnull, 1), ::dup2(devnull, 2);

@@ -1,7 +1,9 @@
 #pragma once
 // Off-screen rendering without a display. Debian's VTK 9.1 renders through X (no OSMesa or EGL),
 // so on a machine without DISPLAY chute starts its own Xvfb server for as long as it renders: the
-// user never types xvfb-run.
+// user never types xvfb-run. The server never outlives chute: it is stopped when the display goes
+// out of scope (errors included) and on SIGINT / SIGTERM / SIGHUP, and the kernel sends it SIGTERM
+// when chute dies any other way (a crash, SIGKILL: PR_SET_PDEATHSIG).
 #include <sys/types.h>
 
 #include <string>

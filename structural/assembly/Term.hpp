@@ -172,6 +172,12 @@ class Term {
   virtual const char* name() const = 0;
   // Node cliques this term may ever couple (for the sparsity pattern built once).
   virtual void addCouplings(std::vector<std::vector<int>>& cliques) const = 0;
+  // Couplings that move with the configuration (contact pairs): brings them up to date for
+  // positions x before an assembly and returns whether they changed since the last call; the
+  // pattern is then built again from every term's addCouplings(). Only terms that say
+  // dynamicCouplings() are asked.
+  virtual bool dynamicCouplings() const { return false; }
+  virtual bool updateCouplings(const Eigen::VectorXd& /*x*/) { return false; }
   // Updates configuration-dependent state (e.g. the active sliding elements) for trial positions
   // x; returns how many discrete changes were made.
   virtual int updateState(const Eigen::VectorXd& /*x*/) { return 0; }

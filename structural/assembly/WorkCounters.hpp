@@ -16,6 +16,8 @@ struct WorkCounters {
   long drag = 0;          // line-drag kernel (one straight segment)
   long faceDrag = 0;      // face-drag kernel (one membrane face)
   long sliderSearch = 0;  // active-element searches, one per slider per search pass
+  long contact = 0;       // contact pairs whose distance was computed (narrow phase)
+  long contactLists = 0;  // contact candidate lists built (broad phase)
   long energy = 0;        // whole-system energy evaluations (probes, summary drift)
   long sceneFrames = 0;   // output frames built (geometry, fields, reactions)
   long vtuSeries = 0;     // VTU series opened (VTK's writer exists only inside one)
@@ -25,6 +27,7 @@ struct WorkCounters {
     lineElastic += o.lineElastic, sliding += o.sliding, lineMass += o.lineMass;
     pointMass += o.pointMass, membrane += o.membrane, pressure += o.pressure, drag += o.drag;
     faceDrag += o.faceDrag, whirlDamping += o.whirlDamping;
+    contact += o.contact, contactLists += o.contactLists;
     sliderSearch += o.sliderSearch, energy += o.energy, sceneFrames += o.sceneFrames;
     vtuSeries += o.vtuSeries, vtuFrames += o.vtuFrames;
     return *this;

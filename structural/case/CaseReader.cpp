@@ -25,7 +25,7 @@ CaseSpec readCaseFromString(const std::string& text, const std::string& file,
   // something missing.
   top.finish({"name", "description", "units", "nodes", "materials", "cables", "sliding_groups",
               "membranes", "point_masses", "boundary", "loads", "solver", "output", "reference",
-              "mesh", "events", "air", "initial"});
+              "mesh", "events", "air", "initial", "contact"});
   CaseSpec c;
   c.file = file;
   c.name = top.string("name", std::filesystem::path(file).stem().string());
@@ -53,6 +53,7 @@ CaseSpec readCaseFromString(const std::string& text, const std::string& file,
   if (top.has("initial")) caseio::readInitial(m, top.table("initial"));
   if (top.has("loads")) caseio::readLoads(m, mesh.get(), top.table("loads"));
   caseio::readEvents(m, top);
+  if (top.has("contact")) caseio::readContact(m, top.table("contact"));
   caseio::readSolver(c, top.table("solver"));
   if (top.has("output")) caseio::readOutput(c, top.table("output"));
   if (top.has("reference")) caseio::readReference(c, top.table("reference"));

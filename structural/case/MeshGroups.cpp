@@ -7,6 +7,7 @@
 
 #include "MeshError.hpp"
 #include "MshReader.hpp"
+#include "case/sections/SectionLookup.hpp"
 
 namespace chute {
 
@@ -94,17 +95,41 @@ std::unique_ptr<MeshImport> importMesh(Model& m, TomlTable t, const std::string&
     }
     start = &it->second;
   }
+  const auto& msh = imp->mesh;
+  // Scaled coordinates within the +-1e100 every coordinate keeps (docs/limits.md): squared
+  // distances stay finite.
+  for (size_t i = 0; i < msh.nodeTags.size(); ++i)
+    if ((scale * msh.coords[i]).cwiseAbs().maxCoeff() > caseio::kMaxLength)
+      t.fail("scale", "node " + std::to_string(msh.nodeTags[i]) + " of " + imp->file +
+                          " is beyond +-1e100 once scaled by " + caseio::shortNumber(scale));
+  if (start) {
+    // A start must place every node: a node it leaves out would start at its reference point,
+    // torn from its neighbours.
+    std::size_t missing = 0, first = 0;
+    for (const std::size_t tag : msh.nodeTags) {
+      const auto u = start->find(tag);
+      if (u == start->end()) {
+        if (missing++ == 0) first = tag;
+      } else if ((scale * u->second).cwiseAbs().maxCoeff() > caseio::kMaxLength) {
+        t.fail("initial_displacement", "node " + std::to_string(tag) +
+                                           ": the start is beyond +-1e100 once scaled by " +
+                                           caseio::shortNumber(scale));
+      }
+    }
+    if (missing > 0)
+      t.fail("initial_displacement", "view '" + t.string("initial_displacement") + "' of " +
+                                         imp->file + " has no value at node " +
+                                         std::to_string(first) + " (" + std::to_string(missing) +
+                                         " of the mesh's " + std::to_string(msh.nodeTags.size()) +
+                                         " nodes missing): it must give every node");
+  }
   t.finish();
 
-  const auto& msh = imp->mesh;
   for (size_t i = 0; i < msh.nodeTags.size(); ++i) {
     const std::size_t tag = msh.nodeTags[i];
     const int id = m.addNode(scale * msh.coords[i], "mesh." + std::to_string(tag));
     imp->node[tag] = id;
-    if (start) {
-      auto u = start->find(tag);
-      if (u != start->end()) m.u0[id] = scale * u->second;
-    }
+    if (start) m.u0[id] = scale * start->at(tag);
   }
   for (const auto& g : msh.groups) {
     std::vector<int> ids;

@@ -33,7 +33,7 @@ std::optional<std::string> inputFileProblem(const std::string& path, std::uintma
   return problemOf(st, maxBytes);
 }
 
-std::string readInputFile(const std::string& path, std::uintmax_t maxBytes) {
+int openInputFile(const std::string& path, std::uintmax_t maxBytes) {
   // O_NONBLOCK: opening a FIFO with no writer must not wait for one.
   const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
   if (fd < 0) throw std::runtime_error(path + ": cannot open: " + errnoText(errno));
@@ -44,6 +44,17 @@ std::string readInputFile(const std::string& path, std::uintmax_t maxBytes) {
   if (problem) {
     ::close(fd);
     throw std::runtime_error(path + ": cannot open: " + *problem);
+  }
+  return fd;
+}
+
+std::string readInputFile(const std::string& path, std::uintmax_t maxBytes) {
+  const int fd = openInputFile(path, maxBytes);
+  struct stat st {};
+  if (::fstat(fd, &st) != 0) {
+    const int e = errno;
+    ::close(fd);
+    throw std::runtime_error(path + ": cannot open: " + errnoText(e));
   }
   std::string bytes(static_cast<std::size_t>(st.st_size), '\0');
   std::size_t got = 0;

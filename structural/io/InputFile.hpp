@@ -17,4 +17,8 @@ std::optional<std::string> inputFileProblem(const std::string& path, std::uintma
 // at most the size seen at open is read. Throws std::runtime_error("path: cannot open: reason").
 std::string readInputFile(const std::string& path, std::uintmax_t maxBytes);
 
+// The same checks, for a file read piece by piece: an open descriptor of the regular file (the
+// caller closes it). Throws std::runtime_error("path: cannot open: reason").
+int openInputFile(const std::string& path, std::uintmax_t maxBytes);
+
 }  // namespace chute::io

@@ -12,6 +12,7 @@
 #include "kernels/LineElementTypes.hpp"
 #include "kernels/MembraneKernel.hpp"
 #include "kernels/SliderFriction.hpp"
+#include "model/ContactDef.hpp"
 
 namespace chute {
 
@@ -162,6 +163,7 @@ struct Model {
   // Initial velocity of each node (free dofs; a prescribed dof follows its constraint): a run
   // that starts in motion, e.g. at line stretch at the system's speed ([initial]).
   std::vector<Vec3> v0;
+  ContactDef contact;  // fabric contact ([contact]); enabled = false: none
 
   Vec3 gravity = Vec3::Zero();
   double massDamping = 0.0;  // Rayleigh mass-proportional damping C = alpha M (every mass)

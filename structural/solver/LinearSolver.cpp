@@ -34,6 +34,9 @@ LinearSolver::~LinearSolver() = default;
 bool LinearSolver::factorize(const SparseMatrix& A) {
   ScopedTimer timer(timings_->factorisation);
   ++timings_->factorisations;
+  // A pattern that moved (contact pairs, Term::updateCouplings) is analysed afresh.
+  if (analysed_ && !samePattern(A)) analysed_ = false;
+  if (!analysed_) rememberPattern(A);
   if (kind_ == Kind::SymmetricPart) {
     if (factorizeSymmetricPart(A)) return true;
     // A zero pivot without pivoting: LU for good.
@@ -81,6 +84,18 @@ bool LinearSolver::factorize(const SparseMatrix& A) {
   }
   umfpack_->factorize(A);
   return umfpack_->info() == Eigen::Success;
+}
+
+bool LinearSolver::samePattern(const SparseMatrix& A) const {
+  const long n = A.cols(), nnz = A.nonZeros();
+  return n + 1 == static_cast<long>(outer_.size()) && nnz == static_cast<long>(inner_.size()) &&
+         std::equal(outer_.begin(), outer_.end(), A.outerIndexPtr()) &&
+         std::equal(inner_.begin(), inner_.end(), A.innerIndexPtr());
+}
+
+void LinearSolver::rememberPattern(const SparseMatrix& A) {
+  outer_.assign(A.outerIndexPtr(), A.outerIndexPtr() + A.cols() + 1);
+  inner_.assign(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros());
 }
 
 bool LinearSolver::factorizeSymmetricPart(const SparseMatrix& A) {

@@ -1,8 +1,8 @@
 #pragma once
 // Sparse direct solves through SuiteSparse: CHOLMOD for symmetric positive definite matrices,
 // UMFPACK otherwise; on request (NS2) Eigen's simplicial LDL^T of the symmetric part. The symbolic
-// analysis is done once per pattern and reused; a failed Cholesky (indefinite or singular matrix)
-// falls back to UMFPACK for the rest of the run.
+// analysis is done once per pattern and reused (again when the pattern changes); a failed Cholesky
+// (indefinite or singular matrix) falls back to UMFPACK for the rest of the run.
 #include <Eigen/CholmodSupport>
 #include <Eigen/SparseCholesky>
 #include <Eigen/UmfPackSupport>
@@ -58,6 +58,10 @@ class LinearSolver {
   SparseMatrix symmetricPart_;
   std::vector<int> transposed_;  // index of entry (j, i) for entry (i, j) in A's storage
   bool factorizeSymmetricPart(const SparseMatrix& A);
+  // The pattern of the last analysis (a matrix with another is analysed again).
+  std::vector<int> outer_, inner_;
+  bool samePattern(const SparseMatrix& A) const;
+  void rememberPattern(const SparseMatrix& A);
 };
 
 }  // namespace chute

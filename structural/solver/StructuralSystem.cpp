@@ -15,11 +15,13 @@ StructuralSystem::StructuralSystem(const Model& model, TermOptions options,
       terms_(list_.terms()),
       assembler_(dofs_),
       secondAssembler_(dofs_) {
-  for (const auto& t : terms_)
+  for (const auto& t : terms_) {
     if (auto* e = t->events()) {
       events_.push_back(e);
       watchesExplicitMotion_ = watchesExplicitMotion_ || e->watchesExplicitMotion();
     }
+    if (t->dynamicCouplings()) dynamicCouplings_.push_back(t.get());
+  }
 
   for (const auto& t : terms_) searches_ = searches_ || t->searchesPerUpdate() > 0;
   for (int d = 0; d < dofs_.numDofs(); ++d)
@@ -128,6 +130,16 @@ void StructuralSystem::assemble(const EvalPoint& p, bool wantMatrix,
                                 const std::function<void()>& alongside) {
   ScopedTimer timer(timings_.assembly);
   ++timings_.assemblies;
+  // Couplings that move (contact pairs): a pattern that no longer covers them is built again
+  // before the next matrix (and the linear solver analyses it afresh).
+  for (auto* t : dynamicCouplings_) patternStale_ |= t->updateCouplings(p.x);
+  if (wantMatrix && patternStale_) {
+    std::vector<std::vector<int>> cliques;
+    for (const auto& t : terms_) t->addCouplings(cliques);
+    assembler_.buildPattern(cliques);
+    if (!secondPart_.empty()) secondAssembler_.buildPattern({});
+    patternStale_ = false;
+  }
   assembler_.begin(wantMatrix);
   if (secondPart_.empty()) {
     for (const auto& t : terms_) t->assemble(p, assembler_);

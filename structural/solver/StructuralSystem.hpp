@@ -139,6 +139,8 @@ class StructuralSystem {
   std::vector<EventSource*> events_;
   bool watchesExplicitMotion_ = false;
   bool searches_ = false;  // some term has configuration-dependent state (Term::updateState)
+  std::vector<Term*> dynamicCouplings_;  // terms whose couplings move (contact)
+  bool patternStale_ = false;            // their couplings changed since the pattern was built
   SystemAssembler assembler_;
   // Assembly in two parts (docs/performance.md, "Two threads"): the terms split by an estimate
   // of their cost, the second part assembled into its own assembler on a second thread and then

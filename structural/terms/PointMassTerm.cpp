@@ -8,6 +8,10 @@ PointMassTerm::PointMassTerm(const Model& m) : m_(&m) {
     if (m.pointMass[n] != 0.0) nodes_.push_back(n);
 }
 
+void PointMassTerm::addCouplings(std::vector<std::vector<int>>& cliques) const {
+  for (int n : nodes_) cliques.push_back({n});
+}
+
 void PointMassTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
   const bool wantJ = out.wantMatrix();
   for (int n : nodes_) {

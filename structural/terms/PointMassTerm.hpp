@@ -12,7 +12,8 @@ class PointMassTerm final : public Term {
   explicit PointMassTerm(const Model& m);
   const char* name() const override { return "point_masses"; }
   bool loadDependent() const override { return m_->hasGravity(); }  // gravity only
-  void addCouplings(std::vector<std::vector<int>>&) const override {}
+  // Its node's own 3x3 block: a point mass on a node no element uses has no other entry.
+  void addCouplings(std::vector<std::vector<int>>& cliques) const override;
   void assemble(const EvalPoint& p, SystemAssembler& out) override;
   void addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v, double t,
                  EnergyBreakdown& e) const override;

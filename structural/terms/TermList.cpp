@@ -9,6 +9,7 @@
 #include "terms/MembraneTerm.hpp"
 #include "terms/PointMassTerm.hpp"
 #include "terms/PressureTerm.hpp"
+#include "terms/contact/ContactTerm.hpp"
 #include "terms/sliding/SlidingGroupTerm.hpp"
 
 namespace chute {
@@ -41,6 +42,13 @@ TermList::TermList(const Model& model, TermOptions options,
     canopyFlows_.push_back(t.get());
     terms_.push_back(std::move(t));
   }
+  if (model.contact.enabled) {
+    std::vector<const SlidingGroupState*> states;
+    for (auto* g : groups_) states.push_back(&g->state());
+    auto t = std::make_unique<ContactTerm>(model, states);
+    contact_ = t.get();
+    terms_.push_back(std::move(t));
+  }
   for (auto& t : extraTerms) terms_.push_back(std::move(t));
 }
 
@@ -49,7 +57,7 @@ TermList::~TermList() = default;
 const std::vector<std::string>& TermList::kinds() {
   static const std::vector<std::string> kinds{"cables",    "sliding_group", "point_masses",
                                               "membranes", "pressure",      "drag",
-                                              "face_drag", "canopy_flow"};
+                                              "face_drag", "canopy_flow",   "contact"};
   return kinds;
 }
 

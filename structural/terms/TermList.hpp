@@ -17,6 +17,7 @@ namespace chute {
 class SlidingGroupTerm;
 class MembraneTerm;
 class CanopyFlowTerm;
+class ContactTerm;
 
 // The choices the terms are built with (from the case's [solver] table).
 struct TermOptions {
@@ -47,12 +48,15 @@ class TermList {
   MembraneTerm* membranes() { return membranes_; }
   // The canopies with loads from the airflow, in the model's order.
   const std::vector<CanopyFlowTerm*>& canopyFlows() const { return canopyFlows_; }
+  // Fabric contact (nullptr without [contact]).
+  const ContactTerm* contact() const { return contact_; }
 
  private:
   std::vector<std::unique_ptr<Term>> terms_;
   std::vector<SlidingGroupTerm*> groups_;
   MembraneTerm* membranes_ = nullptr;
   std::vector<CanopyFlowTerm*> canopyFlows_;
+  ContactTerm* contact_ = nullptr;
 };
 
 }  // namespace chute

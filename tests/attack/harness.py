@@ -85,6 +85,9 @@ def run(cmd, cwd, expect, timeout=20.0, mem_mb=4096, asan=False, marker=None, en
 
     if marker and os.path.exists(marker):
         os.remove(marker)
+    out = written_dir(cmd, cwd)
+    if out and os.path.exists(out):
+        out = None  # there before the run: not the run's to leave alone
     start = time.time()
     p = subprocess.Popen(cmd, cwd=cwd, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
                          stderr=subprocess.PIPE, preexec_fn=limits, env=full_env)
@@ -104,7 +107,22 @@ def run(cmd, cwd, expect, timeout=20.0, mem_mb=4096, asan=False, marker=None, en
         pass
     seconds = time.time() - start
     err = err.decode("utf-8", "replace")
-    return classify(p.returncode, err, hung, seconds, expect, marker)
+    outcome = classify(p.returncode, err, hung, seconds, expect, marker)
+    # A refused `chute run` writes nothing: an --out directory that did not exist must not exist
+    # after it.
+    if outcome.cls == "error" and out and os.path.exists(out):
+        return Outcome("broken", p.returncode, err, seconds, "a refused run wrote " + out)
+    return outcome
+
+
+def written_dir(cmd, cwd):
+    """The --out directory of a `chute run` command (not a restart, which has its own check),
+    or None."""
+    cmd = [str(a) for a in cmd]
+    if len(cmd) < 2 or cmd[1] != "run" or "--restart" in cmd or "--out" not in cmd:
+        return None
+    i = cmd.index("--out")
+    return os.path.join(cwd, cmd[i + 1]) if i + 1 < len(cmd) else None
 
 
 def classify(rc, err, hung, seconds, expect, marker):

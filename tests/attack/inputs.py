@@ -15,6 +15,7 @@ import sys
 from collections import namedtuple
 
 import cbor
+import mshedit
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
@@ -91,6 +92,8 @@ def setup(ctx):
         geo = f.read()
     ctx.evil_geo = ctx.write("evil.geo", 'System "touch %s";\n%s' % (ctx.marker, geo))
     ctx.write("case_geo.toml", mesh_case_text(ctx, ctx.evil_geo))
+    setup_mesh_damage(ctx)
+    setup_viewers(ctx)
     os.mkfifo(ctx.path("fifo.msh")) if not os.path.exists(ctx.path("fifo.msh")) else None
     for name in ["fifo.toml", "fifo.geo", "fifo.csv"]:
         if not os.path.exists(ctx.path(name)):
@@ -100,6 +103,137 @@ def setup(ctx):
             os.symlink("/dev/zero", ctx.path(name))
     os.makedirs(ctx.path("dir.msh"), exist_ok=True)
     os.makedirs(ctx.path("dir.toml"), exist_ok=True)
+
+
+def gmsh_convert(src, dst, version, binary):
+    """src saved by the gmsh command as format 2.2 or 4.1, ASCII or binary; False if it fails."""
+    if not shutil.which("gmsh"):
+        return False
+    cmd = ["gmsh", src, "-save", "-format", "msh22" if version == "22" else "msh41", "-o", dst]
+    if binary:
+        cmd.append("-bin")
+    return subprocess.run(cmd, capture_output=True).returncode == 0 and os.path.exists(dst)
+
+
+def setup_mesh_damage(ctx):
+    """The meshes damaged by mshedit: the example (triangles, lines) and a generated parachute
+    (a quadrangle slider, a start view), each as ASCII 2.2 and 4.1, with their cases."""
+    gen, case = ctx.path("gen_seed.msh"), ctx.path("gen_seed.toml")
+    subprocess.run([ctx.chute, "mesh", "parachute", "--gores", "8", "--diameter", "2",
+                    "--line-length", "2", "--element-size", "0.5", "--slider", "0.3", "--start",
+                    "folded", "--line-elements", "3", "--out", gen, "--case", case, "--quiet"],
+                   check=True, capture_output=True)
+    ctx.damage_seeds = {}
+    for name, msh41 in [("flat", ctx.seeds["41a"]), ("chute", gen)]:
+        texts = {"41": open(msh41).read()}
+        msh22 = ctx.path("damage_seed_%s_22.msh" % name)
+        if gmsh_convert(msh41, msh22, "22", False):
+            texts["22"] = open(msh22).read()
+        ctx.damage_seeds[name] = texts
+    ctx.gen_case = case
+
+
+MESH_DAMAGE = "msh elements and groups"
+
+
+def damaged_mesh_input(ctx, seed, version, binary, kind, rng, tag):
+    """`chute run` over the seed mesh with one damage of `kind` (mshedit), in format version
+    (ASCII, or binary as gmsh saves the damaged ASCII file): it must be refused (exit 2, one line,
+    nothing written). None when the seed has nothing to damage that way, or gmsh's binary save
+    does not keep the damage (it merges 2.2 groups of one name; it writes no views)."""
+    text = ctx.damage_seeds[seed].get(version)
+    if text is None:
+        return None
+    if binary and (kind == "view_missing_node" or (kind == "group_name" and version == "22")):
+        return None
+    r = mshedit.damage(text, kind, rng)
+    if r is None:
+        return None
+    damaged, what = r
+    name = "%s_%s%s_%s_%s" % (seed, version, "b" if binary else "a", kind, tag)
+    path = ctx.write("dmg_%s.msh" % name, damaged)
+    if binary:
+        out = ctx.path("dmg_%s_bin.msh" % name)
+        if not gmsh_convert(path, out, version, True):
+            return None
+        path = out
+    if seed == "flat":
+        cmd = run_case(ctx, ctx.write("dmg_%s.toml" % name, mesh_case_text(ctx, path)))
+    else:
+        cmd = run_case(ctx, ctx.gen_case, "--set", 'mesh.file="%s"' % path)
+    return Input(MESH_DAMAGE, "%s: %s" % (name, what)[:70], cmd, ERROR, None, 30)
+
+
+VIEWERS = "render and plot files"
+
+
+def vtu_text(connectivity="0 1 1 2", offsets="2 4", types="3 3", kinds="1 1",
+             points="0 0 0 1 0 0 1 1 0"):
+    """A small ASCII frame of three points and two lines, to damage."""
+    n_points = len(points.split()) // 3
+    n_cells = len(types.split())
+    return ('<?xml version="1.0"?>\n<VTKFile type="UnstructuredGrid" version="1.0" '
+            'byte_order="LittleEndian" header_type="UInt64">\n<UnstructuredGrid>'
+            '<Piece NumberOfPoints="%d" NumberOfCells="%d">\n<Points><DataArray type="Float64" '
+            'NumberOfComponents="3" format="ascii">%s</DataArray></Points>\n<Cells><DataArray '
+            'type="Int64" Name="connectivity" format="ascii">%s</DataArray><DataArray type="Int64" '
+            'Name="offsets" format="ascii">%s</DataArray><DataArray type="UInt8" Name="types" '
+            'format="ascii">%s</DataArray></Cells>\n<CellData><DataArray type="Int32" Name="kind" '
+            'format="ascii">%s</DataArray><DataArray type="Float64" Name="axial_force" '
+            'format="ascii">%s</DataArray><DataArray type="Float64" Name="principal_stress" '
+            'NumberOfComponents="2" format="ascii">%s</DataArray></CellData>\n</Piece>'
+            '</UnstructuredGrid></VTKFile>\n' % (
+                n_points, n_cells, points, connectivity, offsets, types, kinds,
+                " ".join(["1"] * n_cells), " ".join(["0 0"] * n_cells)))
+
+
+def pvd_text(files, times=None):
+    times = times or [str(k) for k in range(len(files))]
+    return ('<?xml version="1.0"?>\n<VTKFile type="Collection" version="0.1"><Collection>\n' +
+            "".join('<DataSet timestep="%s" file="%s"/>\n' % (t, f) for t, f in zip(times, files))
+            + "</Collection></VTKFile>\n")
+
+
+def series_dir(ctx, name, frames, pvd=None):
+    """A run directory holding a .pvd over `frames` ({file name: bytes or None for a FIFO or
+    a path to link to})."""
+    d = ctx.path("series_" + name)
+    shutil.rmtree(d, ignore_errors=True)
+    os.makedirs(d)
+    for fname, data in frames.items():
+        p = os.path.join(d, fname)
+        if data is None:
+            os.mkfifo(p)
+        elif isinstance(data, str) and data.startswith("->"):
+            os.symlink(data[2:], p)
+        else:
+            with open(p, "wb") as f:
+                f.write(data if isinstance(data, bytes) else data.encode())
+    if pvd is not False:
+        p = os.path.join(d, "s.pvd")
+        if pvd is None:
+            pvd = pvd_text(sorted(frames))
+        if pvd == "FIFO":
+            os.mkfifo(p)
+        else:
+            with open(p, "w") as f:
+                f.write(pvd)
+    return d
+
+
+def setup_viewers(ctx):
+    """A run with a VTU series for `chute render` (bead_5, one second)."""
+    ctx.vtu_run = ctx.path("vtu_run")
+    subprocess.run([ctx.chute, "run", ctx.case("bead_5.toml"), "--out", ctx.vtu_run, "--quiet",
+                    "--set", "output.vtu.write=true", "--set", "solver.t_end=1"], check=True,
+                   capture_output=True)
+    ctx.frames = sorted(f for f in os.listdir(ctx.vtu_run) if f.endswith(".vtu"))
+
+
+def render_input(ctx, name, run_dir, expect=ERROR, *extra):
+    out = ctx.path("render_out", name)
+    return Input(VIEWERS, name, [ctx.chute, "render", run_dir, "--out", out, "--quiet"] +
+                 list(extra), expect, None, 60)
 
 
 def run_case(ctx, case, *extra):
@@ -161,6 +295,15 @@ def forged(ctx, edit):
     outer["payload"] = cbor.dumps(payload)
     outer["checksum"] = cbor.fnv1a(outer["payload"])
     return cbor.dumps(outer)
+
+
+def parachute_check(ctx, name, args, expect, work=None):
+    """`chute mesh parachute ARGS` and, when it succeeds, two steps of the case it wrote
+    (tests/attack/parachute_check.py): a generated case chute run refuses is a broken promise."""
+    ctx.parachutes = getattr(ctx, "parachutes", 0) + 1
+    work = work or ctx.path("pcheck", str(ctx.parachutes))
+    cmd = [sys.executable, os.path.join(HERE, "parachute_check.py"), ctx.chute, work] + args
+    return Input("mesh parachute arguments", name, cmd, expect, None, 120)
 
 
 def capi_input(ctx, name, ops, case=None, expect=OK):
@@ -233,6 +376,30 @@ def corpus(ctx):
     unv = ctx.write("mesh.unv", "    -1\n  2411\n")
     case = ctx.write("m_unv.toml", mesh_case_text(ctx, unv))
     add(Input("msh 2.2/4.1 ASCII/binary", ".unv", run_case(ctx, case), ERROR, None, 10))
+
+    # ---- every element and group checked on import: each damage in each format (mshedit)
+    import random
+    rng = random.Random(0)
+    for k, kind in enumerate(mshedit.KINDS):
+        for version in ["22", "41"]:
+            for binary in [False, True]:
+                seeds = ["chute", "flat"] if (k + (version == "41")) % 2 else ["flat", "chute"]
+                for seed in seeds:  # the first seed that has something to damage this way
+                    i = damaged_mesh_input(ctx, seed, version, binary, kind, rng, "c")
+                    if i:
+                        add(i)
+                        break
+    add(Input(MESH_DAMAGE, "mesh.scale=1e102 (coordinates past 1e100)",
+              run_case(ctx, ctx.path("case_41a.toml"), "--set", "mesh.scale=1e102"), ERROR, None,
+              20))
+    # A point mass on a node no element uses: its own block of the matrix (it was outside the
+    # sparsity pattern: exit 1).
+    free = ctx.write("free_mass.toml", open(ctx.case("pulley.toml")).read().replace(
+        "[nodes]", "[nodes]\nball = [9.0, 9.0, 9.0]", 1) +
+        "\n[[point_masses]]\nnode = \"ball\"\nmass = 1.0\n")
+    add(Input(T, "a point mass on a node no element uses", run_case(ctx, free, "--set",
+                                                                    "solver.t_end=0.05"), OK,
+              None, 60))
 
     # ---- .geo: never run by a case or the coupling library; bounded through `mesh geo`
     G = ".geo (case, C API, mesh geo)"
@@ -326,8 +493,14 @@ def corpus(ctx):
     # ---- CSV inputs of plot
     P = "plot CSV"
     run_dir = ctx.path("run")
-    plot = [c, "plot", "--columns", ctx.columns, "--out", ctx.path("p.png")]
-    add(Input(P, "valid", plot + [run_dir], OK, None, 60))
+    # Each input its own image: inputs run two at a time, and two plots of one --out raced (each
+    # checks its image after writing it; the other's truncation read as "the image could not be
+    # written", exit 3; chute now writes images whole and renames them into place).
+    def plot_to(name):
+        return [c, "plot", "--columns", ctx.columns, "--out",
+                ctx.path("p_%s.png" % name.replace(" ", "_"))]
+
+    add(Input(P, "valid", plot_to("valid") + [run_dir], OK, None, 60))
     lines = ctx.probes.splitlines()
     sub = "\n".join([lines[0]] + [",".join(["4.9406564584124654e-324"] + r.split(",")[1:])
                                   if k == 0 else r for k, r in enumerate(lines[1:])]) + "\n"
@@ -340,13 +513,13 @@ def corpus(ctx):
         os.makedirs(d, exist_ok=True)
         with open(os.path.join(d, "probes.csv"), "w") as f:
             f.write(text)
-        add(Input(P, name, plot + [d], expect, None, 60))
+        add(Input(P, name, plot_to(name) + [d], expect, None, 60))
     d = ctx.path("plot_summary_fifo")
     os.makedirs(d, exist_ok=True)
     shutil.copy(os.path.join(run_dir, "probes.csv"), d)
     if not os.path.lexists(os.path.join(d, "summary.json")):
         os.mkfifo(os.path.join(d, "summary.json"))
-    add(Input(P, "summary.json is a fifo", plot + [d], ERROR, None, 10))
+    add(Input(P, "summary.json is a fifo", plot_to("summary fifo") + [d], ERROR, None, 10))
     for name, target in [("fifo", ctx.path("fifo.csv")), ("dev zero", "/dev/zero"),
                          ("directory", ctx.path("dir.toml"))]:
         d = ctx.path("plot_" + name.replace(" ", "_"))
@@ -354,9 +527,64 @@ def corpus(ctx):
         link = os.path.join(d, "probes.csv")
         if not os.path.lexists(link):
             os.symlink(target, link)
-        add(Input(P, "probes.csv is a " + name, plot + [d], ERROR, None, 10))
-        add(Input(P, "--reference is a " + name, plot + [run_dir, "--reference", target], ERROR,
-                  None, 10))
+        add(Input(P, "probes.csv is a " + name, plot_to("csv " + name) + [d], ERROR, None, 10))
+        add(Input(P, "--reference is a " + name,
+                  plot_to("reference " + name) + [run_dir, "--reference", target], ERROR, None,
+                  10))
+
+    # ---- the files `chute render` and `chute plot` open: frames checked before drawing, no
+    # blocking on FIFOs, the output never a FIFO or a link, images within the memory budget
+    V = VIEWERS
+    good = vtu_text()
+    add(render_input(ctx, "a valid hand-written frame", series_dir(ctx, "good", {"a.vtu": good}),
+                     OK))
+    for name, frame in [("a point index out of range", vtu_text(connectivity="0 1 1 7")),
+                        ("a negative point index", vtu_text(connectivity="0 1 -1 2")),
+                        ("a point index of 2^40", vtu_text(connectivity="0 1 1 1099511627776")),
+                        ("an unknown cell type", vtu_text(types="3 99")),
+                        ("a polyhedron cell", vtu_text(types="3 42")),
+                        ("a hexahedron of two points", vtu_text(types="3 12")),
+                        ("a quadrangle of two points", vtu_text(types="3 9")),
+                        ("offsets past the end", vtu_text(offsets="2 40")),
+                        ("offsets backwards", vtu_text(offsets="4 2")),
+                        ("a kind out of range", vtu_text(kinds="1 99")),
+                        ("a NaN point", vtu_text(points="0 0 0 nan 0 0 1 1 0")),
+                        ("no points", vtu_text(points="", connectivity="", offsets="", types="",
+                                               kinds="")),
+                        ("not XML", "junk\x00\xff" * 100)]:
+        add(render_input(ctx, "frame: " + name, series_dir(ctx, name.replace(" ", "_"),
+                                                           {"a.vtu": frame})))
+    for name, target in [("a FIFO", None), ("/dev/zero", "->/dev/zero"),
+                         ("a directory", "->" + ctx.path("dir.toml"))]:
+        add(render_input(ctx, "frame is " + name, series_dir(ctx, "frame_" + name[-4:],
+                                                             {"a.vtu": target})))
+    add(render_input(ctx, "the .pvd is a FIFO", series_dir(ctx, "pvd_fifo", {"a.vtu": good},
+                                                            "FIFO")))
+    add(render_input(ctx, "a .pvd time that is NaN", series_dir(
+        ctx, "pvd_nan", {"a.vtu": good}, pvd_text(["a.vtu"], ["nan"]))))
+    add(render_input(ctx, "a .pvd naming no file", series_dir(
+        ctx, "pvd_missing", {"a.vtu": good}, pvd_text(["nowhere.vtu"]))))
+    # The snapshot's own file is a FIFO (or a link) before the render writes it.
+    d = series_dir(ctx, "png_fifo", {"a.vtu": good})
+    os.makedirs(os.path.join(d, "snap"))
+    os.mkfifo(os.path.join(d, "snap", "s_iso_t0.000000.png"))
+    add(Input(V, "the snapshot file is a FIFO", [c, "render", d, "--out", os.path.join(d, "snap"),
+                                                 "--quiet"], ERROR, None, 30))
+    run_dir_v = ctx.vtu_run
+    add(Input(V, "render 8192x8192 (beyond the memory budget)",
+              [c, "render", run_dir_v, "--size", "8192x8192", "--out",
+               ctx.path("render_out", "big")], ERROR, None, 30))
+    plot_v = [c, "plot", ctx.path("run"), "--out", ctx.path("pv.png")]
+    add(Input(V, "plot --columns t", plot_v + ["--columns", "t"], ERROR, None, 30))
+    add(Input(V, "plot --columns %s,t" % ctx.columns, plot_v + ["--columns", ctx.columns + ",t"],
+              ERROR, None, 30))
+    add(Input(V, "plot --size 8192x8192", plot_v + ["--columns", ctx.columns, "--size",
+                                                    "8192x8192"], ERROR, None, 30))
+    os.mkfifo(ctx.path("plot_fifo.png"))
+    os.symlink(ctx.path("plot_target.png"), ctx.path("plot_link.png"))
+    for name in ["plot_fifo.png", "plot_link.png"]:
+        add(Input(V, "plot --out " + name, [c, "plot", ctx.path("run"), "--columns", ctx.columns,
+                                            "--out", ctx.path(name)], ERROR, None, 20))
 
     # ---- arguments of every verb
     A = "arguments of every verb"
@@ -372,6 +600,27 @@ def corpus(ctx):
         return cmd + [name] + args
 
     add(Input(A, "mesh parachute valid", mp, OK, None, 60))
+    # Generation refuses what would give a case `chute run` refuses, and never aborts.
+    for name, args in [("--vent-diameter 1.999999999 (gmsh threw in OpenMP: abort)",
+                        ["--vent-diameter", "1.999999999"]),
+                       ("--dt 3 --t-end 2", ["--dt", "3", "--t-end", "2", "--case",
+                                             ctx.path("pc.toml")]),
+                       ("--slider-divisions 1000 with --case",
+                        ["--slider", "0.3", "--slider-divisions", "1000", "--case",
+                         ctx.path("pc.toml")]),
+                       ("--out without .msh", ["--out", ctx.path("p.mesh")])]:
+        cmd = opt(args, args[0]) if args[0] != "--out" else (
+            mp[:mp.index("--out")] + args + ["--quiet"])
+        add(Input(A, "mesh parachute " + name, cmd, ERROR, None, 30))
+    # Paths written into the generated case: quotes, backslashes, newlines, tabs, spaces,
+    # non-ASCII are escaped; a path that is not UTF-8 cannot be named in TOML (refused).
+    for k, name in enumerate(['q"uote', "back\\slash", "new\nline", "tab\tstop", "sp ace #x",
+                              "\u00e9t\u00e9", "dollar$HOME"]):
+        d = ctx.path("pcheck_%d" % k)
+        add(parachute_check(ctx, "mesh parachute --out/--case named " + repr(name),
+                            ["--gores", "8", "--diameter", "2", "--line-length", "2",
+                             "--element-size", "0.5", "--out", os.path.join(d, name + ".msh"),
+                             "--case", os.path.join(d, name + ".toml")], OK, d))
     for name, args in [("--gores", ["1000000"]), ("--gores", ["abc"]), ("--gores", ["-3"]),
                        ("--line-elements", ["1000000000"]), ("--element-size", ["1e-9"]),
                        ("--mesh-algorithm", ["8"]), ("--mesh-algorithm", ["2"]),

@@ -5,6 +5,7 @@
 // output work happens where the scene declares none, and which terms the system builds.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -196,6 +197,9 @@ TEST(PayOnly, NoWorkForWhatTheSceneDoesNotDeclare) {
     // balance's (solver/EnergyMonitor.hpp): one per step, one at the start, two for the floor
     // m |g| L of its scale (every scene here has gravity).
     EXPECT_EQ(w.energy, static_cast<long>(row.r.times.size()) + row.r.steps + 1 + 2);
+    // No scene here declares [contact]: no contact work at all.
+    EXPECT_EQ(w.contact, 0);
+    EXPECT_EQ(w.contactLists, 0);
     if (cable) {
       EXPECT_GT(w.lineElastic, 0);
       EXPECT_EQ(w.membrane, 0);
@@ -240,5 +244,33 @@ TEST(PayOnly, NoWorkForWhatTheSceneDoesNotDeclare) {
     EXPECT_EQ(with.r.work.lineElastic + with.r.work.sliding -
                   (plain.r.work.lineElastic + plain.r.work.sliding),
               2 * frames * with.lineElements);
+  }
+}
+
+// Contact only with a [contact] section: cases/contact_drop.toml as shipped (the sheet bounces on
+// the floor) and with contact.enabled = false. Without it no contact term is built and no pair
+// distance computed, no candidate list built.
+TEST(PayOnly, ContactOnlyWhereTheCaseAsksForIt) {
+  const std::string file = std::string(CHUTE_SOURCE_DIR) + "/cases/contact_drop.toml";
+  for (const bool on : {true, false}) {
+    const CaseSpec spec =
+        readCase(file, {"solver.t_end=0.1", on ? "contact.enabled=true" : "contact.enabled=false"});
+    const StructuralSystem sys(spec.model, spec.solver.search);
+    std::vector<std::string> terms;
+    for (const auto& t : sys.terms()) terms.push_back(t->name());
+    const RunResult r = runCase(spec, RunOptions{});
+    ASSERT_EQ(r.status, RunStatus::Completed) << r.reason;
+    std::printf("contact_drop %s contact: terms %s; %ld pair distances, %ld candidate lists\n",
+                on ? "with" : "without", joined(terms).c_str(), r.work.contact,
+                r.work.contactLists);
+    const bool built = std::find(terms.begin(), terms.end(), "contact") != terms.end();
+    EXPECT_EQ(built, on);
+    if (on) {
+      EXPECT_GT(r.work.contact, 0);
+      EXPECT_GT(r.work.contactLists, 0);
+    } else {
+      EXPECT_EQ(r.work.contact, 0);
+      EXPECT_EQ(r.work.contactLists, 0);
+    }
   }
 }

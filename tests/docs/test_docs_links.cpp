@@ -97,13 +97,14 @@ TEST(Docs, NoFileCitesDesignNotesOutsideTheRepository) {
 TEST(Docs, EveryEquationTagAndSectionTheCodeCitesExists) {
   const std::string formulation = readAll(kRoot / "docs/formulation.md");
   const std::string friction = readAll(kRoot / "docs/friction.md");
+  const std::string contact = readAll(kRoot / "docs/contact.md");
   // A tag is defined where it heads a table row ("| F12 |") or stands in parentheses ("(FR3)").
   auto defined = [](const std::string& page, const std::string& tag) {
     return page.find("| " + tag + " |") != std::string::npos ||
            page.find("(" + tag + ")") != std::string::npos;
   };
   static const std::regex tag(
-      R"(\b(F[0-9]{1,2}|FR[0-9]{1,2}|FD[0-9]|RG[0-9]|WR[0-9]|TI[0-9]|FL[0-9]{1,2})\b)");
+      R"(\b(F[0-9]{1,2}|FR[0-9]{1,2}|FD[0-9]|RG[0-9]|WR[0-9]|TI[0-9]|FL[0-9]{1,2}|CT[0-9]{1,2})\b)");
   static const std::regex section(R"(formulation\.md sections? ([0-9])(?:-([0-9]))?)");
   std::set<std::string> tags;
   int sections = 0;
@@ -123,10 +124,16 @@ TEST(Docs, EveryEquationTagAndSectionTheCodeCitesExists) {
         }
     }
   for (const auto& t : tags) {
-    const bool fr = t.rfind("FR", 0) == 0;
-    EXPECT_TRUE(defined(fr ? friction : formulation, t))
+    const bool fr = t.rfind("FR", 0) == 0, ct = t.rfind("CT", 0) == 0;
+    EXPECT_TRUE(defined(fr   ? friction
+                        : ct ? contact
+                             : formulation,
+                        t))
         << t << " is cited in the code but not defined in docs/"
-        << (fr ? "friction" : "formulation") << ".md";
+        << (fr   ? "friction"
+            : ct ? "contact"
+                 : "formulation")
+        << ".md";
   }
   std::printf("%zu distinct tags and %d section citations checked\n", tags.size(), sections);
   EXPECT_GT(tags.size(), 20u);

@@ -102,3 +102,51 @@ TEST(MeshImport, MissingOrMisdimensionedGroupsAreErrorsNamingThem) {
     EXPECT_NE(e.find(file), std::string::npos) << e;
   }
 }
+
+namespace {
+std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+}  // namespace
+
+// The start view must give every node of the mesh (a node it left out started at its reference
+// point, torn from its neighbours, and the case was accepted), and a scale must keep coordinates
+// within +-1e100 (mesh.scale took them past it).
+TEST(MeshImport, AStartViewThatOmitsNodesOrAScaleBeyondTheLimitIsRefused) {
+  const std::string c9 = CHUTE_SOURCE_DIR "/cases/c9_slider.toml";
+  std::string text = slurp(CHUTE_SOURCE_DIR "/cases/c9_slider.msh");
+  // The view's count 817 -> 816 and its line for node 500 gone.
+  const auto head = text.find("\"initial_displacement\"");
+  ASSERT_NE(head, std::string::npos);
+  const auto count = text.find("\n817\n", head);
+  ASSERT_NE(count, std::string::npos);
+  text.replace(count, 5, "\n816\n");
+  const auto line = text.find("\n500 ", count);
+  ASSERT_NE(line, std::string::npos);
+  text.erase(line, text.find('\n', line + 1) - line);
+  const std::string msh = ::testing::TempDir() + "c9_view_short.msh";
+  std::ofstream(msh) << text;
+  std::string message;
+  try {
+    readCase(c9, {"mesh.file=\"" + msh + "\""});
+  } catch (const CaseError& e) {
+    message = e.what();
+  }
+  std::printf("%s\n", message.c_str());
+  EXPECT_NE(message.find("mesh.initial_displacement: view 'initial_displacement' of " + msh +
+                         " has no value at node 500 (1 of the mesh's 817 nodes missing)"),
+            std::string::npos)
+      << message;
+
+  message.clear();
+  try {
+    readCase(c9, {"mesh.scale=1e100"});  // the canopy is 7 ft from the axis
+  } catch (const CaseError& e) {
+    message = e.what();
+  }
+  std::printf("%s\n", message.c_str());
+  EXPECT_NE(message.find("mesh.scale: node "), std::string::npos) << message;
+  EXPECT_NE(message.find("is beyond +-1e100 once scaled by 1e+100"), std::string::npos) << message;
+  EXPECT_NO_THROW(readCase(c9, {"mesh.scale=1e98"}));
+}

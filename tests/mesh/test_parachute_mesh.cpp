@@ -6,9 +6,15 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <numbers>
+#include <string>
+#include <vector>
 
+#include "ClusterCaseWriter.hpp"
+#include "ClusterGenerator.hpp"
 #include "GmshMesh.hpp"
+#include "MshReader.hpp"
 #include "ParachuteCaseWriter.hpp"
 #include "ParachuteGenerator.hpp"
 #include "app/RunCase.hpp"
@@ -238,4 +244,256 @@ TEST(ParachuteMesh, GeneratedFoldedCaseRunsAFewSteps) {
   std::printf("generated folded 8-gore case: %s, %ld steps, %.2f Newton iterations/step\n",
               std::string(runStatusName(r.status)).c_str(), r.steps, r.newtonPerStep());
   EXPECT_EQ(r.status, RunStatus::Completed);
+}
+
+namespace {
+// A small parachute with every feature (vent, slider, payload box on risers), folded.
+ParachuteSpec everything() {
+  ParachuteSpec s;
+  s.gores = 8;
+  s.diameter = 2.0;
+  s.ventDiameter = 0.4;
+  s.lineLength = 2.0;
+  s.lineElements = 4;
+  s.elementSize = 0.4;
+  s.sliderSide = 0.3;
+  s.payloadMass = 1.0;
+  s.payloadBox = {0.2, 0.2, 0.2};
+  s.riserLength = 0.5;
+  s.start = "folded";
+  return s;
+}
+}  // namespace
+
+// Every generator option over classes of values (tiny, subnormal, huge, near a bound, NaN, inf,
+// negative): each is refused by name before gmsh runs (std::invalid_argument starting with the
+// option), or yields a mesh and a case the reader takes. gmsh, given a vent ring 1e-9 wide,
+// threw inside an OpenMP region and aborted chute (exit 134); a slider of 1e-12 gave a case that
+// blew up at its first step.
+TEST(ParachuteMesh, ExtremeValuesOfEveryOptionAreRefusedByNameOrGiveACaseThatReads) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  const std::vector<double> common = {5e-324, 1e-300, 1e-12, 1e-9, -1.0, -0.0,
+                                      0.0,    1e6,    1e308, nan,  inf,  -inf};
+  struct Option {
+    const char* name;
+    double ParachuteSpec::*field;
+    std::vector<double> nearBounds;  // values near its bounds for this spec
+  };
+  const std::vector<Option> options = {
+      {"--diameter", &ParachuteSpec::diameter, {1e-6, 0.8, 3.999}},
+      {"--vent-diameter", &ParachuteSpec::ventDiameter, {1.999999999, 1.998, 0.002, 0.0019}},
+      {"--line-length", &ParachuteSpec::lineLength, {1.000000001, 1.0000005, 1.01}},
+      {"--element-size", &ParachuteSpec::elementSize, {1.0, 1.0000001, 0.01}},
+      {"--slider", &ParachuteSpec::sliderSide, {0.002, 0.0019, 1.5, 3.0}},
+      {"--payload-mass", &ParachuteSpec::payloadMass, {1e-6, 9e-7}},
+      {"--riser-length", &ParachuteSpec::riserLength, {0.1415, 0.1414, 0.002}},
+      {"--bundle-radius", &ParachuteSpec::bundleRadius, {0.999999, 0.002, 0.0019}},
+      {"--slider-drop", &ParachuteSpec::sliderDrop, {1.9999, 5.0, 0.002}},
+      {"--line-slack", &ParachuteSpec::lineSlack, {0.4999, 0.49}},
+      {"--inflated-ratio", &ParachuteSpec::inflatedRatio, {0.63662, 0.6367, 0.99999999}}};
+  int refused = 0, generated = 0;
+  std::vector<std::string> wrong;
+  const std::string msh = temp("extreme.msh"), toml = temp("extreme.toml");
+  for (const auto& o : options) {
+    std::vector<double> values = common;
+    values.insert(values.end(), o.nearBounds.begin(), o.nearBounds.end());
+    for (const double v : values) {
+      ParachuteSpec s = everything();
+      s.*o.field = v;
+      if (std::string(o.name) == "--inflated-ratio") s.start = "inflated";
+      s.caseLimits = {MshLimits{}.maxNodes, MshLimits{}.maxElements, 300000};
+      const std::string what = std::string(o.name) + " " + std::to_string(v);
+      try {
+        const auto g = generateParachute(s, msh);
+        writeParachuteCase(s, g, toml, msh, {});
+        readCase(toml);
+        ++generated;
+      } catch (const std::invalid_argument& e) {
+        ++refused;
+        // Named by an option (this one, or the one it conflicts with).
+        if (std::string(e.what()).rfind("--", 0) != 0) wrong.push_back(what + ": " + e.what());
+      } catch (const std::exception& e) {
+        wrong.push_back(what + ": " + e.what());
+      }
+    }
+  }
+  std::printf("%d values of %zu options: %d refused by name, %d generated a case that reads\n",
+              refused + generated + static_cast<int>(wrong.size()), options.size(), refused,
+              generated);
+  for (const auto& w : wrong) ADD_FAILURE() << w;
+  EXPECT_GT(generated, 10);
+}
+
+// The generated case's own options over the same classes of values, for the free flight (the
+// default), the wind tunnel (--held) and the legacy --pressure frame: each is refused by name
+// (std::invalid_argument starting with the option or the one it conflicts with), or gives a
+// case the reader takes. A --speed beyond 200 m/s (or held, below 0.01 m/s), an altitude
+// outside the troposphere, a negative permeability, an infinite interval are refused (a NaN
+// --speed or --pressure means "the default" here: the command line refuses a number that is
+// not finite).
+TEST(ParachuteMesh, ExtremeValuesOfEveryCaseOptionAreRefusedByNameOrGiveACaseThatReads) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  const std::vector<double> common = {5e-324, 1e-300, 1e-12, 1e-9, -1.0, -0.0,
+                                      0.0,    1e6,    1e308, nan,  inf,  -inf};
+  struct Option {
+    const char* name;
+    double ParachuteCaseOptions::*field;
+    std::vector<double> nearBounds;  // values near its bounds (ft units)
+  };
+  const std::vector<Option> options = {
+      {"--speed", &ParachuteCaseOptions::speed, {656.16, 656.17, 1e4, 65.6, 0.0328, 0.0329}},
+      {"--altitude", &ParachuteCaseOptions::altitude, {-1640.41, -1640.42, 36089.2, 36089.3}},
+      {"--cloth-permeability", &ParachuteCaseOptions::clothPermeability, {1e4, 1.0001e4, 100}},
+      {"--pressure", &ParachuteCaseOptions::pressure, {1e-6, 9.9e-7, 1e4, 1.01e4}},
+      {"--ramp-time", &ParachuteCaseOptions::rampTime, {1e6, 1.01e6}},
+      {"--dt", &ParachuteCaseOptions::dt, {2.0, 2.01, 2e-9, 1.99e-9}},
+      {"--t-end", &ParachuteCaseOptions::tEnd, {1e6, 1.01e6, 2e-3, 1.99e-3}},
+      {"--probe-interval", &ParachuteCaseOptions::probeInterval, {1e-3}},
+      {"--vtu-interval", &ParachuteCaseOptions::vtuInterval, {1e-3}}};
+  ParachuteSpec s = everything();
+  const std::string msh = temp("extreme_case.msh"), toml = temp("extreme_case.toml");
+  const auto g = generateParachute(s, msh);
+  int refused = 0, written = 0;
+  std::vector<std::string> wrong;
+  for (const char* frame : {"free", "held", "pressure"})
+    for (const auto& o : options) {
+      std::vector<double> values = common;
+      values.insert(values.end(), o.nearBounds.begin(), o.nearBounds.end());
+      for (const double v : values) {
+        ParachuteCaseOptions c;
+        c.held = std::string(frame) == "held";
+        if (std::string(frame) == "pressure") c.pressure = 0.1;
+        c.*o.field = v;
+        const std::string what = std::string(frame) + ": " + o.name + " " + std::to_string(v);
+        try {
+          writeParachuteCase(s, g, toml, msh, c);
+          readCase(toml);
+          ++written;
+        } catch (const std::invalid_argument& e) {
+          ++refused;
+          if (std::string(e.what()).rfind("--", 0) != 0) wrong.push_back(what + ": " + e.what());
+        } catch (const std::exception& e) {
+          wrong.push_back(what + ": " + e.what());
+        }
+      }
+    }
+  std::printf(
+      "%d values of %zu case options in 3 frames: %d refused by name, %d gave a case "
+      "that reads\n",
+      refused + written + static_cast<int>(wrong.size()), options.size(), refused, written);
+  for (const auto& w : wrong) ADD_FAILURE() << w;
+  EXPECT_GT(written, 30);
+  // The speed's bounds (200 m/s, 656 ft/s; held, at least 0.01 m/s) in the case's units.
+  ParachuteCaseOptions c;
+  for (const double bad : {656.2, 1e4, 0.0, -1.0, inf}) {
+    c.speed = bad;
+    EXPECT_THROW(checkParachuteCaseOptions(c), std::invalid_argument) << bad;
+  }
+  c.speed = 1e-3;
+  EXPECT_NO_THROW(checkParachuteCaseOptions(c));
+  c.held = true;
+  EXPECT_THROW(checkParachuteCaseOptions(c), std::invalid_argument);
+  c.units = "si";
+  c.speed = 0.01;
+  EXPECT_NO_THROW(checkParachuteCaseOptions(c));
+  c.speed = 201.0;
+  EXPECT_THROW(checkParachuteCaseOptions(c), std::invalid_argument);
+  c.speed = 200.0;
+  EXPECT_NO_THROW(checkParachuteCaseOptions(c));
+}
+
+// Paths are written into the case as TOML strings with their quotes, backslashes and control
+// characters escaped: a quote or newline in --out ended the string and broke the case.
+TEST(ParachuteMesh, PathsWithQuotesBackslashesAndNewlinesReadBackAsThemselves) {
+  ParachuteSpec s = c9(0.5);
+  s.gores = 8;
+  s.elementSize = 2.0;
+  s.sliderSide = 0.0;
+  const std::filesystem::path dir = temp("odd paths");
+  std::filesystem::create_directories(dir);
+  for (const std::string name :
+       {"a\"b.msh", "back\\slash.msh", "new\nline.msh", "tab\tand \u00e9.msh"}) {
+    const std::string msh = (dir / name).string();
+    const std::string toml = (dir / ("case " + std::to_string(name.size()) + "\n\".toml")).string();
+    const auto g = generateParachute(s, msh);
+    writeParachuteCase(s, g, toml, msh, {});
+    const CaseSpec c = readCase(toml);
+    std::printf("mesh '%s': the case reads %d nodes (generated %zu), name '%s'\n", name.c_str(),
+                c.model.numNodes(), g.mesh.nodeTags.size(), c.name.c_str());
+    EXPECT_EQ(c.model.numNodes(), static_cast<int>(g.mesh.nodeTags.size()));
+  }
+  // The cluster's case writer escapes alike.
+  ClusterSpec c;
+  c.canopies = 2;
+  c.parachute = s;
+  c.parachute.start = "folded";
+  c.payloadMass = 2.0;
+  const std::string msh = (dir / "clu\"ster\n.msh").string();
+  const std::string toml = (dir / "clu\"ster\\.toml").string();
+  writeClusterCase(c, generateCluster(c, msh), toml, msh, {});
+  const CaseSpec cluster = readCase(toml);
+  std::printf("cluster over '%s': the case reads %d nodes, name '%s'\n", msh.c_str(),
+              cluster.model.numNodes(), cluster.name.c_str());
+  EXPECT_GT(cluster.model.numNodes(), 0);
+
+  ParachuteCaseOptions o;
+  o.dt = 3.0;  // larger than t_end = 2
+  EXPECT_THROW(checkParachuteCaseOptions(o), std::invalid_argument);
+  o.dt = 1e-12;
+  o.tEnd = 1e6;  // 1e18 steps
+  EXPECT_THROW(checkParachuteCaseOptions(o), std::invalid_argument);
+  // A canopy pressure the generated case cannot fly: 1e6 psf (its explicit step blew up) or
+  // 1e-12 psf (its energies are rounding noise); 0 is no pressure.
+  o = ParachuteCaseOptions{};
+  for (const double bad : {1e6, 1e-12, -1.01e4}) {
+    o.pressure = bad;
+    EXPECT_THROW(checkParachuteCaseOptions(o), std::invalid_argument) << bad;
+  }
+  for (const double fine : {0.0, 1e4, 1e-6, -0.5}) {
+    o.pressure = fine;
+    EXPECT_NO_THROW(checkParachuteCaseOptions(o)) << fine;
+  }
+  // A path that is not UTF-8 cannot be named in TOML: refused, not written.
+  const std::string bad = (dir / "\xff.msh").string();
+  EXPECT_THROW(writeParachuteCase(s, generateParachute(s, bad), (dir / "x.toml").string(), bad, {}),
+               std::invalid_argument);
+}
+
+// A case is written only for a mesh `chute run` takes with its default limits: 1000 slider
+// divisions (a million nodes, more than a case reads) are refused before gmsh runs; a mesh
+// with more equations than a run takes, once meshed, before anything is written. Lines,
+// risers and slider quads finer than a tenth of the canopy's elements are refused (the explicit
+// step follows the shortest element: 3,000 elements a line took minutes for 4 ms).
+TEST(ParachuteMesh, ACaseBeyondTheRunsLimitsIsRefusedAtGeneration) {
+  ParachuteSpec s = everything();
+  s.sliderDivisions = 1000;
+  s.caseLimits = {MshLimits{}.maxNodes, MshLimits{}.maxElements, 300000};
+  try {
+    generateParachute(s, "");
+    FAIL() << "expected a refusal";
+  } catch (const std::invalid_argument& e) {
+    std::printf("%s\n", e.what());
+    EXPECT_NE(std::string(e.what()).find("--slider-divisions"), std::string::npos);
+  }
+  s.sliderDivisions = 200;  // 40,401 slider nodes: 121 k equations, within 300,000
+  s.elementSize = 0.01;     // slider quads 1.5e-3 long: at least a tenth of the canopy's
+  s.caseLimits.maxEquations = 100000;
+  try {
+    generateParachute(s, "");
+    FAIL() << "expected a refusal";
+  } catch (const std::invalid_argument& e) {
+    std::printf("%s\n", e.what());
+    EXPECT_NE(std::string(e.what()).find("solver.max_equations"), std::string::npos);
+  }
+  s = everything();
+  s.lineElements = 3000;  // 6.7e-4 ft elements under a canopy of 0.4 ft
+  try {
+    generateParachute(s, "");
+    FAIL() << "expected a refusal";
+  } catch (const std::invalid_argument& e) {
+    std::printf("%s\n", e.what());
+    EXPECT_EQ(std::string(e.what()).rfind("--line-elements: ", 0), 0u);
+  }
 }

@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 #include <vtkCellData.h>
@@ -20,6 +21,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -436,4 +438,260 @@ TEST(ParaView, OpensTheSeriesWithItsOwnReader) {
   EXPECT_EQ(im.width, 640);
   EXPECT_EQ(im.height, 360);
   EXPECT_GT(im.spread, 5.0);  // the rope and the bead drawn, not a blank image
+}
+
+namespace {
+// The Xvfb servers whose parent is `parent` (from /proc: "pid (comm) state ppid ...").
+std::vector<pid_t> serversOf(pid_t parent) {
+  std::vector<pid_t> out;
+  for (const auto& e : fs::directory_iterator("/proc")) {
+    std::ifstream in(e.path() / "stat");
+    pid_t p = 0, pp = 0;
+    std::string comm, state;
+    if (in >> p >> comm >> state >> pp && pp == parent && comm == "(Xvfb)" && state != "Z")
+      out.push_back(p);
+  }
+  return out;
+}
+
+// `chute args` with stderr captured: (exit status, stderr).
+std::pair<int, std::string> runCaptured(const std::string& args, int seconds = 60) {
+  const std::string err = ::testing::TempDir() + "render_stderr.txt";
+  const std::string cmd = "env -u DISPLAY timeout -s KILL " + std::to_string(seconds) + " " +
+                          kChute + " " + args + " > /dev/null 2> " + err;
+  const int status = std::system(cmd.c_str());
+  std::ifstream in(err);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text};
+}
+}  // namespace
+
+// A series whose frame is damaged (a cell naming a point that does not exist, an unknown cell
+// type) or is a FIFO, or whose .pvd is a FIFO, is refused with exit status 2 and one line before
+// anything is drawn or written: it crashed the renderer (a segmentation fault, its Xvfb left
+// running) or blocked `chute render` for ever.
+TEST(Render, DamagedFramesAndFifosAreRefusedBeforeAnythingIsDrawn) {
+  const auto dir = smallRun("damaged");
+  std::string frame;
+  for (const auto& e : fs::directory_iterator(dir))
+    if (e.path().extension() == ".vtu" && (frame.empty() || e.path().string() < frame))
+      frame = e.path().string();
+  ASSERT_FALSE(frame.empty());
+  // An ASCII copy of a frame to damage: two points, a line, and an index or type changed.
+  auto write = [](const fs::path& at, const std::string& connectivity, const std::string& types) {
+    std::ofstream(at) << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" "
+                         "version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
+                         "<UnstructuredGrid><Piece NumberOfPoints=\"2\" NumberOfCells=\"1\">\n"
+                         "<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" "
+                         "format=\"ascii\">0 0 0 1 0 0</DataArray></Points>\n<Cells>"
+                         "<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">"
+                      << connectivity
+                      << "</DataArray><DataArray type=\"Int64\" Name=\"offsets\" "
+                         "format=\"ascii\">2</DataArray><DataArray type=\"UInt8\" Name=\"types\" "
+                         "format=\"ascii\">"
+                      << types
+                      << "</DataArray></Cells>\n<CellData><DataArray type=\"Int32\" Name=\"kind\" "
+                         "format=\"ascii\">1</DataArray><DataArray type=\"Float64\" "
+                         "Name=\"axial_force\" format=\"ascii\">1</DataArray><DataArray "
+                         "type=\"Float64\" Name=\"principal_stress\" NumberOfComponents=\"2\" "
+                         "format=\"ascii\">0 0</DataArray></CellData>\n</Piece></UnstructuredGrid>"
+                         "</VTKFile>\n";
+  };
+  struct Case {
+    std::string what, expect;
+    std::function<void(const fs::path&)> damage;
+  };
+  const std::vector<Case> cases = {
+      {"a point index out of range", "cell 0 names point 7",
+       [&](const fs::path& d) { write(d / "bad.vtu", "0 7", "3"); }},
+      {"a negative point index", "cell 0 names point -1",
+       [&](const fs::path& d) { write(d / "bad.vtu", "0 -1", "3"); }},
+      {"an unknown cell type", "is of VTK type 99",
+       [&](const fs::path& d) { write(d / "bad.vtu", "0 1", "99"); }},
+      {"a frame that is a FIFO", "is not a regular file",
+       [&](const fs::path& d) { ::mkfifo((d / "bad.vtu").c_str(), 0600); }}};
+  for (const auto& c : cases) {
+    const fs::path d = freshDir("damaged_" + std::to_string(&c - cases.data()));
+    fs::create_directories(d);
+    c.damage(d);
+    std::ofstream(d / "s.pvd") << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" "
+                                  "version=\"0.1\"><Collection>\n<DataSet timestep=\"0\" "
+                                  "file=\"bad.vtu\"/>\n</Collection></VTKFile>\n";
+    const auto t0 = std::chrono::steady_clock::now();
+    const auto [status, err] =
+        runCaptured("render " + d.string() + " --out " + (d / "snap").string());
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::printf("%-28s exit %d in %.2f s: %s", c.what.c_str(), status, seconds, err.c_str());
+    EXPECT_EQ(status, 2) << c.what;
+    EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+    EXPECT_NE(err.find(c.expect), std::string::npos) << err;
+    EXPECT_FALSE(fs::exists(d / "snap")) << c.what << ": something was written";
+  }
+  // The .pvd itself a FIFO: refused at once, not read for ever.
+  const fs::path d = freshDir("pvd_fifo");
+  fs::create_directories(d);
+  ASSERT_EQ(::mkfifo((d / "s.pvd").c_str(), 0600), 0);
+  const auto [status, err] = runCaptured("render " + d.string(), 20);
+  std::printf("a .pvd that is a FIFO: exit %d: %s", status, err.c_str());
+  EXPECT_EQ(status, 2);
+}
+
+// chute render killed by SIGKILL (no handler runs) takes its Xvfb with it: the kernel sends the
+// server SIGTERM when its parent dies (before, the server was left running).
+TEST(Render, ASigkilledRenderLeavesNoXvfbRunning) {
+  const fs::path dir = smallRun("sigkill");
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    ::unsetenv("DISPLAY");
+    const int devnull = ::open("/dev/null", O_WRONLY);
+    ::dup2(devnull, 1), ::dup2(devnull, 2);
+    const std::string out = (dir / "frames").string();
+    ::execl(kChute.c_str(), kChute.c_str(), "render", dir.c_str(), "--all", "--size", "1920x1080",
+            "--out", out.c_str(), "--quiet", static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  std::vector<pid_t> servers;
+  for (int k = 0; k < 400 && servers.empty(); ++k) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(25));
+    servers = serversOf(pid);
+  }
+  ASSERT_FALSE(servers.empty()) << "chute render started no Xvfb within 10 s";
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  ::kill(pid, SIGKILL);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  bool gone = false;
+  for (int k = 0; k < 200 && !gone; ++k) {
+    gone = ::kill(servers[0], 0) != 0;
+    if (!gone) {
+      // Reparented to init: a zombie until reaped counts as gone.
+      std::ifstream in("/proc/" + std::to_string(servers[0]) + "/stat");
+      pid_t p = 0;
+      std::string comm, state;
+      gone = !(in >> p >> comm >> state) || state == "Z";
+    }
+    if (!gone) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  std::printf("chute render (pid %d) got SIGKILL; its Xvfb (pid %d) %s\n", pid, servers[0],
+              gone ? "exited" : "is still running after 10 s");
+  EXPECT_TRUE(gone);
+  if (!gone) ::kill(servers[0], SIGKILL);
+}
+
+// Plot requests that cannot be drawn: the time as a curve (it crashed with "basic_string:
+// construction from null is not valid"), an image beyond the memory budget (8192x8192 ran out
+// of 4 GiB), a FIFO or symbolic link as the output.
+TEST(Plot, TheTimeAsACurveAnImageBeyondTheBudgetOrAFifoOutIsRefused) {
+  const auto dir = smallRun("plot_refusals");
+  const std::string png = (dir / "p.png").string();
+  for (const auto& [args, expect] : std::vector<std::pair<std::string, std::string>>{
+           {"--columns t", "'t' is the time"},
+           {"--columns bead.x --size 8192x8192", "67108864 pixels"},
+           {"--columns bead.x,t", "'t' is the time"}}) {
+    const auto [status, err] = runCaptured("plot " + dir.string() + " " + args + " --out " + png);
+    std::printf("plot %s: exit %d: %s", args.c_str(), status, err.c_str());
+    EXPECT_EQ(status, 2) << args;
+    EXPECT_NE(err.find(expect), std::string::npos) << err;
+  }
+  ASSERT_EQ(::mkfifo((dir / "fifo.png").c_str(), 0600), 0);
+  fs::create_symlink(dir / "elsewhere.png", dir / "link.png");
+  for (const std::string out : {"fifo.png", "link.png"}) {
+    const auto [status, err] =
+        runCaptured("plot " + dir.string() + " --columns bead.x --out " + (dir / out).string(), 20);
+    std::printf("plot --out %s: exit %d: %s", out.c_str(), status, err.c_str());
+    EXPECT_EQ(status, 2) << out;
+  }
+  EXPECT_FALSE(fs::exists(dir / "elsewhere.png"));
+}
+
+// Two `chute plot` runs writing one --out at once (the attack corpus ran its plot inputs two at a
+// time into one file): each image is written whole beside the target and renamed over it, so
+// neither sees the other's half-written or truncated file. Before, each truncated and wrote the
+// path itself and then checked its size; the other's truncation in between read as "the image
+// could not be written" (exit 3). Both must succeed, leaving a whole image and no temporary file.
+TEST(Plot, TwoPlotsOfOneOutWriteWholeImages) {
+  const auto dir = smallRun("plot_concurrent");
+  const std::string png = (dir / "p.png").string();
+  const std::string plot = "env -u DISPLAY " + kChute + " plot " + dir.string() +
+                           " --columns bead.x --size 320x200 --out " + png + " > /dev/null";
+  for (int round = 0; round < 3; ++round) {
+    const std::string both = "(" + plot + " 2> " + (dir / "e1.txt").string() + "; echo $? > " +
+                             (dir / "s1.txt").string() + ") & (" + plot + " 2> " +
+                             (dir / "e2.txt").string() + "; echo $? > " +
+                             (dir / "s2.txt").string() + ") & wait";
+    ASSERT_EQ(std::system(("bash -c '" + both + "'").c_str()), 0);
+    for (const char* k : {"1", "2"}) {
+      std::ifstream status(dir / (std::string("s") + k + ".txt"));
+      std::ifstream err(dir / (std::string("e") + k + ".txt"));
+      const std::string text((std::istreambuf_iterator<char>(err)),
+                             std::istreambuf_iterator<char>());
+      int code = -1;
+      status >> code;
+      EXPECT_EQ(code, 0) << "round " << round << ", plot " << k << ": " << text;
+    }
+    const Image im = readPng(png);
+    std::printf("round %d: both plots exit 0, %s is %dx%d\n", round, png.c_str(), im.width,
+                im.height);
+    EXPECT_EQ(im.width, 320);
+    EXPECT_EQ(im.height, 200);
+  }
+  for (const auto& e : fs::directory_iterator(dir))
+    EXPECT_EQ(e.path().filename().string().rfind(".chute-png-", 0), std::string::npos)
+        << "a temporary image left behind: " << e.path();
+}
+
+// A frame whose XML or appended-data headers VTK's reader would trust is refused before the
+// reader sees it (found by mutating real series: an unknown data type in <FieldData> and stray
+// text inside <Cells> crashed the reader, a changed byte count ran it out of memory or past the
+// end of the file).
+TEST(Render, FramesTheVtkReaderWouldTrustAreCheckedFirst) {
+  const auto dir = smallRun("trusted");
+  std::vector<fs::path> frames;
+  for (const auto& e : fs::directory_iterator(dir))
+    if (e.path().extension() == ".vtu") frames.push_back(e.path());
+  std::sort(frames.begin(), frames.end());
+  ASSERT_FALSE(frames.empty());
+  std::ifstream in(frames.back(), std::ios::binary);
+  const std::string good((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto underscore = good.find('_', good.find("<AppendedData"));
+  ASSERT_NE(underscore, std::string::npos);
+  struct Case {
+    std::string what, expect;
+    std::function<std::string(std::string)> damage;
+  };
+  const std::vector<Case> cases = {
+      {"an unknown data type", "a data type VTK's reader does not take",
+       [](std::string s) { return s.replace(s.find("Float64"), 7, "Float60"); }},
+      {"text inside <Cells>", "text in <Cells>",
+       [](std::string s) { return s.insert(s.find("<Cells>") + 7, "s"); }},
+      {"no '_' before the data", "does not start with '_'",
+       [&](std::string s) { return s.replace(underscore, 1, "L"); }},
+      {"a byte count of 2^31", "its header announces",
+       [&](std::string s) { return s.replace(underscore + 1, 4, std::string("\0\0\0\x80", 4)); }},
+      {"a count of points of 1e12", "NumberOfPoints or NumberOfCells", [](std::string s) {
+         const auto at = s.find("NumberOfPoints=\"") + 16;
+         return s.replace(at, s.find('"', at) - at, "1000000000000");
+       }}};
+  for (const auto& c : cases) {
+    const fs::path d = freshDir("trusted_" + std::to_string(&c - cases.data()));
+    fs::create_directories(d);
+    std::ofstream(d / "f.vtu", std::ios::binary) << c.damage(good);
+    std::ofstream(d / "s.pvd") << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" "
+                                  "version=\"0.1\"><Collection>\n<DataSet timestep=\"0\" "
+                                  "file=\"f.vtu\"/>\n</Collection></VTKFile>\n";
+    const auto [status, err] = runCaptured("render " + d.string() + " --out " + (d / "s").string());
+    std::printf("%-26s exit %d: %s", c.what.c_str(), status, err.c_str());
+    EXPECT_EQ(status, 2) << c.what;
+    EXPECT_NE(err.find(c.expect), std::string::npos) << err;
+  }
+  // The undamaged frame draws, its parts named in a categorical legend.
+  const fs::path d = freshDir("trusted_good");
+  fs::create_directories(d);
+  std::ofstream(d / "f.vtu", std::ios::binary) << good;
+  std::ofstream(d / "s.pvd") << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" "
+                                "version=\"0.1\"><Collection>\n<DataSet timestep=\"0\" "
+                                "file=\"f.vtu\"/>\n</Collection></VTKFile>\n";
+  EXPECT_EQ(runCaptured("render " + d.string() + " --color part --size 320x180").first, 0);
 }

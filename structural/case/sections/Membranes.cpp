@@ -1,11 +1,13 @@
 // [[membranes]]: disks, rectangles and explicit elements, or mesh groups (MeshGroups.cpp).
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <set>
 #include <string>
 #include <vector>
 
+#include "ElementShape.hpp"
 #include "StructuredMeshes.hpp"
 #include "case/MeshGroups.hpp"
 #include "case/sections/SectionLookup.hpp"
@@ -15,31 +17,15 @@ namespace chute::caseio {
 
 namespace {
 
-// Why a membrane element is unusable ("" if it is fine): a repeated node, no area, or (quads) a
-// corner that is not convex about the normal the kernel uses (its reference frame,
-// docs/formulation.md M1).
+// Why a membrane element is unusable ("" if it is fine): mesh/ElementShape.hpp, the check every
+// imported mesh element passes too.
 std::string degenerateElement(const Model& m, const MembraneElement& e) {
-  const int n = e.numNodes;
-  for (int i = 0; i < n; ++i)
-    for (int j = i + 1; j < n; ++j)
-      if (e.nodes[i] == e.nodes[j]) return "node '" + m.nodeName[e.nodes[i]] + "' appears twice";
-  double edge2 = 0.0;
-  for (int i = 0; i < n; ++i)
-    edge2 = std::max(edge2, (m.X[e.nodes[(i + 1) % n]] - m.X[e.nodes[i]]).squaredNorm());
-  const double tol = 1e-12 * edge2;
-  auto X = [&](int i) { return m.X[e.nodes[(i + n) % n]]; };
-  if (n == 3) {
-    if ((X(1) - X(0)).cross(X(2) - X(0)).norm() <= tol)
-      return "zero area (its nodes are collinear)";
-    return "";
-  }
-  const Vec3 normal = (X(2) - X(0)).cross(X(3) - X(1));
-  if (normal.norm() <= tol) return "zero area (its diagonals are parallel)";
-  for (int i = 0; i < 4; ++i)
-    if ((X(i + 1) - X(i)).cross(X(i - 1) - X(i)).dot(normal.normalized()) <= tol)
-      return "not convex at node '" + m.nodeName[e.nodes[i]] +
-             "' (nodes must go round the element, counter-clockwise about its normal)";
-  return "";
+  std::array<Vec3, 4> x;
+  std::array<std::size_t, 4> ids{};
+  for (int i = 0; i < e.numNodes; ++i)
+    x[i] = m.X[e.nodes[i]], ids[i] = static_cast<std::size_t>(e.nodes[i]);
+  const mesh::ShapeProblem p = mesh::elementShapeProblem(x.data(), ids.data(), e.numNodes);
+  return p ? p.text(p.node < 0 ? "" : "'" + m.nodeName[e.nodes[p.node]] + "'") : "";
 }
 
 void readMembraneSet(Model& m, TomlTable t) {

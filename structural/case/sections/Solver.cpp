@@ -19,6 +19,7 @@ constexpr double kLeastRelativeStep = 1e-15;
 // neither energy nor, for stiff parts, stability. Refused rather than run silently otherwise.
 void checkEnergyMomentumModel(const Model& m, TomlTable& s) {
   std::string what;
+  if (m.contact.enabled) what = "fabric contact ([contact]: no discrete gradient of its penalty)";
   for (size_t gi = 0; gi < m.groups.size() && what.empty(); ++gi) {
     const auto& g = m.groups[gi];
     for (size_t k = 0; k < g.sliders.size() && what.empty(); ++k)

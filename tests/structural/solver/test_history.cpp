@@ -54,6 +54,9 @@ TEST(History, EveryTermKindRoundTripsThroughASnapshot) {
       {"capstan_masses", {}, 0.2, 0.3},
       // c9_flight: the airflow's loads (captured air, apparent mass, supplied energy).
       {"c9_flight", {}, 0.02, 0.03},
+      // contact_drop: fabric contact (its candidate lists' build and friction's lag) with the
+      // sheet on the floor.
+      {"contact_drop", {"solver.dt=5e-4", "contact.friction=0.3"}, 0.07, 0.08},
   };
   std::set<std::string> covered;
   for (const auto& sc : scenes) {
