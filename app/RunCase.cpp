@@ -351,6 +351,9 @@ void reportSystem(StructuralSystem& sys, RunResult& r) {
 
 // The flight figures of a run with a canopy probe and a force probe (docs/flight.md).
 void reportFlight(const CaseSpec& spec, const StructuralSystem& sys, RunResult& r) {
+  // A run that diverged or went unstable flew no parachute to its end: its rows hold no steady
+  // state, and their last may be the blow-up's.
+  if (r.status != RunStatus::Completed) return;
   const auto series = flightSeries(spec.output.probes, r.columns, r.times, r.rows);
   if (!series) return;
   for (const auto& p : spec.output.probes)
