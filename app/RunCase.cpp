@@ -296,6 +296,9 @@ void reportSystem(StructuralSystem& sys, RunResult& r) {
 // series RunOutput collected as it wrote the rows (the rows themselves are not kept).
 void reportFlight(const CaseSpec& spec, const StructuralSystem& sys, const FlightSeries* series,
                   RunResult& r) {
+  // A run that diverged or went unstable flew no parachute to its end: its rows hold no steady
+  // state, and their last may be the blow-up's.
+  if (r.status != RunStatus::Completed) return;
   if (!series || series->t.empty()) return;
   for (const auto& p : spec.output.probes)
     if (p.kind == ProbeKind::Canopy)

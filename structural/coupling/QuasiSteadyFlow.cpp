@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "kernels/CanopyFlow.hpp"
 #include "kernels/PressureKernel.hpp"
 
 namespace chute::coupling {
@@ -11,8 +12,10 @@ double QuasiSteadyFlowLaw::pressure(const Vec3& A, const Vec3& vf, const Vec3& a
   if (area == 0.0) return stagnation(t);
   const Vec3 n = A / area;
   const double vn = (vf - wind).dot(n), an = af.dot(n);
+  // The fabric's normal motion as in the canopy's airflow loads (formulation.md FL8).
   return stagnation(t) -
-         airDensity * (0.5 * normalDragCoefficient * vn * std::abs(vn) + addedMassLength * an);
+         kernels::normalMotionPressure(0.5 * airDensity * normalDragCoefficient, vn) -
+         airDensity * addedMassLength * an;
 }
 
 Eigen::VectorXd QuasiSteadyFlow::facePressures(const InterfaceData& d) const {
@@ -62,7 +65,8 @@ void QuasiSteadyPressureTerm::assembleFace(int f, const EvalPoint& p, SystemAsse
   const double area = A.norm();
   const Vec3 n = A / area;
   const double vn = (vf - law_.wind).dot(n);
-  const double dpdvn = -p.loadFactor * law_.airDensity * law_.normalDragCoefficient * std::abs(vn);
+  const double dpdvn = -p.loadFactor * kernels::dNormalMotionPressure(
+                                           0.5 * law_.airDensity * law_.normalDragCoefficient, vn);
   const double dpdan = -p.loadFactor * law_.airDensity * law_.addedMassLength;
   const Eigen::Matrix3d dndA = (Eigen::Matrix3d::Identity() - n * n.transpose()) / area;
   const Eigen::Matrix<double, 1, 3 * N> dpdx = (dpdvn * (vf - law_.wind) + dpdan * af).transpose() *

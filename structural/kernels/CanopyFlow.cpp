@@ -60,11 +60,10 @@ CanopyFaceLoad<NumNodes> canopyFaceLoad(const std::array<Eigen::Vector3d, NumNod
   for (const auto& vi : v) vf += vi;
   vf /= NumNodes;
   const Vec3 rel = vf - s.canopyVelocity;
-  const double c = n.dot(s.flowDirection);
-  const double un = rel.dot(n);
-  out.staticDifference =
-      s.insideGauge - s.dynamicPressure * outsidePressureCoefficient(c, s.baseCoefficient);
-  out.netPressure = out.staticDifference - s.normalDrag * std::abs(un) * un;
+  const FacePressure fp = facePressure(n, vf, s);
+  const double c = fp.c, un = fp.un;
+  out.staticDifference = fp.staticDifference;
+  out.netPressure = fp.netPressure;
   const double share = 1.0 / NumNodes;
   for (int i = 0; i < NumNodes; ++i)
     out.residual.template segment<3>(3 * i) = -share * out.netPressure * A;
@@ -73,11 +72,12 @@ CanopyFaceLoad<NumNodes> canopyFaceLoad(const std::array<Eigen::Vector3d, NumNod
   const Eigen::RowVector3d dNetDn = -s.dynamicPressure *
                                         dOutsidePressureCoefficient(c, s.baseCoefficient) *
                                         s.flowDirection.transpose() -
-                                    s.normalDrag * 2.0 * std::abs(un) * rel.transpose();
+                                    dNormalMotionPressure(s.normalDrag, un) * rel.transpose();
   const Eigen::Matrix<double, 3, 3 * NumNodes> dA = areaVectorJacobian<NumNodes>(x);
   const Eigen::Matrix<double, 1, 3 * NumNodes> dNetDx =
       dNetDn * (Eigen::Matrix3d::Identity() - n * n.transpose()) / area * dA;
-  const Eigen::RowVector3d dNetDvj = -s.normalDrag * 2.0 * std::abs(un) * share * n.transpose();
+  const Eigen::RowVector3d dNetDvj =
+      -dNormalMotionPressure(s.normalDrag, un) * share * n.transpose();
   const Eigen::Matrix<double, 3, 3 * NumNodes> dr = -share * (A * dNetDx + out.netPressure * dA);
   const Eigen::Matrix3d drdv = -share * A * dNetDvj;
   for (int i = 0; i < NumNodes; ++i) {

@@ -56,6 +56,16 @@ inline double dOutsidePressureCoefficient(double c, double cb) {
   return c >= 0.0 ? dBase : dBase + 2.0 * (1.0 - cb) * c;
 }
 
+// FL8's resistance of the air to a face's own normal motion, as a pressure against it:
+// (1/2) rho Cn |u_n| u_n (halfRhoCn = (1/2) rho Cn), and its derivative in u_n. The coupling
+// demo's flow law (coupling/QuasiSteadyFlow) uses the same.
+inline double normalMotionPressure(double halfRhoCn, double un) {
+  return halfRhoCn * std::abs(un) * un;
+}
+inline double dNormalMotionPressure(double halfRhoCn, double un) {
+  return 2.0 * halfRhoCn * std::abs(un);
+}
+
 // What the face loads share over the whole canopy at an evaluation (FL1-FL3).
 struct CanopyFlowState {
   Eigen::Vector3d canopyVelocity = Eigen::Vector3d::Zero();  // v_c: area-weighted mean
@@ -65,6 +75,24 @@ struct CanopyFlowState {
   double baseCoefficient = 0.0;  // Cb
   double normalDrag = 0.0;       // (1/2) rho Cn of the fabric's own normal motion (FL8)
 };
+
+// FL7-FL8 for one face from its outward unit normal n and its mean velocity vf: the static
+// difference p_in - p_a - q Cout(n . U_hat), and the net pressure that also takes the fabric's
+// normal motion relative to the canopy. canopyFaceLoad and the term's residual-only path share it.
+struct FacePressure {
+  double staticDifference = 0.0, netPressure = 0.0;
+  double c = 0.0, un = 0.0;  // n . U_hat, (vf - v_c) . n
+};
+inline FacePressure facePressure(const Eigen::Vector3d& n, const Eigen::Vector3d& vf,
+                                 const CanopyFlowState& s) {
+  FacePressure f;
+  f.c = n.dot(s.flowDirection);
+  f.un = (vf - s.canopyVelocity).dot(n);
+  f.staticDifference =
+      s.insideGauge - s.dynamicPressure * outsidePressureCoefficient(f.c, s.baseCoefficient);
+  f.netPressure = f.staticDifference - normalMotionPressure(s.normalDrag, f.un);
+  return f;
+}
 
 // FL8: the net outward pressure on a face and what the cloth lets through. With n = A / |A| the
 // face's outward unit normal and u_n = (v_f - v_c) . n its normal velocity relative to the canopy

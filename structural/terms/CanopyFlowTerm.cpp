@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <stdexcept>
@@ -123,10 +124,11 @@ CanopyFlowTerm::CanopyFlowTerm(const Model& m, int flow) : m_(&m), def_(&m.canop
   // The start holds air at the ambient pressure plus the case's initial gauge (FL3, isentropic).
   Eigen::VectorXd x0(3 * m.numNodes());
   for (int n = 0; n < m.numNodes(); ++n) x0.segment<3>(3 * n) = m.X[n] + m.u0[n];
-  const Geometry g = geometry(x0, Eigen::VectorXd::Zero(x0.size()));
+  const Geometry g = geometry(x0, Eigen::VectorXd::Zero(x0.size()), false);
   captured_ = m.air.density * (std::max(g.volume, 0.0) + volumeFloor_) *
               std::pow(1.0 + def_->initialInsideGauge / m.air.pressure, 1.0 / def_->gamma);
-  inertiaMass_ = apparentMass(x0);
+  inertiaMass_ = apparentMass(x0) + captured_;  // FL11: the air around it and the air inside
+  committedShares_ = areaShares(x0);
 }
 
 double CanopyFlowTerm::reach(const Eigen::VectorXd& x) const {
@@ -152,8 +154,11 @@ double CanopyFlowTerm::apparentMass(const Eigen::VectorXd& x) const {
   // (R^3 = 3 V / (2 pi)). The volume, an integral over the surface, changes smoothly with the
   // positions; the canopy's largest radius (its reach) jumps as one node swings out, and the
   // growth force of FL10 took such a jump as a burst of air (a folded C-9 went unstable).
-  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(x.size());
-  const double radiusCubed = 1.5 * std::max(geometry(x, zero).volume, 0.0) / std::numbers::pi;
+  return apparentMassOfVolume(geometry(x, Eigen::VectorXd::Zero(x.size()), false).volume);
+}
+
+double CanopyFlowTerm::apparentMassOfVolume(double volume) const {
+  const double radiusCubed = 1.5 * std::max(volume, 0.0) / std::numbers::pi;
   return def_->apparentMass * m_->air.density * radiusCubed;
 }
 
@@ -172,19 +177,50 @@ Vec3 CanopyFlowTerm::loopArea(const Loop& l, const Eigen::VectorXd& x) const {
 }
 
 CanopyFlowTerm::Geometry CanopyFlowTerm::geometry(const Eigen::VectorXd& x,
-                                                  const Eigen::VectorXd& v) const {
+                                                  const Eigen::VectorXd& v, bool keepFaces) const {
+  // One pass over the faces: what the volume, the mean velocity, the cloth and the loads need
+  // of each (kept for the evaluation that asked, keepFaces).
   Geometry g;
-  for (int k : faces_)
-    forTriangles(m_->membranes[k], [&](int a, int b, int c) {
-      const Vec3 xa = at(x, a), xb = at(x, b), xc = at(x, c);
-      const Vec3 A = 0.5 * (xb - xa).cross(xc - xa);
-      const Vec3 vf = (at(v, a) + at(v, b) + at(v, c)) / 3.0;
-      g.volume += kernels::tetraVolume(xa, xb, xc);
-      g.area += A.norm();
-      g.velocity += A.norm() * vf;
-      g.volumeRate += A.dot(vf);
-    });
-  if (g.area > 0.0) g.velocity /= g.area;
+  if (keepFaces) {
+    faceData_.resize(faces_.size());
+    shares_.assign(nodes_.size(), 0.0);
+    nodeArea_.assign(nodes_.size(), Vec3::Zero());
+  }
+  const auto& els = m_->membranes;
+  for (size_t i = 0; i < faces_.size(); ++i) {
+    const auto& e = els[faces_[i]];
+    const int N = e.numNodes;
+    const Vec3 x0 = at(x, e.nodes[0]), x1 = at(x, e.nodes[1]), x2 = at(x, e.nodes[2]);
+    Vec3 vf = at(v, e.nodes[0]) + at(v, e.nodes[1]) + at(v, e.nodes[2]);
+    Vec3 A;
+    if (N == 3) {
+      A = 0.5 * (x1 - x0).cross(x2 - x0);
+      g.volume += (x0 + x1 + x2).dot(A) / 9.0;  // tetraVolume(x0, x1, x2): centroid . A / 3
+    } else {
+      const Vec3 x3 = at(x, e.nodes[3]);
+      vf += at(v, e.nodes[3]);
+      A = 0.5 * (x2 - x0).cross(x3 - x1);  // the exact area vector of a bilinear quad
+      g.volume += kernels::tetraVolume(x0, x1, x2) + kernels::tetraVolume(x0, x2, x3);
+    }
+    vf /= static_cast<double>(N);
+    const double area = A.norm();
+    g.area += area;
+    g.velocity += area * vf;
+    g.volumeRate += A.dot(vf);
+    if (keepFaces) {
+      faceData_[i] = {A, area, vf};
+      for (int k = 0; k < N; ++k) {
+        const int sl = slot_[e.nodes[k]];
+        shares_[sl] += area / N;
+        nodeArea_[sl] += A / N;
+      }
+    }
+  }
+  if (g.area > 0.0) {
+    g.velocity /= g.area;
+    if (keepFaces)
+      for (double& sh : shares_) sh /= g.area;
+  }
   // The openings close the surface with fans from their centroids (FL2).
   auto close = [&](const Loop& l) {
     const double n = static_cast<double>(l.nodes.size());
@@ -208,16 +244,20 @@ CanopyFlowTerm::Geometry CanopyFlowTerm::geometry(const Eigen::VectorXd& x,
 }
 
 std::vector<double> CanopyFlowTerm::areaShares(const Eigen::VectorXd& x) const {
+  // Each face's area in equal parts to its nodes, over the canopy's area (as geometry keeps).
   std::vector<double> share(nodes_.size(), 0.0);
   double total = 0.0;
-  for (int k : faces_)
-    forTriangles(m_->membranes[k], [&](int a, int b, int c) {
-      const double third = (at(x, b) - at(x, a)).cross(at(x, c) - at(x, a)).norm() / 6.0;
-      share[slot_[a]] += third, share[slot_[b]] += third, share[slot_[c]] += third;
-      total += 3.0 * third;
-    });
+  for (int k : faces_) {
+    const auto& e = m_->membranes[k];
+    const Vec3 x0 = at(x, e.nodes[0]), x2 = at(x, e.nodes[2]);
+    const double area = e.numNodes == 3
+                            ? 0.5 * (at(x, e.nodes[1]) - x0).cross(x2 - x0).norm()
+                            : 0.5 * (x2 - x0).cross(at(x, e.nodes[3]) - at(x, e.nodes[1])).norm();
+    for (int i = 0; i < e.numNodes; ++i) share[slot_[e.nodes[i]]] += area / e.numNodes;
+    total += area;
+  }
   if (total > 0.0)
-    for (double& s : share) s /= total;
+    for (double& sh : share) sh /= total;
   return share;
 }
 
@@ -231,12 +271,11 @@ void CanopyFlowTerm::addCouplings(std::vector<std::vector<int>>& cliques) const 
 void CanopyFlowTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
   if (!p.inertia) return;  // a load of motion: dynamics only
   if (p.inertiaOnly) {
-    // FL11: the captured air moves with the canopy, each node carrying its area's share. Reads
-    // only x and the committed masses (it may run alongside the step's assembly).
-    const auto share = areaShares(p.x);
+    // FL11: the captured air moves with the canopy, each node carrying its area's share, both as
+    // committed (lagged one step, as the mass; it may run alongside the step's assembly).
     for (size_t i = 0; i < nodes_.size(); ++i) {
       const int n = nodes_[i];
-      out.add<1>({n}, inertiaMass_ * share[i] * p.a.segment<3>(3 * n), nullptr);
+      out.add<1>({n}, inertiaMass_ * committedShares_[i] * p.a.segment<3>(3 * n), nullptr);
     }
     return;
   }
@@ -245,10 +284,14 @@ void CanopyFlowTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
   // here, on trial, and committed with the step.
   const Evaluation e = evaluate(p.stepPositions(), p.v, &out, p.loadFactor, p.explicitStep);
   if (p.explicitStep > 0.0) trialMass_ = e.capturedMass, trialTime_ = p.t;
+  // The face data just made are those of the state at p.t (an explicit step's end).
+  scratchTime_ = p.explicitStep > 0.0 ? p.t : std::numeric_limits<double>::quiet_NaN();
+  scratchVolume_ = e.figures.volume;
 }
 
 CanopyFlowTerm::Figures CanopyFlowTerm::figuresAt(const Eigen::VectorXd& x,
                                                   const Eigen::VectorXd& v) const {
+  scratchTime_ = std::numeric_limits<double>::quiet_NaN();
   return evaluate(x, v, nullptr, 1.0, 0.0).figures;
 }
 
@@ -286,7 +329,7 @@ CanopyFlowTerm::Evaluation CanopyFlowTerm::evaluate(const Eigen::VectorXd& x,
                                                     double loadFactor, double stepDt) const {
   const Model& m = *m_;
   const double rho = m.air.density;
-  const Geometry g = geometry(x, v);
+  const Geometry g = geometry(x, v, true);
   // FL1: the relative flow of the canopy as a whole.
   const Vec3 U = m.air.wind - g.velocity;
   const double speed = U.norm();
@@ -319,52 +362,45 @@ CanopyFlowTerm::Evaluation CanopyFlowTerm::evaluate(const Eigen::VectorXd& x,
   b.insideGauge =
       kernels::capturedAirPressure(captured_, volume, m.air.pressure, rho, def_->gamma) -
       m.air.pressure;
-  if (def_->cloth.permeable())
-    for (int k : faces_)
-      forTriangles(m.membranes[k], [&](int i, int j, int l) {
-        const Vec3 A = 0.5 * (at(x, j) - at(x, i)).cross(at(x, l) - at(x, i));
-        const double area = A.norm();
-        if (!(area > 0.0)) return;
-        const double dp = b.insideGauge - s.dynamicPressure * kernels::outsidePressureCoefficient(
-                                                                  (A / area).dot(s.flowDirection),
-                                                                  s.baseCoefficient);
-        b.cloth += area * def_->cloth.velocity(dp);
-        b.dCloth += area * def_->cloth.dVelocity(dp);
-      });
+  // One pass over the faces for the cloth's outflow (FL6) and the loads that do not depend on
+  // the inside pressure (FL8 is linear in it: its part, p_in a_i with a_i the share of the area
+  // vectors at node i, is added per node once the captured air's update has found p_in).
+  const bool permeable = def_->cloth.permeable();
+  kernels::CanopyFlowState atAmbient = s;
+  atAmbient.insideGauge = 0.0;
+  if (out) nodeForce_.assign(nodes_.size(), Vec3::Zero());
+  if (permeable || out)
+    for (size_t i = 0; i < faces_.size(); ++i) {
+      const FaceData& f = faceData_[i];
+      if (!(f.area > 0.0)) continue;
+      const kernels::FacePressure fp = kernels::facePressure(f.A / f.area, f.vf, atAmbient);
+      if (permeable) {
+        // FL6's pressure difference: inside (at the step's start mass) minus outside.
+        const double dp = b.insideGauge + fp.staticDifference;
+        b.cloth += f.area * def_->cloth.velocity(dp);
+        b.dCloth += f.area * def_->cloth.dVelocity(dp);
+      }
+      if (!out) continue;
+      // Gathered per node, handed to the assembler once per node below.
+      const auto& el = m.membranes[faces_[i]];
+      const Vec3 force = (fp.netPressure / el.numNodes) * f.A;
+      for (int k = 0; k < el.numNodes; ++k) nodeForce_[slot_[el.nodes[k]]] += force;
+    }
   // FL3, FL9: the captured air at the end of a step (its update solved here), or as committed.
   e.capturedMass = stepDt > 0.0 ? b.massAfter(captured_, stepDt, *this) : captured_;
   s.insideGauge =
       kernels::capturedAirPressure(e.capturedMass, volume, m.air.pressure, rho, def_->gamma) -
       m.air.pressure;
-  // FL8: the faces' loads.
-  if (out)
-    for (int k : faces_) {
-      const auto& el = m.membranes[k];
-      auto face = [&](auto tag) {
-        constexpr int N = decltype(tag)::value;
-        std::array<Vec3, N> xf, vf;
-        std::array<int, N> ids;
-        for (int i = 0; i < N; ++i) {
-          ids[i] = el.nodes[i];
-          xf[i] = at(x, ids[i]);
-          vf[i] = at(v, ids[i]);
-        }
-        out->add<N>(ids, loadFactor * kernels::canopyFaceLoad<N>(xf, vf, s, false).residual,
-                    nullptr);
-      };
-      if (el.numNodes == 3)
-        face(std::integral_constant<int, 3>{});
-      else
-        face(std::integral_constant<int, 4>{});
-    }
-  // FL10: air newly set moving with the canopy is brought from rest (in the air) to the
-  // canopy's velocity: the force -dm_a/dt (v_c - w) while the apparent mass grows (air shed as it
-  // shrinks leaves with the canopy's velocity), shared by the nodes as the inertia is.
-  if (massRate_ > 0.0 && out) {
-    const auto share = areaShares(x);
-    const Vec3 push = massRate_ * (g.velocity - m.air.wind);
+  // FL8's inside pressure, and FL10: air newly set moving with the canopy is brought from rest
+  // (in the air) to the canopy's velocity: the force -dm_a/dt (v_c - w) while the apparent mass
+  // grows (air shed as it shrinks leaves with the canopy's velocity), shared as the inertia is.
+  if (out) {
+    const Vec3 push = massRate_ > 0.0 ? Vec3(massRate_ * (g.velocity - m.air.wind)) : Vec3::Zero();
     for (size_t i = 0; i < nodes_.size(); ++i)
-      out->add<1>({nodes_[i]}, Vec3(loadFactor * share[i] * push), nullptr);
+      out->add<1>(
+          {nodes_[i]},
+          Vec3(loadFactor * (shares_[i] * push - s.insideGauge * nodeArea_[i] - nodeForce_[i])),
+          nullptr);
   }
   // What probes and the summary report of this evaluation.
   Figures& fig = e.figures;
@@ -380,33 +416,34 @@ CanopyFlowTerm::Evaluation CanopyFlowTerm::evaluate(const Eigen::VectorXd& x,
   fig.capturedMass = e.capturedMass;
   fig.flowDirection = s.flowDirection;
   fig.axis = axis;
-  const double r = reach(x);
-  fig.projectedArea = std::numbers::pi * r * r;
+  if (!out) {  // the figures only (the reach is a pass over the nodes no load needs)
+    const double r = reach(x);
+    fig.projectedArea = std::numbers::pi * r * r;
+  }
   return e;
 }
 
-void CanopyFlowTerm::addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v, double /*t*/,
+void CanopyFlowTerm::addEnergy(const Eigen::VectorXd& /*x*/, const Eigen::VectorXd& v, double /*t*/,
                                EnergyBreakdown& e) const {
-  const auto share = areaShares(x);
   for (size_t i = 0; i < nodes_.size(); ++i)
-    e.kinetic += 0.5 * inertiaMass_ * share[i] * at(v, nodes_[i]).squaredNorm();
+    e.kinetic += 0.5 * inertiaMass_ * committedShares_[i] * at(v, nodes_[i]).squaredNorm();
   e.supplied += supplied_;
 }
 
-double CanopyFlowTerm::frequencySquaredBound(const Eigen::VectorXd& x, double /*t*/,
+double CanopyFlowTerm::frequencySquaredBound(const Eigen::VectorXd& x, double t,
                                              const std::vector<double>& nodalMass) const {
-  // FL12: the gas spring K = (dp/dV) a a^T, a_i = (1/3) sum of the areas at node i (the force
-  // the pressure puts there), dp/dV = gamma p / V: its one nonzero frequency
-  // omega^2 = (gamma p / V) sum_i |a_i|^2 / m_i.
+  // FL12: the gas spring K = (dp/dV) a a^T, a_i = the share of the area vectors at node i (the
+  // force the pressure puts there), dp/dV = gamma p / V: its one nonzero frequency
+  // omega^2 = (gamma p / V) sum_i |a_i|^2 / m_i. The faces of the step that ended at t serve
+  // (the same positions); otherwise they are made here.
   const Model& m = *m_;
-  std::vector<Vec3> a(nodes_.size(), Vec3::Zero());
-  for (int k : faces_)
-    forTriangles(m.membranes[k], [&](int i, int j, int l) {
-      const Vec3 A = 0.5 * (at(x, j) - at(x, i)).cross(at(x, l) - at(x, i)) / 3.0;
-      a[slot_[i]] += A, a[slot_[j]] += A, a[slot_[l]] += A;
-    });
-  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(x.size());
-  const double volume = std::max(geometry(x, zero).volume, 0.0) + volumeFloor_;
+  double volume = scratchVolume_;
+  if (!(scratchTime_ == t)) {
+    volume = geometry(x, Eigen::VectorXd::Zero(x.size()), true).volume;
+    scratchTime_ = std::numeric_limits<double>::quiet_NaN();  // made without velocities
+  }
+  const std::vector<Vec3>& a = nodeArea_;
+  volume = std::max(volume, 0.0) + volumeFloor_;
   const double pAbs =
       kernels::capturedAirPressure(captured_, volume, m.air.pressure, m.air.density, def_->gamma);
   double sum = 0.0;
@@ -416,19 +453,27 @@ double CanopyFlowTerm::frequencySquaredBound(const Eigen::VectorXd& x, double /*
 }
 
 void CanopyFlowTerm::commit(const CommitPoint& c) {
-  // FL11-FL12: the next step's inertia is the apparent mass at the step's end; the kinetic energy
-  // the air it gained has at the nodes' velocities came with it, not from a force's work.
-  const double before = inertiaMass_;
-  inertiaMass_ = apparentMass(c.x);
-  massRate_ = c.dt > 0.0 ? (inertiaMass_ - before) / c.dt : 0.0;
-  if (c.v && inertiaMass_ != before) {
-    const auto share = areaShares(c.x);
-    double v2 = 0.0;
-    for (size_t i = 0; i < nodes_.size(); ++i) v2 += share[i] * at(*c.v, nodes_[i]).squaredNorm();
-    supplied_ += 0.5 * (inertiaMass_ - before) * v2;
-  }
+  // FL11-FL12: the next step's inertia is the air moving with the canopy at the step's end (the
+  // apparent mass around it and the captured air inside); the kinetic energy the air it gained
+  // has at the nodes' velocities came with it, not from a force's work.
+  // The step's own evaluation was at c.x: its volume and shares serve.
+  const bool evaluatedHere = c.dt > 0.0 && trialTime_ == c.t && scratchTime_ == c.t;
   // FL9: the captured air as the step's evaluation found it at the step's end.
   if (c.dt > 0.0 && trialTime_ == c.t) captured_ = trialMass_;
+  const double before = inertiaMass_;
+  inertiaMass_ =
+      (evaluatedHere ? apparentMassOfVolume(scratchVolume_) : apparentMass(c.x)) + captured_;
+  massRate_ = c.dt > 0.0 ? (inertiaMass_ - before) / c.dt : 0.0;
+  std::vector<double> shares = evaluatedHere ? shares_ : areaShares(c.x);
+  if (c.v) {
+    // The nodes' apparent masses change from m_a s_i to m_a' s_i' at the velocities they have.
+    double gained = 0.0;
+    for (size_t i = 0; i < nodes_.size(); ++i)
+      gained += (inertiaMass_ * shares[i] - before * committedShares_[i]) *
+                at(*c.v, nodes_[i]).squaredNorm();
+    supplied_ += 0.5 * gained;
+  }
+  committedShares_ = std::move(shares);
 }
 
 void CanopyFlowTerm::save(History& h) const {
@@ -436,6 +481,7 @@ void CanopyFlowTerm::save(History& h) const {
   h.put(inertiaMass_);
   h.put(massRate_);
   h.put(supplied_);
+  h.put(committedShares_);
 }
 
 void CanopyFlowTerm::load(HistoryReader& h) {
@@ -443,7 +489,11 @@ void CanopyFlowTerm::load(HistoryReader& h) {
                supplied = h.finiteReal();
   if (!(captured > 0.0)) h.fail("captured air mass not positive");
   if (!(inertia >= 0.0)) h.fail("apparent mass negative");
+  std::vector<double> shares = h.reals(nodes_.size());
+  for (double sh : shares)
+    if (!(sh >= 0.0 && sh <= 1.0)) h.fail("a node's share of the canopy's area outside [0, 1]");
   captured_ = captured, inertiaMass_ = inertia, massRate_ = rate, supplied_ = supplied;
+  committedShares_ = std::move(shares);
 }
 
 }  // namespace chute

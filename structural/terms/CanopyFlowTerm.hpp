@@ -7,6 +7,7 @@
 // FL11). Residual only: the explicit integrator steps it (the captured air couples every face of
 // the canopy through its volume, a dense Jacobian; case/sections refuse implicit integrators).
 #include <array>
+#include <limits>
 #include <vector>
 
 #include "assembly/Term.hpp"
@@ -71,13 +72,21 @@ class CanopyFlowTerm final : public Term {
     Eigen::Vector3d mouth = Eigen::Vector3d::Zero();  // outward area vector of the mouth
     std::vector<Eigen::Vector3d> vents;
   };
-  Geometry geometry(const Eigen::VectorXd& x, const Eigen::VectorXd& v) const;
+  // keepFaces: also each face's area vector and mean velocity, and each node's area share, in
+  // faceData_ and shares_.
+  Geometry geometry(const Eigen::VectorXd& x, const Eigen::VectorXd& v, bool keepFaces) const;
+  struct FaceData {
+    Eigen::Vector3d A;  // area vector (outward)
+    double area;
+    Eigen::Vector3d vf;  // mean velocity of its nodes
+  };
   Eigen::Vector3d loopArea(const Loop& l, const Eigen::VectorXd& x) const;
   // Per canopy node, its share of the canopy's area at x (the captured air's inertia, FL11).
   std::vector<double> areaShares(const Eigen::VectorXd& x) const;
   // FL11: the air moving with the canopy, k_a rho R_p^3 with R_p its projected radius (the
   // canopy's reach from its axis) at x; and that reach.
   double apparentMass(const Eigen::VectorXd& x) const;
+  double apparentMassOfVolume(double volume) const;
   double reach(const Eigen::VectorXd& x) const;
   // What the captured air's update over a step needs of an evaluation (FL9): the volume, the
   // openings (the ram pressure into the mouth, the outside pressures at the vents) and the
@@ -115,10 +124,20 @@ class CanopyFlowTerm final : public Term {
   // commit), and its rate over the last step (FL10); the kinetic energy the air set moving
   // brought in so far (FL12).
   double captured_ = 0.0, inertiaMass_ = 0.0, massRate_ = 0.0, supplied_ = 0.0;
+  std::vector<double> committedShares_;  // each node's share of the area at the last commit
   // Of the last evaluation of a step (not history: made again by the next step's evaluation).
   // The captured mass an explicit step's evaluation found at the step's end, and the step's end
   // time (committed with that step only).
   double trialMass_ = 0.0, trialTime_ = -1.0;
+  // Scratch of the last evaluation (one pass over the faces serves the volume, the cloth, the
+  // loads and the commit): per face, per node, the volume, and the time of the explicit step's
+  // end whose positions they belong to (NaN: none).
+  mutable std::vector<FaceData> faceData_;
+  mutable std::vector<double> shares_;
+  mutable std::vector<Eigen::Vector3d> nodeForce_;  // the faces' loads at p_in = p_a, per node
+  mutable std::vector<Eigen::Vector3d> nodeArea_;   // a_i: the share of the area vectors at node i
+  mutable double scratchVolume_ = 0.0;
+  mutable double scratchTime_ = std::numeric_limits<double>::quiet_NaN();
 };
 
 }  // namespace chute

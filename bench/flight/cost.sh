@@ -1,0 +1,49 @@
+#!/bin/bash
+# What the airflow's loads cost in an explicit step of the full-scale C-9 (cases/c9_flight.toml):
+# the case against itself with [[loads.canopy_flow]] replaced by a constant [[loads.pressure]]
+# (and the canopy probe dropped). Instructions per step from callgrind (two run lengths, their
+# difference: set-up cancels), and paired wall / cpu medians of whole runs (farm-bench).
+#   bench/flight/cost.sh [chute binary]   -> bench/results/flight_cost.md
+set -euo pipefail
+ROOT=$(cd "$(dirname "$0")/../.." && pwd)
+CHUTE=${1:-$ROOT/build/bin/chute}
+W=$(mktemp -d)
+python3 - "$ROOT" "$W" <<'PY'
+import sys
+root, w = sys.argv[1], sys.argv[2]
+s = open(root + '/cases/c9_flight.toml').read().replace('file = "c9_flight.msh"', 'file = "%s/cases/c9_flight.msh"' % root)
+open(w + '/with_flow.toml', 'w').write(s)
+i = s.index('[[loads.canopy_flow]]'); j = s.index('\n[', i + 5)
+s = s[:i] + '[[loads.pressure]]\nmembranes = "canopy"\npressure = 1.0\n' + s[j:]
+i = s.index('[[output.probes]]   # volume'); j = s.index('\n[', i + 5)
+open(w + '/without_flow.toml', 'w').write(s[:i] + s[j + 1:])
+PY
+cd "$W"
+per_step() {  # instructions per step of case $1 between t = 0.004 and 0.008
+  local a b sa sb
+  for te in 0.004 0.008; do
+    valgrind --tool=callgrind --callgrind-out-file=cg_$1_$te "$CHUTE" run $1.toml --set solver.t_end=$te --out o_$1_$te > log_$1_$te 2>&1
+  done
+  a=$(grep 'I   refs' log_$1_0.004 | awk '{gsub(",","",$4); print $4}'); b=$(grep 'I   refs' log_$1_0.008 | awk '{gsub(",","",$4); print $4}')
+  sa=$(grep -oE '[0-9]+ steps' log_$1_0.004 | awk '{print $1}'); sb=$(grep -oE '[0-9]+ steps' log_$1_0.008 | awk '{print $1}')
+  python3 -c "print(($b - $a) / ($sb - $sa))"
+}
+IW=$(per_step with_flow); IO=$(per_step without_flow)
+farm-bench -n 7 --timeout 600 --vs "$CHUTE run without_flow.toml --set solver.t_end=0.1 --out $W/wb --quiet" -- "$CHUTE" run with_flow.toml --set solver.t_end=0.1 --out $W/wa --quiet > bench.txt 2>&1
+{
+  echo "# The airflow's loads in an explicit step of the full-scale C-9"
+  echo
+  echo "Made by \`bench/flight/cost.sh\` on $(date -u +%F): \`cases/c9_flight.toml\` (2156 canopy triangles, 1345 nodes) against"
+  echo "itself with a constant canopy pressure instead of \`[[loads.canopy_flow]]\`."
+  echo
+  echo "| measure | with the airflow's loads | constant pressure | ratio |"
+  echo "|---|---|---|---|"
+  python3 -c "print('| instructions per step (callgrind, t = 0.004 to 0.008 s) | %.3g | %.3g | %.3f |' % ($IW, $IO, $IW / $IO))"
+  echo
+  echo "Whole runs to t = 0.1 s ($(grep -h '"steps"' wa/summary.json | tr -dc 0-9) / $(grep -h '"steps"' wb/summary.json | tr -dc 0-9) steps; set-up included), paired A/B, min / median / max of 7:"
+  echo
+  echo '```'
+  grep -E "A/B|A wall|B wall|A cpu|B cpu" bench.txt
+  echo '```'
+} > "$ROOT/bench/results/flight_cost.md"
+cat "$ROOT/bench/results/flight_cost.md"
