@@ -2,9 +2,11 @@
 // and turns it into a status code and a message.
 #include "coupling/chute_coupling.h"
 
+#include <algorithm>
 #include <exception>
 #include <memory>
 #include <new>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -56,6 +58,10 @@ int copyOut(const Eigen::VectorXd& v, double* out) {
   if (!out) throw std::invalid_argument("null output array");
   std::copy(v.data(), v.data() + v.size(), out);
   return CHUTE_OK;
+}
+void copyOutInts(const std::vector<int>& v, int* out) {
+  if (!out) throw std::invalid_argument("null output array");
+  std::copy(v.begin(), v.end(), out);
 }
 Eigen::VectorXd copyIn(const double* in, long n) {
   if (!in) throw std::invalid_argument("null input array");
@@ -125,6 +131,30 @@ int chute_coupling_face_vertices(const chute_coupling* h, int* faces) {
       for (int i = 0; i < 4; ++i) faces[4 * f + i] = s.surface().faceVertices[f][i];
   });
 }
+int chute_coupling_face_sizes(const chute_coupling* h, int* sizes) {
+  return guarded(h, [&](CouplingInterface& s) { copyOutInts(s.surface().faceSize, sizes); });
+}
+int chute_coupling_vertex_nodes(const chute_coupling* h, int* nodes) {
+  return guarded(h, [&](CouplingInterface& s) { copyOutInts(s.surface().node, nodes); });
+}
+int chute_coupling_face_elements(const chute_coupling* h, int* elements) {
+  return guarded(h, [&](CouplingInterface& s) { copyOutInts(s.surface().element, elements); });
+}
+int chute_coupling_num_surface_sets(const chute_coupling* h, int* n) {
+  return guarded(h, [&](CouplingInterface& s) {
+    if (!n) throw std::invalid_argument("null output");
+    *n = static_cast<int>(s.surface().sets.size());
+  });
+}
+int chute_coupling_surface_sets(const chute_coupling* h, int* sets) {
+  return guarded(h, [&](CouplingInterface& s) { copyOutInts(s.surface().sets, sets); });
+}
+int chute_coupling_num_model_nodes(const chute_coupling* h, int* n) {
+  return guarded(h, [&](CouplingInterface& s) {
+    if (!n) throw std::invalid_argument("null output");
+    *n = s.spec().model.numNodes();
+  });
+}
 int chute_coupling_reference_coordinates(const chute_coupling* h, double* xyz) {
   return guarded(h, [&](CouplingInterface& s) { copyOut(s.referenceCoordinates(), xyz); });
 }
@@ -146,6 +176,22 @@ int chute_coupling_face_normals(const chute_coupling* h, double* xyz) {
 int chute_coupling_face_areas(const chute_coupling* h, double* areas) {
   return guarded(h, [&](CouplingInterface& s) { copyOut(s.faceAreas(), areas); });
 }
+int chute_coupling_face_area_vectors(const chute_coupling* h, double* xyz) {
+  return guarded(h, [&](CouplingInterface& s) { copyOut(s.faceAreaVectors(), xyz); });
+}
+int chute_coupling_face_centres(const chute_coupling* h, double* xyz) {
+  return guarded(h, [&](CouplingInterface& s) { copyOut(s.faceCentres(), xyz); });
+}
+int chute_coupling_face_means(const chute_coupling* h, const double* vertex_xyz, double* face_xyz) {
+  return guarded(h, [&](CouplingInterface& s) {
+    copyOut(s.surface().faceMeans(copyIn(vertex_xyz, 3L * s.numVertices())), face_xyz);
+  });
+}
+int chute_coupling_gather(const chute_coupling* h, const double* node_xyz, double* vertex_xyz) {
+  return guarded(h, [&](CouplingInterface& s) {
+    copyOut(s.surface().gather(copyIn(node_xyz, 3L * s.spec().model.numNodes())), vertex_xyz);
+  });
+}
 int chute_coupling_set_face_pressures(chute_coupling* h, const double* p) {
   return guarded(h, [&](CouplingInterface& s) { s.setFacePressures(copyIn(p, s.numFaces())); });
 }
@@ -156,6 +202,9 @@ int chute_coupling_set_vertex_pressures(chute_coupling* h, const double* p) {
 int chute_coupling_set_vertex_forces(chute_coupling* h, const double* f) {
   return guarded(h,
                  [&](CouplingInterface& s) { s.setVertexForces(copyIn(f, 3L * s.numVertices())); });
+}
+int chute_coupling_initialize_with_loads(chute_coupling* h) {
+  return guarded(h, [&](CouplingInterface& s) { s.initializeWithLoads(); });
 }
 int chute_coupling_time(const chute_coupling* h, double* t) {
   return guarded(h, [&](CouplingInterface& s) {
@@ -186,6 +235,12 @@ int chute_coupling_save_checkpoint(chute_coupling* h) {
 }
 int chute_coupling_restore_checkpoint(chute_coupling* h) {
   return guarded(h, [&](CouplingInterface& s) { s.restoreCheckpoint(); });
+}
+int chute_coupling_has_checkpoint(const chute_coupling* h, int* has) {
+  return guarded(h, [&](CouplingInterface& s) {
+    if (!has) throw std::invalid_argument("null output");
+    *has = s.hasCheckpoint() ? 1 : 0;
+  });
 }
 
 }  // extern "C"

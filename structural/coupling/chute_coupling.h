@@ -45,6 +45,17 @@ CHUTE_COUPLING_API int chute_coupling_num_faces(const chute_coupling* h, int* n)
 /* 4 vertex indices per face, the 4th -1 for a triangle. */
 CHUTE_COUPLING_API int chute_coupling_face_vertices(const chute_coupling* h, int* faces);
 CHUTE_COUPLING_API int chute_coupling_reference_coordinates(const chute_coupling* h, double* xyz);
+/* 1 per face: 3 (triangle) or 4 (quadrilateral). */
+CHUTE_COUPLING_API int chute_coupling_face_sizes(const chute_coupling* h, int* sizes);
+/* 1 per vertex: the model node it is (0-based, ascending), as chute's own output numbers nodes. */
+CHUTE_COUPLING_API int chute_coupling_vertex_nodes(const chute_coupling* h, int* nodes);
+/* 1 per face: the model membrane element it is (0-based). */
+CHUTE_COUPLING_API int chute_coupling_face_elements(const chute_coupling* h, int* elements);
+/* The membrane sets the surface covers (indices into the case's [[membranes]], 0-based). */
+CHUTE_COUPLING_API int chute_coupling_num_surface_sets(const chute_coupling* h, int* n);
+CHUTE_COUPLING_API int chute_coupling_surface_sets(const chute_coupling* h, int* sets);
+/* The number of model nodes: the size / 3 of the full vectors chute_coupling_gather takes. */
+CHUTE_COUPLING_API int chute_coupling_num_model_nodes(const chute_coupling* h, int* n);
 
 /* Write data (writeData): the state at the current time. */
 CHUTE_COUPLING_API int chute_coupling_current_coordinates(const chute_coupling* h, double* xyz);
@@ -53,11 +64,27 @@ CHUTE_COUPLING_API int chute_coupling_velocities(const chute_coupling* h, double
 CHUTE_COUPLING_API int chute_coupling_accelerations(const chute_coupling* h, double* xyz);
 CHUTE_COUPLING_API int chute_coupling_face_normals(const chute_coupling* h, double* xyz);
 CHUTE_COUPLING_API int chute_coupling_face_areas(const chute_coupling* h, double* areas);
+/* 3 per face: |A| n, the area times the unit normal (the force of a unit pressure). */
+CHUTE_COUPLING_API int chute_coupling_face_area_vectors(const chute_coupling* h, double* xyz);
+/* 3 per face: the mean of its current vertex positions (where a face value sits). */
+CHUTE_COUPLING_API int chute_coupling_face_centres(const chute_coupling* h, double* xyz);
+
+/* Helpers on the surface's layout (no state read or changed). */
+/* 3 per face out: the face means (1/N) sum_i of 3-per-vertex values in (e.g. face velocities). */
+CHUTE_COUPLING_API int chute_coupling_face_means(const chute_coupling* h, const double* vertex_xyz,
+                                                 double* face_xyz);
+/* 3 per vertex out: the surface's values of a full 3-per-model-node vector in. */
+CHUTE_COUPLING_API int chute_coupling_gather(const chute_coupling* h, const double* node_xyz,
+                                             double* vertex_xyz);
 
 /* Read data (readData): loads for the next advance, held over the window. */
 CHUTE_COUPLING_API int chute_coupling_set_face_pressures(chute_coupling* h, const double* p);
 CHUTE_COUPLING_API int chute_coupling_set_vertex_pressures(chute_coupling* h, const double* p);
 CHUTE_COUPLING_API int chute_coupling_set_vertex_forces(chute_coupling* h, const double* f);
+
+/* initialize with initial data: after setting the loads, the start's acceleration under them
+ * (CouplingInterface::initializeWithLoads; only before the first advance). */
+CHUTE_COUPLING_API int chute_coupling_initialize_with_loads(chute_coupling* h);
 
 /* Time (getMaxTimeStepSize, advance). */
 CHUTE_COUPLING_API int chute_coupling_time(const chute_coupling* h, double* t);
@@ -69,6 +96,8 @@ CHUTE_COUPLING_API int chute_coupling_advance(chute_coupling* h, double dt, doub
 /* Checkpoints (requiresWritingCheckpoint / requiresReadingCheckpoint): in-memory deep copies. */
 CHUTE_COUPLING_API int chute_coupling_save_checkpoint(chute_coupling* h);
 CHUTE_COUPLING_API int chute_coupling_restore_checkpoint(chute_coupling* h);
+/* *has = 1 when a checkpoint is saved (restore would succeed), else 0. */
+CHUTE_COUPLING_API int chute_coupling_has_checkpoint(const chute_coupling* h, int* has);
 
 #ifdef __cplusplus
 }
