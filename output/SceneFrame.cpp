@@ -18,7 +18,12 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 struct CellFields {
   FieldArray kind{"kind", 1, {}, true}, part{"part", 1, {}, true};
   FieldArray axialForce{"axial_force", 1, {}}, axialStrain{"axial_strain", 1, {}};
-  FieldArray stress{"principal_stress", 2, {}}, strain{"principal_strain", 2, {}};
+  FieldArray stress{"principal_stress", 2, {}, false, {"S1", "S2"}};
+  FieldArray strain{"principal_strain", 2, {}, false, {"E1", "E2"}};
+  // Principal true stress resultants (force per current width) and the larger over the
+  // material's strength (NaN without one).
+  FieldArray resultant{"stress_resultant", 2, {}, false, {"N1", "N2"}};
+  FieldArray utilisation{"utilisation", 1, {}};
   FieldArray wrinkling{"wrinkling_state", 1, {}, true}, pressure{"pressure", 1, {}};
   FieldArray sliderGroup{"slider_group", 1, {}, true}, sliderS{"slider_material_coordinate", 1, {}};
   // Friction at sliders (docs/friction.md): 0 stick, +1 / -1 slip with the split growing /
@@ -41,12 +46,22 @@ struct CellFields {
     pressure.values.push_back(p);
     sliderGroup.values.push_back(group);
     sliderS.values.push_back(s);
+    resultant.values.insert(resultant.values.end(), {kNaN, kNaN});
+    utilisation.values.push_back(kNaN);
+  }
+  // The membrane cell just added: its resultants and utilisation.
+  void setResultant(const Eigen::Vector2d& n, double strength) {
+    const size_t c = utilisation.values.size() - 1;
+    resultant.values[2 * c] = n[0];
+    resultant.values[2 * c + 1] = n[1];
+    utilisation.values[c] = strength > 0.0 ? n[0] / strength : kNaN;
   }
   std::vector<FieldArray> take() {
     return {std::move(kind),        std::move(part),        std::move(axialForce),
             std::move(axialStrain), std::move(stress),      std::move(strain),
             std::move(wrinkling),   std::move(pressure),    std::move(sliderGroup),
-            std::move(sliderS),     std::move(sliderStick), std::move(sliderRatio)};
+            std::move(sliderS),     std::move(sliderStick), std::move(sliderRatio),
+            std::move(resultant),   std::move(utilisation)};
   }
 };
 
@@ -173,6 +188,7 @@ SceneFrame buildFrame(StructuralSystem& sys, const StructuralState& s, const Equ
       const auto& st = mt->elementStates()[e];
       c.add(CellKind::Membrane, membranePart0 + el.set, kNaN, kNaN, st.principalStress,
             st.principalStrain, static_cast<int>(st.state), pressure[e], -1, kNaN);
+      c.setResultant(st.principalResultant, m.membraneMaterials[el.material].strength);
     }
   }
   for (int n = 0; n < m.numNodes(); ++n) {

@@ -17,9 +17,11 @@ namespace chute {
 struct FieldArray {
   std::string name;
   int components = 1;
-  std::vector<double> values;
-  bool integer = false;  // integer-valued (codes and indices): written as Int32  // components per
-                         // point or cell, interleaved
+  std::vector<double> values;  // components per point or cell, interleaved
+  bool integer = false;        // integer-valued (codes and indices): written as Int32
+  // Names of the components (ComponentName0, ... in the file): ParaView lists "N1", "N2" rather
+  // than its default "X", "Y". Empty: none written.
+  std::vector<std::string> componentNames = {};
 };
 
 // VTK cell type codes (vtkCellType.h), kept here so this file needs no VTK.

@@ -8,6 +8,8 @@
 #include <cstring>
 #include <limits>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 namespace chute {
 
@@ -44,33 +46,34 @@ void append(fmt::memory_buffer& b, std::string_view s) {
   b.append(s.data(), s.data() + s.size());
 }
 
-// One <DataArray> of the piece: its line in the XML, its bytes in the appended block.
+// One <DataArray> of the piece: its line in the XML, its bytes in the appended block. Component
+// names as VTK's own writer spells them (ComponentName0="...", ...), which its reader and
+// ParaView read back.
 template <class T>
 void appendedArray(fmt::memory_buffer& xml, AppendedBlock& block, const char* type,
-                   std::string_view name, int components, const T* data, size_t count) {
-  if (components == 1)
-    fmt::format_to(
-        std::back_inserter(xml),
-        FMT_COMPILE(
-            "        <DataArray type=\"{}\" Name=\"{}\" format=\"appended\" offset=\"{}\"/>\n"),
-        type, name, block.offset());
-  else
-    fmt::format_to(
-        std::back_inserter(xml),
-        FMT_COMPILE("        <DataArray type=\"{}\" Name=\"{}\" NumberOfComponents=\"{}\" "
-                    "format=\"appended\" offset=\"{}\"/>\n"),
-        type, name, components, block.offset());
+                   std::string_view name, int components, const T* data, size_t count,
+                   const std::vector<std::string>& componentNames = {}) {
+  fmt::format_to(std::back_inserter(xml), FMT_COMPILE("        <DataArray type=\"{}\" Name=\"{}\""),
+                 type, name);
+  if (components != 1)
+    fmt::format_to(std::back_inserter(xml), FMT_COMPILE(" NumberOfComponents=\"{}\""), components);
+  for (size_t c = 0; c < componentNames.size(); ++c)
+    fmt::format_to(std::back_inserter(xml), FMT_COMPILE(" ComponentName{}=\"{}\""), c,
+                   componentNames[c]);
+  fmt::format_to(std::back_inserter(xml), FMT_COMPILE(" format=\"appended\" offset=\"{}\"/>\n"),
+                 block.offset());
   block.add(data, count);
 }
 
 void fieldArray(fmt::memory_buffer& xml, AppendedBlock& block, const FieldArray& a) {
   if (!a.integer) {
-    appendedArray(xml, block, "Float64", a.name, a.components, a.values.data(), a.values.size());
+    appendedArray(xml, block, "Float64", a.name, a.components, a.values.data(), a.values.size(),
+                  a.componentNames);
     return;
   }
   std::vector<int32_t> v(a.values.size());
   for (size_t i = 0; i < v.size(); ++i) v[i] = static_cast<int32_t>(a.values[i]);
-  appendedArray(xml, block, "Int32", a.name, a.components, v.data(), v.size());
+  appendedArray(xml, block, "Int32", a.name, a.components, v.data(), v.size(), a.componentNames);
 }
 }  // namespace
 

@@ -30,6 +30,8 @@ vtkSmartPointer<vtkDataArray> toVtk(const FieldArray& a) {
   arr->SetNumberOfComponents(a.components);
   const vtkIdType n = static_cast<vtkIdType>(a.values.size()) / a.components;
   arr->SetNumberOfTuples(n);
+  for (size_t c = 0; c < a.componentNames.size(); ++c)
+    arr->SetComponentName(static_cast<vtkIdType>(c), a.componentNames[c].c_str());
   if (a.integer) {
     auto* ia = static_cast<vtkIntArray*>(arr.Get());
     for (size_t i = 0; i < a.values.size(); ++i) ia->SetValue(i, static_cast<int>(a.values[i]));

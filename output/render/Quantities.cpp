@@ -164,6 +164,8 @@ FieldInfo vtuField(const std::string& name) {
       {"axial_strain", "line strain", Quantity::Strain, {}, {}, kNaN},
       {"principal_stress", "membrane stress", Quantity::Stress, {"S1", "S2"}, {}, kNaN},
       {"principal_strain", "membrane strain", Quantity::Strain, {"E1", "E2"}, {}, kNaN},
+      {"stress_resultant", "fabric load", Quantity::ForcePerLength, {"N1", "N2"}, {}, kNaN},
+      {"utilisation", "utilisation N1/strength", Quantity::Ratio, {}, {}, kNaN},
       {"pressure", "pressure", Quantity::Stress, {}, {}, kNaN},
       {"slider_material_coordinate", "slider position s", Quantity::Length, {}, {}, kNaN},
       {"slider_tension_ratio", "tension ratio N2/N1", Quantity::Ratio, {}, {}, kNaN},

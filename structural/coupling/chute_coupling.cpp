@@ -2,9 +2,11 @@
 // and turns it into a status code and a message.
 #include "coupling/chute_coupling.h"
 
+#include <algorithm>
 #include <exception>
 #include <memory>
 #include <new>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -59,6 +61,10 @@ int copyOut(const Eigen::VectorXd& v, double* out) {
   if (!out) throw std::invalid_argument("null output array");
   std::copy(v.data(), v.data() + v.size(), out);
   return CHUTE_OK;
+}
+void copyOutInts(const std::vector<int>& v, int* out) {
+  if (!out) throw std::invalid_argument("null output array");
+  std::copy(v.begin(), v.end(), out);
 }
 Eigen::VectorXd copyIn(const double* in, long n) {
   if (!in) throw std::invalid_argument("null input array");
@@ -129,21 +135,27 @@ int chute_coupling_face_vertices(const chute_coupling* h, int* faces) {
   });
 }
 int chute_coupling_face_sizes(const chute_coupling* h, int* sizes) {
-  return guarded(h, [&](CouplingInterface& s) {
-    if (!sizes) throw std::invalid_argument("null output array");
-    std::copy(s.surface().faceSize.begin(), s.surface().faceSize.end(), sizes);
-  });
+  return guarded(h, [&](CouplingInterface& s) { copyOutInts(s.surface().faceSize, sizes); });
 }
 int chute_coupling_vertex_nodes(const chute_coupling* h, int* nodes) {
-  return guarded(h, [&](CouplingInterface& s) {
-    if (!nodes) throw std::invalid_argument("null output array");
-    std::copy(s.surface().node.begin(), s.surface().node.end(), nodes);
-  });
+  return guarded(h, [&](CouplingInterface& s) { copyOutInts(s.surface().node, nodes); });
 }
 int chute_coupling_face_elements(const chute_coupling* h, int* elements) {
+  return guarded(h, [&](CouplingInterface& s) { copyOutInts(s.surface().element, elements); });
+}
+int chute_coupling_num_surface_sets(const chute_coupling* h, int* n) {
   return guarded(h, [&](CouplingInterface& s) {
-    if (!elements) throw std::invalid_argument("null output array");
-    std::copy(s.surface().element.begin(), s.surface().element.end(), elements);
+    if (!n) throw std::invalid_argument("null output");
+    *n = static_cast<int>(s.surface().sets.size());
+  });
+}
+int chute_coupling_surface_sets(const chute_coupling* h, int* sets) {
+  return guarded(h, [&](CouplingInterface& s) { copyOutInts(s.surface().sets, sets); });
+}
+int chute_coupling_num_model_nodes(const chute_coupling* h, int* n) {
+  return guarded(h, [&](CouplingInterface& s) {
+    if (!n) throw std::invalid_argument("null output");
+    *n = s.spec().model.numNodes();
   });
 }
 int chute_coupling_reference_coordinates(const chute_coupling* h, double* xyz) {
@@ -187,9 +199,6 @@ int chute_coupling_vertex_pressures(const chute_coupling* h, double* p) {
 int chute_coupling_vertex_forces(const chute_coupling* h, double* f) {
   return guarded(h, [&](CouplingInterface& s) { copyOut(s.loads().vertexForces(), f); });
 }
-int chute_coupling_initialize_with_loads(chute_coupling* h) {
-  return guarded(h, [&](CouplingInterface& s) { s.initializeWithLoads(); });
-}
 int chute_coupling_counters(const chute_coupling* h, long* steps, long* rejected,
                             long* event_retries, long* newton_iterations) {
   return guarded(h, [&](CouplingInterface& s) {
@@ -198,6 +207,11 @@ int chute_coupling_counters(const chute_coupling* h, long* steps, long* rejected
     if (rejected) *rejected = c.rejectedSteps;
     if (event_retries) *event_retries = c.eventRetries;
     if (newton_iterations) *newton_iterations = c.newtonIterations;
+  });
+}
+int chute_coupling_gather(const chute_coupling* h, const double* node_xyz, double* vertex_xyz) {
+  return guarded(h, [&](CouplingInterface& s) {
+    copyOut(s.surface().gather(copyIn(node_xyz, 3L * s.spec().model.numNodes())), vertex_xyz);
   });
 }
 int chute_coupling_set_face_pressures(chute_coupling* h, const double* p) {
@@ -210,6 +224,9 @@ int chute_coupling_set_vertex_pressures(chute_coupling* h, const double* p) {
 int chute_coupling_set_vertex_forces(chute_coupling* h, const double* f) {
   return guarded(h,
                  [&](CouplingInterface& s) { s.setVertexForces(copyIn(f, 3L * s.numVertices())); });
+}
+int chute_coupling_initialize_with_loads(chute_coupling* h) {
+  return guarded(h, [&](CouplingInterface& s) { s.initializeWithLoads(); });
 }
 int chute_coupling_time(const chute_coupling* h, double* t) {
   return guarded(h, [&](CouplingInterface& s) {

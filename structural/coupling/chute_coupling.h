@@ -53,6 +53,17 @@ CHUTE_COUPLING_API int chute_coupling_vertex_nodes(const chute_coupling* h, int*
 /* 1 per face: the model membrane element it is (0-based). */
 CHUTE_COUPLING_API int chute_coupling_face_elements(const chute_coupling* h, int* elements);
 CHUTE_COUPLING_API int chute_coupling_reference_coordinates(const chute_coupling* h, double* xyz);
+/* 1 per face: 3 (triangle) or 4 (quadrilateral). */
+CHUTE_COUPLING_API int chute_coupling_face_sizes(const chute_coupling* h, int* sizes);
+/* 1 per vertex: the model node it is (0-based, ascending), as chute's own output numbers nodes. */
+CHUTE_COUPLING_API int chute_coupling_vertex_nodes(const chute_coupling* h, int* nodes);
+/* 1 per face: the model membrane element it is (0-based). */
+CHUTE_COUPLING_API int chute_coupling_face_elements(const chute_coupling* h, int* elements);
+/* The membrane sets the surface covers (indices into the case's [[membranes]], 0-based). */
+CHUTE_COUPLING_API int chute_coupling_num_surface_sets(const chute_coupling* h, int* n);
+CHUTE_COUPLING_API int chute_coupling_surface_sets(const chute_coupling* h, int* sets);
+/* The number of model nodes: the size / 3 of the full vectors chute_coupling_gather takes. */
+CHUTE_COUPLING_API int chute_coupling_num_model_nodes(const chute_coupling* h, int* n);
 
 /* Write data (writeData): the state at the current time. */
 CHUTE_COUPLING_API int chute_coupling_current_coordinates(const chute_coupling* h, double* xyz);
@@ -61,14 +72,18 @@ CHUTE_COUPLING_API int chute_coupling_velocities(const chute_coupling* h, double
 CHUTE_COUPLING_API int chute_coupling_accelerations(const chute_coupling* h, double* xyz);
 CHUTE_COUPLING_API int chute_coupling_face_normals(const chute_coupling* h, double* xyz);
 CHUTE_COUPLING_API int chute_coupling_face_areas(const chute_coupling* h, double* areas);
-/* 3 per face: |A| n, the face's area times its unit normal (the direction pressure pushes). */
+/* 3 per face: |A| n, the area times the unit normal (the force of a unit pressure). */
 CHUTE_COUPLING_API int chute_coupling_face_area_vectors(const chute_coupling* h, double* xyz);
-/* 3 per face: the mean of its vertices' current coordinates. */
+/* 3 per face: the mean of its current vertex positions (where a face value sits). */
 CHUTE_COUPLING_API int chute_coupling_face_centres(const chute_coupling* h, double* xyz);
-/* 3 per face from 3 per vertex: the mean of a vertex quantity over each face's vertices (the
- * face velocity a flow model sees from chute_coupling_velocities). */
+
+/* Helpers on the surface's layout (no state read or changed). */
+/* 3 per face out: the face means (1/N) sum_i of 3-per-vertex values in (e.g. face velocities). */
 CHUTE_COUPLING_API int chute_coupling_face_means(const chute_coupling* h, const double* vertex_xyz,
                                                  double* face_xyz);
+/* 3 per vertex out: the surface's values of a full 3-per-model-node vector in. */
+CHUTE_COUPLING_API int chute_coupling_gather(const chute_coupling* h, const double* node_xyz,
+                                             double* vertex_xyz);
 
 /* Read data (readData): loads for the next advance, held over the window. */
 CHUTE_COUPLING_API int chute_coupling_set_face_pressures(chute_coupling* h, const double* p);

@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <cmath>
 
 #include "kernels/MembraneShapeRules.hpp"
 
@@ -149,9 +150,26 @@ MembraneResult<NumNodes> membraneForce(const std::array<Vec3, NumNodes>& x,
     const Eigen::Vector2d ev = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(Et).eigenvalues();
     r.principalStress += Eigen::Vector2d(sv[1], sv[0]) / MembraneReference<NumNodes>::kGauss;
     r.principalStrain += Eigen::Vector2d(ev[1], ev[0]) / MembraneReference<NumNodes>::kGauss;
+    r.principalResultant += principalResultant(F.transpose() * F, S, mat.thickness) /
+                            MembraneReference<NumNodes>::kGauss;
   }
   r.state = static_cast<WrinkleState>(worst);
   return r;
+}
+
+Eigen::Vector2d principalResultant(const Eigen::Matrix2d& C, const Eigen::Matrix2d& S,
+                                   double thickness) {
+  const double detC = C.determinant();
+  if (!(detC > 0.0)) return Eigen::Vector2d::Zero();  // a collapsed element carries nothing
+  // Cholesky of the 2x2 C by hand: C = L L^T, L lower triangular.
+  const double l00 = std::sqrt(C(0, 0));
+  const double l10 = C(1, 0) / l00;
+  const double l11 = std::sqrt(std::max(C(1, 1) - l10 * l10, 0.0));
+  Eigen::Matrix2d L;
+  L << l00, 0.0, l10, l11;
+  const Eigen::Matrix2d M = L.transpose() * S * L;
+  const Eigen::Vector2d v = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(M).eigenvalues();
+  return thickness / std::sqrt(detC) * Eigen::Vector2d(v[1], v[0]);
 }
 
 template <int NumNodes>

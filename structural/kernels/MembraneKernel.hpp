@@ -15,6 +15,9 @@ struct MembraneMaterial {
   double nu = 0.0;
   double thickness = 0.0;
   double density = 0.0;  // mass per reference volume
+  // Strength as a stress resultant (force per unit width, the unit fabric data sheets give);
+  // 0: none given. Output only: the `utilisation` cell field (docs/output.md).
+  double strength = 0.0;
 };
 
 // Reference data of an element: shape-function gradients in the element's local reference
@@ -42,7 +45,17 @@ struct MembraneResult {
   WrinkleState state = WrinkleState::Taut;  // the most relaxed state of its integration points
   Eigen::Vector2d principalStress = Eigen::Vector2d::Zero();  // of S, averaged over the points
   Eigen::Vector2d principalStrain = Eigen::Vector2d::Zero();  // of E, averaged
+  // Principal values of the true (Cauchy) stress resultant, force per unit current width:
+  // n = t0 F S F^T / J_A with J_A = sqrt(det C) the area ratio (sigma t = t0 F S F^T / J_A, as
+  // the thickness shrinks by lambda_3 = J / J_A). Largest first, averaged over the points.
+  Eigen::Vector2d principalResultant = Eigen::Vector2d::Zero();
 };
+
+// The principal values of the true stress resultant t0 F S F^T / J_A at a point with
+// C = F^T F (2x2) and 2x2 second Piola-Kirchhoff stress S, largest first. The non-zero
+// eigenvalues of F S F^T are those of S C, i.e. of the symmetric L^T S L (C = L L^T).
+Eigen::Vector2d principalResultant(const Eigen::Matrix2d& C, const Eigen::Matrix2d& S,
+                                   double thickness);
 
 // withPrincipals: also the principal values (two 2 x 2 eigen-solves per point, for output only;
 // left zero otherwise).

@@ -203,7 +203,7 @@ const std::vector<MembraneTerm::ElementState>& MembraneTerm::elementStates() con
       constexpr int N = decltype(nodesTag)::value;
       const auto res =
           kernels::membraneForce<N>(gatherNodes<N>(lastX_, e), ref, mat, wrinkling, false, true);
-      states_[k] = {res.state, res.principalStress, res.principalStrain};
+      states_[k] = {res.state, res.principalStress, res.principalStrain, res.principalResultant};
     };
     if (e.numNodes == 3)
       one(refs3_[slot_[k]], std::integral_constant<int, 3>{});
@@ -253,11 +253,12 @@ void MembraneTerm::save(History& h) const {
   elementStates();  // principal values of the last assembly
   std::vector<int> wrinkle(states_.size());
   std::vector<double> values;
-  values.reserve(4 * states_.size());
+  values.reserve(6 * states_.size());
   for (size_t k = 0; k < states_.size(); ++k) {
     wrinkle[k] = static_cast<int>(states_[k].state);
     for (int c = 0; c < 2; ++c) values.push_back(states_[k].principalStress[c]);
     for (int c = 0; c < 2; ++c) values.push_back(states_[k].principalStrain[c]);
+    for (int c = 0; c < 2; ++c) values.push_back(states_[k].principalResultant[c]);
   }
   h.put(wrinkle);
   h.put(values);
@@ -266,11 +267,13 @@ void MembraneTerm::save(History& h) const {
 void MembraneTerm::load(HistoryReader& h) {
   principalsStale_ = false;  // the loaded values stand until the next assembly
   const auto wrinkle = h.ints(states_.size(), 0, static_cast<int>(kernels::WrinkleState::Slack));
-  const auto values = h.reals(4 * states_.size());
+  const auto values = h.reals(6 * states_.size());
   for (size_t k = 0; k < states_.size(); ++k) {
+    const double* v = &values[6 * k];
     states_[k].state = static_cast<kernels::WrinkleState>(wrinkle[k]);
-    states_[k].principalStress = Eigen::Vector2d(values[4 * k], values[4 * k + 1]);
-    states_[k].principalStrain = Eigen::Vector2d(values[4 * k + 2], values[4 * k + 3]);
+    states_[k].principalStress = Eigen::Vector2d(v[0], v[1]);
+    states_[k].principalStrain = Eigen::Vector2d(v[2], v[3]);
+    states_[k].principalResultant = Eigen::Vector2d(v[4], v[5]);
   }
 }
 

@@ -24,6 +24,8 @@ class MembraneTerm final : public Term {
     kernels::WrinkleState state = kernels::WrinkleState::Taut;
     Eigen::Vector2d principalStress = Eigen::Vector2d::Zero();
     Eigen::Vector2d principalStrain = Eigen::Vector2d::Zero();
+    // True stress resultant, force per current width (kernels::MembraneResult).
+    Eigen::Vector2d principalResultant = Eigen::Vector2d::Zero();
   };
   // A function of the current strain, recomputed at every assembly (not history); kept so that
   // output after a coupling checkpoint is restored shows the restored state. The principal

@@ -440,6 +440,111 @@ TEST(ParaView, OpensTheSeriesWithItsOwnReader) {
   EXPECT_GT(im.spread, 5.0);  // the rope and the bead drawn, not a blank image
 }
 
+// docs/output.md's ParaView convention, through ParaView itself: the points of a frame are the
+// current positions (nothing to warp: Warp By Vector by `displacement` at +1 would double the
+// motion), `displacement` is x - X, so warping by it at scale -1 gives the reference; the fabric
+// load is shown by its named component `N1`.
+TEST(ParaView, PointsAreCurrentAndTheNamedResultantComponentIsShown) {
+  const std::string pvpython = findPvpython();
+  if (pvpython.empty()) {
+    if (std::getenv("CHUTE_REQUIRE_PARAVIEW"))
+      FAIL() << "pvpython not found (scripts/install-paraview.sh puts it in " CHUTE_PARAVIEW_PREFIX
+                ")";
+    GTEST_SKIP() << "ParaView's pvpython is not installed (bash scripts/install-paraview.sh): "
+                    "skipped";
+  }
+  const auto dir = sheetRun("paraview_convention");
+  const auto script = dir / "convention.py";
+  const auto png = dir / "resultant.png";
+  {
+    std::FILE* f = std::fopen(script.c_str(), "w");
+    ASSERT_NE(f, nullptr);
+    std::fprintf(
+        f,
+        "import os, sys\n"
+        "sys.path = [p for p in sys.path if os.path.normpath(p) != '/lib/python3/dist-packages']\n"
+        "from paraview.simple import *\n"
+        "from paraview import servermanager\n"
+        "from vtkmodules.util.numpy_support import vtk_to_numpy\n"
+        "r = OpenDataFile('%s/sheet.pvd')\n"
+        "times = r.TimestepValues\n"
+        "assert len(times) >= 3, times\n"
+        "def at(source, t):\n"
+        "    # ForceTime: the frame of time t whatever the view's time (Fetch updates at its "
+        "own).\n"
+        "    ft = ForceTime(Input=source, ForcedTime=t, IgnorePipelineTime=1)\n"
+        "    g = servermanager.Fetch(ft)\n"
+        "    Delete(ft)\n"
+        "    return g\n"
+        "def arrays(g):\n"
+        "    x = vtk_to_numpy(g.GetPoints().GetData()).astype(float)\n"
+        "    u = vtk_to_numpy(g.GetPointData().GetArray('displacement')).astype(float)\n"
+        "    return x, u\n"
+        "x0, u0 = arrays(at(r, times[0]))\n"
+        "X = x0 - u0  # the reference, from the first frame\n"
+        "x, u = arrays(at(r, times[-1]))\n"
+        "scale = max(abs(X).max(), 1e-300)\n"
+        "moved = abs(u).max() / scale\n"
+        "assert moved > 1e-3, moved  # the sheet moved: the check below is not vacuous\n"
+        "# The convention: the points are the current positions, X + displacement.\n"
+        "err_current = abs(x - (X + u)).max() / scale\n"
+        "# Warp By Vector by displacement at scale -1: the reference (cutting pattern).\n"
+        "w = WarpByVector(Input=r, Vectors=['POINTS', 'displacement'], ScaleFactor=-1.0)\n"
+        "xw = vtk_to_numpy(at(w, times[-1]).GetPoints().GetData()).astype(float)\n"
+        "err_reference = abs(xw - X).max() / scale\n"
+        "# Warping by +1 would double the motion: the points would be X + 2u.\n"
+        "w2 = WarpByVector(Input=r, Vectors=['POINTS', 'displacement'], ScaleFactor=1.0)\n"
+        "xd = vtk_to_numpy(at(w2, times[-1]).GetPoints().GetData()).astype(float)\n"
+        "err_doubled = abs(xd - (X + 2 * u)).max() / scale\n"
+        "print('paraview convention: %%d frames, largest displacement %%.3g of the size; points vs "
+        "X + u %%.2e, warp -1 vs X %%.2e, warp +1 vs X + 2u %%.2e (relative)' %% (len(times), "
+        "moved, err_current, err_reference, err_doubled))\n"
+        "assert err_current <= 1e-9 and err_reference <= 1e-9 and err_doubled <= 1e-9\n"
+        "# The fabric load by its named component.\n"
+        "r.UpdatePipeline(times[-1])\n"
+        "# Warp By Vector's own choice of vector is not displacement (which would double the "
+        "motion).\n"
+        "wd = WarpByVector(Input=r)\n"
+        "assert wd.Vectors[1] != 'displacement', wd.Vectors\n"
+        "print('paraview: Warp By Vector defaults to %%s' %% (wd.Vectors,))\n"
+        "Delete(wd)\n"
+        "info = r.GetCellDataInformation().GetArray('stress_resultant')\n"
+        "names = [info.GetComponentName(c) for c in range(info.GetNumberOfComponents())]\n"
+        "assert names == ['N1', 'N2'], names\n"
+        "s = r.GetCellDataInformation().GetArray('principal_stress')\n"
+        "assert [s.GetComponentName(0), s.GetComponentName(1)] == ['S1', 'S2']\n"
+        "v = CreateView('RenderView')\n"
+        "v.ViewSize = [640, 360]\n"
+        "v.ViewTime = times[-1]\n"
+        "v.UseColorPaletteForBackground = 0\n"
+        "v.Background = [1, 1, 1]\n"
+        "v.CameraPosition, v.CameraFocalPoint, v.CameraViewUp = [0.5, -3, 1], [0.5, 0.5, 0], [0, "
+        "0, "
+        "1]\n"
+        "d = Show(r, v)\n"
+        "ColorBy(d, ('CELLS', 'stress_resultant', 'N1'))\n"
+        "lut = GetColorTransferFunction('stress_resultant')\n"
+        "assert lut.VectorMode == 'Component' and lut.VectorComponent == 0, (lut.VectorMode, "
+        "lut.VectorComponent)\n"
+        "d.RescaleTransferFunctionToDataRange(False, True)\n"
+        "ResetCamera(v)\n"
+        "SaveScreenshot('%s', v, ImageResolution=[640, 360])\n"
+        "print('paraview: coloured by stress_resultant component %%s, range %%s N/m' %% (names[0], "
+        "info.GetComponentRange(0)))\n",
+        dir.c_str(), png.c_str());
+    std::fclose(f);
+  }
+  chute::render::VirtualDisplay display;
+  const std::string cmd = pvpython + " " + script.string();
+  std::printf("%s\n", cmd.c_str());
+  std::fflush(stdout);
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  const Image im = readPng(png);
+  EXPECT_EQ(im.width, 640);
+  EXPECT_EQ(im.height, 360);
+  EXPECT_GT(im.spread, 5.0);  // the sheet drawn, not a blank image
+}
+
 namespace {
 // The Xvfb servers whose parent is `parent` (from /proc: "pid (comm) state ppid ...").
 std::vector<pid_t> serversOf(pid_t parent) {

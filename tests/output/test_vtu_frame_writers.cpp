@@ -62,7 +62,7 @@ SceneFrame sampleFrame(int nodesPerSide, unsigned seed) {
   cell(CellShape::Vertex, {n * n - 1});
   const size_t np = f.points.size() / 3, nc = f.shapes.size();
   FieldArray disp{"displacement", 3, {}}, state{"wrinkling_state", 1, {}, true};
-  FieldArray stress{"principal_stress", 2, {}}, part{"part", 1, {}, true};
+  FieldArray stress{"principal_stress", 2, {}, false, {"S1", "S2"}}, part{"part", 1, {}, true};
   for (size_t p = 0; p < 3 * np; ++p) disp.values.push_back(u(rng));
   for (size_t c = 0; c < nc; ++c) {
     const bool line = f.shapes[c] == CellShape::Line || f.shapes[c] == CellShape::Vertex;
@@ -122,9 +122,19 @@ void expectSameGrid(vtkUnstructuredGrid* a, vtkUnstructuredGrid* b) {
        {std::pair<vtkFieldData*, vtkFieldData*>{a->GetPointData(), b->GetPointData()},
         {a->GetCellData(), b->GetCellData()}}) {
     ASSERT_EQ(da->GetNumberOfArrays(), db->GetNumberOfArrays());
-    for (int i = 0; i < da->GetNumberOfArrays(); ++i)
+    for (int i = 0; i < da->GetNumberOfArrays(); ++i) {
       EXPECT_EQ(differences(da->GetArray(i), db->GetArray(da->GetArrayName(i))), 0)
           << da->GetArrayName(i);
+      // The same component names (none, or ParaView's labels such as S1, S2).
+      auto* ai = da->GetArray(i);
+      auto* bi = db->GetArray(da->GetArrayName(i));
+      if (!ai || !bi) continue;
+      for (int c = 0; c < ai->GetNumberOfComponents(); ++c) {
+        const char* na = ai->GetComponentName(c);
+        const char* nb = bi->GetComponentName(c);
+        EXPECT_EQ(na ? std::string(na) : "", nb ? std::string(nb) : "") << da->GetArrayName(i);
+      }
+    }
   }
   EXPECT_EQ(differences(a->GetFieldData()->GetArray("TimeValue"),
                         b->GetFieldData()->GetArray("TimeValue")),
@@ -156,6 +166,13 @@ TEST(VtuFrameWriters, DirectWriterReadsBackAsVtksWriterBitForBit) {
     EXPECT_EQ(raw->GetNumberOfPoints() * 3, static_cast<vtkIdType>(f.points.size()));
     EXPECT_EQ(raw->GetPointData()->GetArray("displacement")->GetComponent(1, 2),
               f.pointData[0].values[5]);
+    // Component names reach the file (ParaView shows S1, S2 rather than X, Y).
+    for (const auto& g : {raw, vtk}) {
+      auto* stress = g->GetCellData()->GetArray("principal_stress");
+      ASSERT_TRUE(stress && stress->GetComponentName(0) && stress->GetComponentName(1));
+      EXPECT_EQ(std::string(stress->GetComponentName(0)), "S1");
+      EXPECT_EQ(std::string(stress->GetComponentName(1)), "S2");
+    }
   }
 }
 

@@ -15,6 +15,8 @@ kernels::MembraneMaterial readMembraneMaterial(TomlTable t) {
   if (m.nu < 0.0 || m.nu >= 0.5) t.fail("nu", "must be in [0, 0.5)");
   m.thickness = t.positive("thickness");
   m.density = t.nonNegative("density", 0.0);
+  // Optional: without it the utilisation field is NaN (docs/output.md).
+  if (t.has("strength")) m.strength = t.positive("strength");
   t.finish();
   return m;
 }

@@ -3,7 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <cmath>
+#include <cstdio>
 #include <random>
+#include <utility>
 
 #include "kernels/MembraneKernel.hpp"
 #include "support/FiniteDifference.hpp"
@@ -100,6 +103,38 @@ TEST(MembranePatch, UniformStretchGivesTheExactUniformStress) {
   const auto rt = membraneForce<3>({x[0], x[1], x[2]}, triangleReference(Xt, kFabric.thickness),
                                    kFabric, true, false);
   EXPECT_LE((rt.principalStress - expected).norm(), 1e-9 * expected.norm());
+}
+
+// The true stress resultant at a large stretch, where it differs from S t0 by lx / ly: a
+// rectangle stretched by lx along x and ly along y (then rotated in space) carries
+// n1 = t0 lx S11 / ly and n2 = t0 ly S22 / lx (force per current width). Uniaxial stress:
+// ly = sqrt(1 - nu (lx^2 - 1)) makes S22 = 0, so n2 = 0 and n1 = t0 E e11 lx / ly.
+TEST(MembranePatch, StressResultantIsTheTrueForcePerCurrentWidth) {
+  const double nu = kFabric.nu, E = kFabric.E, t0 = kFabric.thickness;
+  const double c = E / (1 - nu * nu);
+  const std::array<Vec3, 4> X = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 0.7, 0), Vec3(0, 0.7, 0)};
+  const auto ref = quadReference(X, t0);
+  const auto reft = triangleReference({X[0], X[1], X[2]}, t0);
+  const double lxU = 1.2, lyU = std::sqrt(1.0 - nu * (lxU * lxU - 1.0));
+  for (const auto& [lx, ly] : {std::pair{lxU, lyU}, std::pair{1.2, 1.1}}) {
+    const double e11 = 0.5 * (lx * lx - 1), e22 = 0.5 * (ly * ly - 1);
+    const double S11 = c * (e11 + nu * e22), S22 = c * (e22 + nu * e11);
+    Eigen::Vector2d expected(t0 * lx * S11 / ly, t0 * ly * S22 / lx);
+    if (expected[1] > expected[0]) std::swap(expected[0], expected[1]);
+    std::mt19937 rng(7);
+    const auto x = deformed<4>(X, lx, ly, 0.0, rng, 0.0);
+    const auto r = membraneForce<4>(x, ref, kFabric, false, false);
+    const auto rt = membraneForce<3>({x[0], x[1], x[2]}, reft, kFabric, false, false);
+    const double errQ = (r.principalResultant - expected).norm() / expected.norm();
+    const double errT = (rt.principalResultant - expected).norm() / expected.norm();
+    std::printf(
+        "stretch %.4f x %.4f: n = (%.9g, %.9g) N/m analytic (%.9g, %.9g); relative error "
+        "quad %.2e, triangle %.2e; S t0 would be off by %.1f %%\n",
+        lx, ly, r.principalResultant[0], r.principalResultant[1], expected[0], expected[1], errQ,
+        errT, 100.0 * std::abs(t0 * r.principalStress[0] / expected[0] - 1.0));
+    EXPECT_LE(errQ, 1e-12);
+    EXPECT_LE(errT, 1e-12);
+  }
 }
 
 TEST(MembranePatch, RigidRotationByNinetyDegreesGivesZeroStress) {
