@@ -3,6 +3,7 @@
 // a Jacobian against its vector function.
 #include <Eigen/Core>
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace chute::testing {
@@ -38,6 +39,20 @@ Eigen::VectorXd fdGradient(F&& f, const Eigen::VectorXd& x, double h) {
     g[j] = (f(xp) - f(xm)) / (2 * h);
   }
   return g;
+}
+
+// The nodes of a face as one vector (3 per node) and back: what fdJacobian differentiates.
+template <int N>
+Eigen::VectorXd flat(const std::array<Eigen::Vector3d, N>& a) {
+  Eigen::VectorXd out(3 * N);
+  for (int i = 0; i < N; ++i) out.template segment<3>(3 * i) = a[i];
+  return out;
+}
+template <int N>
+std::array<Eigen::Vector3d, N> unflat(const Eigen::VectorXd& y) {
+  std::array<Eigen::Vector3d, N> out;
+  for (int i = 0; i < N; ++i) out[i] = y.template segment<3>(3 * i);
+  return out;
 }
 
 }  // namespace chute::testing

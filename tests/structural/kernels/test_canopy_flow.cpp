@@ -15,23 +15,12 @@
 
 using namespace chute::kernels;
 using chute::testing::fdJacobian;
+using chute::testing::flat;
 using chute::testing::relativeError;
+using chute::testing::unflat;
 using Vec3 = Eigen::Vector3d;
 
 namespace {
-
-template <int N>
-Eigen::VectorXd flat(const std::array<Vec3, N>& a) {
-  Eigen::VectorXd out(3 * N);
-  for (int i = 0; i < N; ++i) out.segment<3>(3 * i) = a[i];
-  return out;
-}
-template <int N>
-std::array<Vec3, N> unflat(const Eigen::VectorXd& y) {
-  std::array<Vec3, N> out;
-  for (int i = 0; i < N; ++i) out[i] = y.segment<3>(3 * i);
-  return out;
-}
 
 CanopyFlowState someFlow(const Vec3& direction) {
   CanopyFlowState s;

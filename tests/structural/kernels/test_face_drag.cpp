@@ -12,25 +12,14 @@
 
 using namespace chute::kernels;
 using chute::testing::fdJacobian;
+using chute::testing::flat;
 using chute::testing::relativeError;
+using chute::testing::unflat;
 using Vec3 = Eigen::Vector3d;
 
 namespace {
 
 constexpr double kHalfRhoCd = 0.5 * 0.0023769 * 1.2;
-
-template <int N>
-Eigen::VectorXd flat(const std::array<Vec3, N>& a) {
-  Eigen::VectorXd out(3 * N);
-  for (int i = 0; i < N; ++i) out.segment<3>(3 * i) = a[i];
-  return out;
-}
-template <int N>
-std::array<Vec3, N> unflat(const Eigen::VectorXd& y) {
-  std::array<Vec3, N> out;
-  for (int i = 0; i < N; ++i) out[i] = y.segment<3>(3 * i);
-  return out;
-}
 
 // Area vector by quadrature: int x_,xi x x_,eta over the parent element (triangle: constant;
 // quad: bilinear map on [-1, 1]^2, the integrand is bilinear so 2x2 Gauss is exact).
