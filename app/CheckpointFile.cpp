@@ -18,7 +18,8 @@
 namespace chute {
 
 namespace {
-constexpr int kFormat = 3;  // 3: every case key (2: the solver's)
+constexpr int kFormat = 4;  // 4: membrane states with stress resultants, canopy-flow and contact
+                            // histories; 3: every case key; 2: the solver's
 // A checkpoint holds a few vectors of the model's size: anything far larger is not one.
 constexpr std::uintmax_t kMaxBytes = std::uintmax_t{4} << 30;
 // The deepest a checkpoint nests is 4 (payload, terms, a term's record, its lists); anything far

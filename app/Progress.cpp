@@ -36,7 +36,10 @@ std::string Progress::duration(double s) {
 std::string Progress::figures(const Step& s, double elapsed) const {
   const double done = s.t - t0_;
   std::string left = "?";
-  if (done > 0 && elapsed > 0.5) left = duration(elapsed * (tEnd_ - s.t) / done);
+  if (s.t >= tEnd_)
+    left = duration(0.0);  // the end: nothing left, however short the run
+  else if (done > 0 && elapsed > 0.5)
+    left = duration(elapsed * (tEnd_ - s.t) / done);  // below half a second the rate is noise
   std::string work;
   if (implicit_) {
     work = fmt::format("newton {:2d} (avg {:.2f})  rejected {}", s.newton, s.newtonAverage,

@@ -17,6 +17,38 @@ namespace chute::caseio {
 
 namespace {
 
+// An array none of whose entries is a table or an array: what --set may replace whole.
+bool arrayOfValues(const toml::value& v) {
+  return v.is_array() &&
+         std::none_of(v.as_array().begin(), v.as_array().end(),
+                      [](const toml::value& e) { return e.is_table() || e.is_array(); });
+}
+
+// The number a text begins with when the rest is a unit ("1s" -> "1", "9.81 m/s2" -> "9.81"),
+// else "". The number is the longest prefix TOML reads as one; the rest, after spaces, must begin
+// with a letter and not be a lone exponent mark ("1e" is a number cut short, not metres of e).
+std::string numberBeforeUnit(const std::string& text) {
+  for (size_t n = std::min<size_t>(text.size(), 64); n-- > 1;) {
+    size_t rest = n;
+    while (rest < text.size() && text[rest] == ' ') ++rest;
+    if (rest >= text.size() || !std::isalpha(static_cast<unsigned char>(text[rest]))) continue;
+    const bool exponent =
+        (text[rest] == 'e' || text[rest] == 'E') &&
+        (rest + 1 == text.size() || text[rest + 1] == '+' || text[rest + 1] == '-' ||
+         std::isdigit(static_cast<unsigned char>(text[rest + 1])));
+    if (exponent) continue;
+    const std::string head = text.substr(0, n);
+    if (head.find_first_not_of("0123456789+-._eE") != std::string::npos) continue;
+    try {
+      std::istringstream in("v = " + head);
+      const toml::value v = toml::parse(in, "number").as_table().at("v");
+      if (v.is_integer() || v.is_floating()) return head;
+    } catch (const std::exception&) {
+    }
+  }
+  return "";
+}
+
 // Case files are read whole, regular files only (a FIFO or /dev/zero never ends), at most
 // kMaxCaseBytes (docs/limits.md).
 constexpr std::uintmax_t kMaxCaseBytes = 64ull << 20;
@@ -194,6 +226,18 @@ void applyOverride(toml::value& root, const std::string& file, const std::string
     std::istringstream in("v = " + text);
     parsed = toml::parse(in, where).as_table().at("v");
   } catch (const std::exception& e) {
+    // A number with a unit ("1s", "9.81 m/s2", "5 kg"): the case's numbers are plain, in its
+    // units. Judged only once the text is not TOML, so "1e" (an exponent cut short) stays a
+    // malformed number and no TOML value is misread as a unit.
+    const std::string number = numberBeforeUnit(text);
+    if (!number.empty()) {
+      std::string units;
+      if (root.is_table() && root.as_table().count("units") &&
+          root.as_table().at("units").is_string())
+        units = root.as_table().at("units").as_string().str;
+      throw CaseError(where + ": " + shown + ": numbers take no units (give " + number +
+                      " in the case's units" + (units.empty() ? "" : ", " + units) + ")");
+    }
     // A bare word is a string (--set solver.mass=consistent), as a user types it in a shell.
     const bool bareWord =
         !text.empty() && std::isalpha(static_cast<unsigned char>(text[0])) &&
@@ -201,20 +245,30 @@ void applyOverride(toml::value& root, const std::string& file, const std::string
             "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-.") ==
             std::string::npos;
     if (!bareWord)
-      throw CaseError(where + ": " + shown + ": not a TOML value: " + oneLine(e.what()));
+      throw CaseError(where + ": " + shown + ": not a TOML value: " + oneLine(e.what()) +
+                      (text[0] == '['
+                           ? " (strings in an array are quoted: '" + shown + "=[\"a\", \"b\"]')"
+                           : ""));
     std::istringstream quoted("v = \"" + text + "\"");  // keeps the --set as its origin
     parsed = toml::parse(quoted, where).as_table().at("v");
   }
-  if (parsed.is_table() || parsed.is_array())
-    throw CaseError(where + ": " + shown + ": only scalars can be set");
+  // A value or an array of values (output.vtu.fields=["velocity"], loads.gravity=[0, 0, -1]);
+  // the reader then judges its type as it judges the file's. A table is set key by key.
+  if (parsed.is_table() || (parsed.is_array() && !arrayOfValues(parsed)))
+    throw CaseError(where + ": " + shown + ": a table is set one key at a time (" + shown +
+                    ".key=value)");
   if (element) {
+    if (parsed.is_array())
+      throw CaseError(where + ": " + shown + ": an entry of an array takes a value, not an array");
     *element = parsed;
     return;
   }
   auto& t = node->as_table();
   auto it = t.find(keys.back());
-  if (it != t.end() && (it->second.is_table() || it->second.is_array()))
-    throw CaseError(where + ": " + shown + ": is a table in " + file + ", not a scalar");
+  if (it != t.end() &&
+      (it->second.is_table() || (it->second.is_array() && !arrayOfValues(it->second))))
+    throw CaseError(where + ": " + shown + ": is a table in " + file +
+                    ", set its keys one at a time (" + shown + ".key=value)");
   // A key the file does not have is added; the reader rejects it (with a did-you-mean) if the
   // case has no such key.
   t[keys.back()] = parsed;

@@ -315,14 +315,14 @@ TEST(OutputIntegrity, ADeeplyNestedCheckpointIsRefusedNotACrash) {
   const std::string probes = bytes(dir / "probes.csv");
   const std::string ckpt = (dir / "nested.cbor").string();
   const std::string deep = std::string(400000, '\x81') + '\x00';  // [[[...[0]...]]]
-  // The outer document {format: 2, payload: <deep>, checksum: FNV-1a(deep)}, CBOR by hand.
+  // The outer document {format: 4, payload: <deep>, checksum: FNV-1a(deep)}, CBOR by hand.
   std::uint64_t h = 1469598103934665603ull;
   for (unsigned char c : deep) h = (h ^ c) * 1099511628211ull;
   std::string forged = "\xa3";
   forged +=
       "\x66"
       "format"
-      "\x03";
+      "\x04";  // this build's format, so that the payload is read
   forged +=
       "\x67"
       "payload"

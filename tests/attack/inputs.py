@@ -446,10 +446,12 @@ def corpus(ctx):
     add(restart_input(ctx, "nested 400000 deep", b"\x81" * 400000 + b"\x00"))
     deep = b"\x81" * 400000 + b"\x00"
     add(restart_input(ctx, "payload nested 400000 deep, checksum right", cbor.dumps(
-        {"format": 2, "payload": deep, "checksum": cbor.fnv1a(deep)})))
+        {"format": cbor.loads(good)["format"], "payload": deep, "checksum": cbor.fnv1a(deep)})))
     add(restart_input(ctx, "format 2 (before every key was in it)",
                       cbor.dumps(dict(cbor.loads(good), format=2))))
-    add(restart_input(ctx, "format 4", cbor.dumps(dict(cbor.loads(good), format=4))))
+    add(restart_input(ctx, "format 3 (before the stress resultants and flow histories)",
+                      cbor.dumps(dict(cbor.loads(good), format=3))))
+    add(restart_input(ctx, "format 5", cbor.dumps(dict(cbor.loads(good), format=5))))
 
     def setter(key, value):
         def edit(p):

@@ -1028,11 +1028,42 @@ std::vector<Row> rows() {
        "arrays or inline tables nested deeper than 64 levels",
        "",
        1},
+      // Arrays of values are set whole and judged by the reader; tables key by key.
       {kSet,
        kBase,
        {"solver.dt=[1, 2]"},
-       "--set solver.dt=[1, 2]: solver.dt: only scalars can be set",
+       "--set solver.dt=[1, 2]: solver.dt: expected a number",
        ""},
+      {kSet,
+       kBase,
+       {"solver={dt = 1}"},
+       "--set solver={dt = 1}: solver: a table is set one key at a time (solver.key=value)",
+       ""},
+      {kSet,
+       kBase,
+       {"boundary.fixed.0=[1]"},
+       "boundary.fixed.0: an entry of an array takes a value, not an array",
+       ""},
+      {kSet,
+       kBase,
+       {"boundary.fixed=[a, b]"},
+       "--set boundary.fixed=[a, b]: boundary.fixed: not a TOML value: ",
+       ""},
+      {kSet,
+       kBase,
+       {"boundary.fixed=[a, b]"},
+       "(strings in an array are quoted: 'boundary.fixed=[\"a\", \"b\"]')",
+       ""},
+      {kSet, kBase, {"boundary.fixed=[\"a\", \"zz\"]"}, "unknown node 'zz'", ""},
+      // Numbers with units: the case's numbers are plain numbers in its units.
+      {kSet,
+       kBase,
+       {"solver.t_end=1s"},
+       "--set solver.t_end=1s: solver.t_end: numbers take no units (give 1 in the case's units",
+       ""},
+      {kSet, kBase, {"loads.gravity.0=9.81 m/s2"}, "numbers take no units (give 9.81 in", ""},
+      {kSet, kBase, {"solver.dt=2.5e-3 s"}, "numbers take no units (give 2.5e-3 in", ""},
+      {kSet, kBase, {"solver.dt=1e-"}, "--set solver.dt=1e-: solver.dt: not a TOML value", ""},
       {kSet,
        kBase,
        {"materials.rope.E=0"},
@@ -1076,6 +1107,20 @@ TEST(BadInput, ValidBaseAndShippedCasesRead) {
     if (e.path().extension() == ".toml") {
       EXPECT_NO_THROW(readCase(e.path().string())) << e.path();
     }
+}
+
+// --set replaces an array of values whole, read as the file's own array would be; a bare word
+// is a string; a number keeps its exact spelling.
+TEST(BadInput, SetTakesArraysAndBareWords) {
+  const fs::path f = tempDir() / "base_set.toml";
+  std::ofstream(f) << kBase;
+  const CaseSpec c = readCase(f.string(), {"loads.gravity=[0.0, -3.5, 0]", "solver.dt=2.5e-3"});
+  EXPECT_EQ(c.model.gravity, chute::Vec3(0.0, -3.5, 0.0));
+  EXPECT_EQ(c.solver.dt, 2.5e-3);
+  const CaseSpec one = readCase(f.string(), {"boundary.fixed=[\"a\"]"});
+  int fixedNodes = 0;
+  for (const auto& k : one.model.constraint) fixedNodes += k.fixed[0] && k.fixed[1] && k.fixed[2];
+  EXPECT_EQ(fixedNodes, 1) << "boundary.fixed set to one node";
 }
 
 TEST(BadInput, EveryRowGivesOneClearLine) {
