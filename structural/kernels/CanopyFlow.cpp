@@ -15,19 +15,6 @@ ClothPermeability ClothPermeability::fromTest(double uRef, double dpRef, double 
   return c;
 }
 
-double ClothPermeability::velocity(double dp) const {
-  if (inertial == 0.0) return viscous > 0.0 ? dp / viscous : 0.0;
-  // b u^2 + a u = |dp| for u >= 0, odd in dp.
-  const double u =
-      2.0 * std::abs(dp) / (viscous + std::sqrt(viscous * viscous + 4.0 * inertial * std::abs(dp)));
-  return dp < 0.0 ? -u : u;
-}
-
-double ClothPermeability::dVelocity(double dp) const {
-  if (inertial == 0.0) return viscous > 0.0 ? 1.0 / viscous : 0.0;
-  return 1.0 / std::sqrt(viscous * viscous + 4.0 * inertial * std::abs(dp));
-}
-
 double orificeFlow(double dp, double area, double cd, double rho, double dpLinear) {
   const double k = cd * area * std::sqrt(2.0 / rho);
   const double a = std::abs(dp);

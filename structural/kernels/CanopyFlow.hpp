@@ -24,9 +24,19 @@ struct ClothPermeability {
   // viscous from the test point once the inertial part is taken out: dpRef = a uRef + b uRef^2.
   static ClothPermeability fromTest(double uRef, double dpRef, double inertial);
   bool permeable() const { return viscous > 0.0 || inertial > 0.0; }
-  // u for a pressure difference dp (inside minus outside), and du/d(dp).
-  double velocity(double dp) const;
-  double dVelocity(double dp) const;
+  // u for a pressure difference dp (inside minus outside), and du/d(dp). Inline: called for
+  // every canopy face on every step.
+  double velocity(double dp) const {
+    if (inertial == 0.0) return viscous > 0.0 ? dp / viscous : 0.0;
+    // b u^2 + a u = |dp| for u >= 0, odd in dp.
+    const double u = 2.0 * std::abs(dp) /
+                     (viscous + std::sqrt(viscous * viscous + 4.0 * inertial * std::abs(dp)));
+    return dp < 0.0 ? -u : u;
+  }
+  double dVelocity(double dp) const {
+    if (inertial == 0.0) return viscous > 0.0 ? 1.0 / viscous : 0.0;
+    return 1.0 / std::sqrt(viscous * viscous + 4.0 * inertial * std::abs(dp));
+  }
 };
 
 // FL4: volume flow through an opening of area `area` under a pressure difference dp (upstream

@@ -7,6 +7,7 @@
 #include <map>
 #include <numbers>
 #include <stdexcept>
+#include <type_traits>
 
 namespace chute {
 
@@ -85,6 +86,14 @@ CanopyFlowTerm::CanopyFlowTerm(const Model& m, int flow) : m_(&m), def_(&m.canop
       const int n = m.membranes[k].nodes[i];
       if (slot_[n] < 0) slot_[n] = static_cast<int>(nodes_.size()), nodes_.push_back(n);
     }
+  // Each face's nodes and their slots side by side, read in order by every pass over the faces.
+  faceNodes_.resize(faces_.size());
+  for (size_t i = 0; i < faces_.size(); ++i) {
+    const auto& e = m.membranes[faces_[i]];
+    FaceNodes& f = faceNodes_[i];
+    f.size = e.numNodes;
+    for (int k = 0; k < e.numNodes; ++k) f.node[k] = e.nodes[k], f.slot[k] = slot_[e.nodes[k]];
+  }
   // FL2: the openings, oriented on the reference (the cut pattern, where the canopy's area
   // vector S is clear): the mouth's outward normal against S, a vent's along it. The mouth is the
   // longest boundary loop.
@@ -186,36 +195,49 @@ CanopyFlowTerm::Geometry CanopyFlowTerm::geometry(const Eigen::VectorXd& x,
     shares_.assign(nodes_.size(), 0.0);
     nodeArea_.assign(nodes_.size(), Vec3::Zero());
   }
-  const auto& els = m_->membranes;
-  for (size_t i = 0; i < faces_.size(); ++i) {
-    const auto& e = els[faces_[i]];
-    const int N = e.numNodes;
-    const Vec3 x0 = at(x, e.nodes[0]), x1 = at(x, e.nodes[1]), x2 = at(x, e.nodes[2]);
-    Vec3 vf = at(v, e.nodes[0]) + at(v, e.nodes[1]) + at(v, e.nodes[2]);
-    Vec3 A;
-    if (N == 3) {
-      A = 0.5 * (x1 - x0).cross(x2 - x0);
-      g.volume += (x0 + x1 + x2).dot(A) / 9.0;  // tetraVolume(x0, x1, x2): centroid . A / 3
-    } else {
-      const Vec3 x3 = at(x, e.nodes[3]);
-      vf += at(v, e.nodes[3]);
-      A = 0.5 * (x2 - x0).cross(x3 - x1);  // the exact area vector of a bilinear quad
-      g.volume += kernels::tetraVolume(x0, x1, x2) + kernels::tetraVolume(x0, x2, x3);
-    }
-    vf /= static_cast<double>(N);
-    const double area = A.norm();
-    g.area += area;
-    g.velocity += area * vf;
-    g.volumeRate += A.dot(vf);
-    if (keepFaces) {
-      faceData_[i] = {A, area, vf};
-      for (int k = 0; k < N; ++k) {
-        const int sl = slot_[e.nodes[k]];
-        shares_[sl] += area / N;
-        nodeArea_[sl] += A / N;
+  // The same operations in the same order for both kinds of pass; keepFaces is hoisted out of
+  // the loop (a pass over every face on every explicit step).
+  // The sums are held in locals: g is the caller's (returned in place), and the compiler cannot
+  // tell it from the arrays stored to, so sums in g went through memory on every face.
+  double volume = 0.0, area = 0.0, volumeRate = 0.0;
+  Vec3 velocity = Vec3::Zero();
+  auto pass = [&](auto keep) {
+    for (size_t i = 0; i < faceNodes_.size(); ++i) {
+      const FaceNodes& fn = faceNodes_[i];
+      const int N = fn.size;
+      const Vec3 x0 = at(x, fn.node[0]), x1 = at(x, fn.node[1]), x2 = at(x, fn.node[2]);
+      Vec3 vf = at(v, fn.node[0]) + at(v, fn.node[1]) + at(v, fn.node[2]);
+      Vec3 A;
+      if (N == 3) {
+        A = 0.5 * (x1 - x0).cross(x2 - x0);
+        volume += (x0 + x1 + x2).dot(A) / 9.0;  // tetraVolume(x0, x1, x2): centroid . A / 3
+      } else {
+        const Vec3 x3 = at(x, fn.node[3]);
+        vf += at(v, fn.node[3]);
+        A = 0.5 * (x2 - x0).cross(x3 - x1);  // the exact area vector of a bilinear quad
+        volume += kernels::tetraVolume(x0, x1, x2) + kernels::tetraVolume(x0, x2, x3);
+      }
+      vf /= static_cast<double>(N);
+      const double faceArea = A.norm();
+      area += faceArea;
+      velocity += faceArea * vf;
+      volumeRate += A.dot(vf);
+      if constexpr (decltype(keep)::value) {
+        faceData_[i] = {A, faceArea, vf};
+        const double shareN = faceArea / N;
+        const Vec3 aN = A / N;
+        for (int k = 0; k < N; ++k) {
+          shares_[fn.slot[k]] += shareN;
+          nodeArea_[fn.slot[k]] += aN;
+        }
       }
     }
-  }
+  };
+  if (keepFaces)
+    pass(std::true_type{});
+  else
+    pass(std::false_type{});
+  g.volume = volume, g.area = area, g.volumeRate = volumeRate, g.velocity = velocity;
   if (g.area > 0.0) {
     g.velocity /= g.area;
     if (keepFaces)
@@ -369,6 +391,7 @@ CanopyFlowTerm::Evaluation CanopyFlowTerm::evaluate(const Eigen::VectorXd& x,
   kernels::CanopyFlowState atAmbient = s;
   atAmbient.insideGauge = 0.0;
   if (out) nodeForce_.assign(nodes_.size(), Vec3::Zero());
+  double cloth = 0.0, dCloth = 0.0;  // locals, not b's: see geometry
   if (permeable || out)
     for (size_t i = 0; i < faces_.size(); ++i) {
       const FaceData& f = faceData_[i];
@@ -377,15 +400,16 @@ CanopyFlowTerm::Evaluation CanopyFlowTerm::evaluate(const Eigen::VectorXd& x,
       if (permeable) {
         // FL6's pressure difference: inside (at the step's start mass) minus outside.
         const double dp = b.insideGauge + fp.staticDifference;
-        b.cloth += f.area * def_->cloth.velocity(dp);
-        b.dCloth += f.area * def_->cloth.dVelocity(dp);
+        cloth += f.area * def_->cloth.velocity(dp);
+        dCloth += f.area * def_->cloth.dVelocity(dp);
       }
       if (!out) continue;
       // Gathered per node, handed to the assembler once per node below.
-      const auto& el = m.membranes[faces_[i]];
-      const Vec3 force = (fp.netPressure / el.numNodes) * f.A;
-      for (int k = 0; k < el.numNodes; ++k) nodeForce_[slot_[el.nodes[k]]] += force;
+      const FaceNodes& fn = faceNodes_[i];
+      const Vec3 force = (fp.netPressure / fn.size) * f.A;
+      for (int k = 0; k < fn.size; ++k) nodeForce_[fn.slot[k]] += force;
     }
+  b.cloth = cloth, b.dCloth = dCloth;
   // FL3, FL9: the captured air at the end of a step (its update solved here), or as committed.
   e.capturedMass = stepDt > 0.0 ? b.massAfter(captured_, stepDt, *this) : captured_;
   s.insideGauge =

@@ -115,6 +115,11 @@ class CanopyFlowTerm final : public Term {
   std::vector<int> faces_;  // membrane elements of the set
   std::vector<int> nodes_;  // the canopy's nodes, and each node's slot in nodes_
   std::vector<int> slot_;
+  struct FaceNodes {
+    std::array<int, 4> node{}, slot{};  // model node ids, their slots in nodes_
+    int size = 0;                       // 3 or 4
+  };
+  std::vector<FaceNodes> faceNodes_;  // per face of faces_, in its order
   Loop mouth_;
   std::vector<Loop> vents_;
   double volumeFloor_ = 0.0;
