@@ -6,9 +6,11 @@
 #include <fmt/core.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -19,6 +21,7 @@
 #include "app/cli/Command.hpp"
 #include "case/CaseError.hpp"
 #include "case/CaseSpec.hpp"
+#include "case/UnitSuggestion.hpp"
 #include "coupling/CouplingDriver.hpp"
 
 namespace chute::cli {
@@ -29,7 +32,10 @@ struct CoupleArgs {
   std::vector<std::string> sets, surface;
   double omega = 0.5, tolerance = 1e-8, window = 0.0, tEnd = 0.0;
   int maxIterations = 100;
-  double q = 60.0, ramp = 0.02, airDensity = 1.2, cn = 1.0, addedMass = 0.03;
+  // NaN: not given, the SI default (60 Pa, 1.2 kg/m^3, 0.03 m) in the case's units.
+  double q = std::numeric_limits<double>::quiet_NaN(), ramp = 0.02,
+         airDensity = std::numeric_limits<double>::quiet_NaN(), cn = 1.0,
+         addedMass = std::numeric_limits<double>::quiet_NaN();
   std::vector<double> wind = {0.0, 0.0, 0.0};
   bool quiet = false;
 };
@@ -57,9 +63,20 @@ int couple(const CoupleArgs& a) {
     fmt::print(stderr, "chute: {}: {}\n", a.caseFile, e.what());
     return kExitBadInput;
   }
+  // The flow's defaults are SI figures; a case in ft, slug, s, lbf gets them in its units, and
+  // every figure is labelled in the case's units.
+  const bool feet = caseio::inCaseUnits(1.0, "ft", spec.units).value_or(0.0) == 1.0;
+  const auto inCase = [&](double given, double si, const char* unit) {
+    return std::isnan(given) ? caseio::inCaseUnits(si, unit, spec.units).value_or(si) : given;
+  };
+  const double q = inCase(a.q, 60.0, "Pa"), airDensity = inCase(a.airDensity, 1.2, "kg/m3"),
+               addedMass = inCase(a.addedMass, 0.03, "m");
+  const char* lengthUnit = feet ? "ft" : "m";
+  const char* pressureUnit = feet ? "psf" : "Pa";
+  const char* arealMassUnit = feet ? "slug/ft^2" : "kg/m^2";
   QuasiSteadyFlowLaw law;
-  law.stagnationPressure = a.q, law.rampTime = a.ramp, law.airDensity = a.airDensity;
-  law.normalDragCoefficient = a.cn, law.addedMassLength = a.addedMass;
+  law.stagnationPressure = q, law.rampTime = a.ramp, law.airDensity = airDensity;
+  law.normalDragCoefficient = a.cn, law.addedMassLength = addedMass;
   law.wind = Vec3(a.wind[0], a.wind[1], a.wind[2]);
   const QuasiSteadyFlow flow(structure->surface(), law);
   CouplingSettings cs;
@@ -105,10 +122,11 @@ int couple(const CoupleArgs& a) {
           : spec.model.membraneMaterials[0].density * spec.model.membraneMaterials[0].thickness;
   if (!a.quiet)
     fmt::print(
-        "{}: {} coupling, {} relaxation (omega {}), {} faces, {} vertices, {}; flow: q = {} Pa, "
-        "rho_air = {}, C_n = {}, added mass rho_air L_a = {:.3g} kg/m^2 (fabric {:.3g} kg/m^2)\n",
+        "{}: {} coupling, {} relaxation (omega {}), {} faces, {} vertices, {}; flow: q = {:.4g} "
+        "{}, rho_air = {:.4g}, C_n = {}, added mass rho_air L_a = {:.3g} {} (fabric {:.3g} {})\n",
         spec.name, a.scheme, a.relaxation, a.omega, structure->numFaces(), structure->numVertices(),
-        structure->integrator().name(), a.q, a.airDensity, a.cn, a.airDensity * a.addedMass, mass);
+        structure->integrator().name(), q, pressureUnit, airDensity, a.cn, airDensity * addedMass,
+        arealMassUnit, mass, arealMassUnit);
   long windows = 0;
   coupling::CouplingReport rep;
   try {
@@ -121,8 +139,8 @@ int couple(const CoupleArgs& a) {
           if (!a.quiet)
             fmt::print(
                 "  window {:4d}  t = {:.5f}  sub-iterations {:3d}  residual {:.3e}  "
-                "apex {:+.5f} m  mean p {:.3f} Pa\n",
-                windows, w.t, w.iterations, w.residual, z, pm);
+                "apex {:+.5f} {}  mean p {:.4g} {}\n",
+                windows, w.t, w.iterations, w.residual, z, lengthUnit, pm, pressureUnit);
           *csv << fmt::format("{},{},{},{},{}\n", w.t, w.iterations, w.residual, z, pm);
           if (w.accepted)
             out->afterStep(structure->state(), structure->counters().steps,
@@ -192,17 +210,20 @@ Command addCoupleCommand(CLI::App& app) {
   cmd->add_option("--t-end", a->tEnd, "end time (default solver.t_end)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--surface", a->surface, "wet membrane sets (default: all)")->take_all();
-  cmd->add_option("--q", a->q, "flow: stagnation pressure q [Pa] (60)");
+  cmd->add_option("--q", a->q, "flow: stagnation pressure q, in the case's units (60 Pa)");
   cmd->add_option("--ramp", a->ramp, "flow: q ramps up over this time (0.02 s)")
       ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--air-density", a->airDensity, "flow: rho_air (1.2)")
+  cmd->add_option("--air-density", a->airDensity, "flow: rho_air, in the case's units (1.2 kg/m^3)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--cn", a->cn, "flow: normal drag coefficient C_n (1)")
       ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--added-mass", a->addedMass, "flow: added-mass length L_a [m] (0.03)")
+  cmd->add_option("--added-mass", a->addedMass,
+                  "flow: added-mass length L_a, in the case's units (0.03 m)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--wind", a->wind, "flow: air velocity w (3 numbers)")->expected(3);
-  cmd->add_option("--set", a->sets, "override a scalar of the case, e.g. solver.dt=1e-4")
+  cmd->add_option(
+         "--set", a->sets,
+         "override a value of the case by its dotted path, e.g. solver.dt=1e-4 (docs/cli.md)")
       ->take_all();
   cmd->add_option("--out", a->outDir,
                   "output directory (default out/<case name>): probes.csv, the VTU series, "

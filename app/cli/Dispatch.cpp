@@ -2,6 +2,7 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -10,6 +11,7 @@
 #include <string>
 
 #include "case/CaseError.hpp"
+#include "case/CaseText.hpp"
 
 namespace chute::cli {
 
@@ -38,9 +40,28 @@ std::string nonFiniteOption(const CLI::App* app) {
     if (const std::string e = nonFiniteOption(sub); !e.empty()) return e;
   return "";
 }
+
+// A first word that is no verb ("runn", "version"): CLI11 says only that a subcommand is
+// required; name the word and the closest verb. "" if the first word is a verb or an option.
+std::string unknownVerb(const CLI::App& app, int argc, char** argv) {
+  if (argc < 2 || argv[1][0] == '-') return "";
+  const std::string word = argv[1];
+  std::vector<std::string> verbs;
+  for (const CLI::App* sub : app.get_subcommands({})) verbs.push_back(sub->get_name());
+  if (std::find(verbs.begin(), verbs.end(), word) != verbs.end()) return "";
+  std::string hint = caseio::didYouMean(word, verbs);
+  if (word == "version" || word == "help") hint = " (did you mean '--" + word + "'?)";
+  std::string list;
+  for (const auto& v : verbs) list += (list.empty() ? "" : ", ") + v;
+  return "unknown command '" + word + "'" + hint + "; the commands are " + list;
+}
 }  // namespace
 
 int dispatch(CLI::App& app, const std::vector<Command>& commands, int argc, char** argv) {
+  if (const std::string bad = unknownVerb(app, argc, argv); !bad.empty()) {
+    fmt::print(stderr, "chute: {} (chute --help)\n", bad);
+    return kExitBadInput;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

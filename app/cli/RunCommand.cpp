@@ -55,11 +55,13 @@ int runCase(const RunArgs& a) {
     return kExitBadInput;
   }
   if (!a.quiet) {
-    fmt::print(
-        "{}: {} at t = {:.6g}: {} steps, {} rejected, {:.2f} Newton iterations/step, "
-        "{:.3f} s wall\n",
-        spec.name, runStatusName(r.status), r.finalTime, r.steps, r.rejectedSteps,
-        r.newtonPerStep(), r.wallTime);
+    // An explicit run solves nothing: its rate in steps per second, not Newton iterations.
+    const std::string work =
+        r.explicitRun ? fmt::format("{:.0f} steps/s", r.wallTime > 0 ? r.steps / r.wallTime : 0.0)
+                      : fmt::format("{} rejected, {:.2f} Newton iterations/step", r.rejectedSteps,
+                                    r.newtonPerStep());
+    fmt::print("{}: {} at t = {:.6g}: {} steps, {}, {:.3f} s wall\n", spec.name,
+               runStatusName(r.status), r.finalTime, r.steps, work, r.wallTime);
     if (r.reference)
       fmt::print("  reference {} ({}): max error {:.3e}, {:.4f} % of the motion ({:.4g})\n",
                  r.reference->kind, r.reference->probe, r.reference->maxError,
@@ -86,7 +88,9 @@ Command addRunCommand(CLI::App& app) {
   auto* run = app.add_subcommand("run", "run a case file");
   run->add_option("case", a->caseFile, "case file (TOML)")->required();
   run->add_option("--out", a->outDir, "output directory (default out/<case name>/)");
-  run->add_option("--set", a->sets, "override a scalar by its dotted path, e.g. solver.dt=1e-4")
+  run->add_option(
+         "--set", a->sets,
+         "override a value of the case by its dotted path, e.g. solver.dt=1e-4 (docs/cli.md)")
       ->take_all();
   run->add_flag("--quiet", a->quiet, "no progress or report on the terminal");
   run->add_flag("--newton-log", a->verboseNewton, "print the residual of every Newton iteration");

@@ -5,12 +5,14 @@
 #include <cctype>
 #include <cstdint>
 #include <cstdlib>
+#include <iomanip>
 #include <sstream>
 #include <stdexcept>
 
 #include "case/CaseError.hpp"
 #include "case/TomlDepth.hpp"
 #include "case/TomlTable.hpp"
+#include "case/UnitSuggestion.hpp"
 #include "io/InputFile.hpp"
 
 namespace chute::caseio {
@@ -47,6 +49,49 @@ std::string numberBeforeUnit(const std::string& text) {
     }
   }
   return "";
+}
+
+// Why a --set value is not TOML, in the words a shell user needs: an array's unquoted strings
+// shown quoted, a decimal comma, an array left open; else the parser's own reason.
+std::string notTomlReason(const std::string& text, const std::string& parserMessage) {
+  if (!text.empty() && text.front() == '[') {
+    if (text.back() != ']') return "an array needs its closing ']'";
+    // Quote the bare words; if that reads, it is what was meant.
+    std::string quoted;
+    bool inString = false;
+    for (size_t i = 0; i < text.size();) {
+      const char c = text[i];
+      if (c == '"') inString = !inString;
+      if (!inString && std::isalpha(static_cast<unsigned char>(c))) {
+        size_t j = i;
+        while (j < text.size() && (std::isalnum(static_cast<unsigned char>(text[j])) ||
+                                   text[j] == '_' || text[j] == '-' || text[j] == '.'))
+          ++j;
+        const std::string word = text.substr(i, j - i);
+        const bool keyword = word == "true" || word == "false" || word == "inf" || word == "nan";
+        quoted += keyword ? word : "\"" + word + "\"";
+        i = j;
+        continue;
+      }
+      quoted += c;
+      ++i;
+    }
+    try {
+      std::istringstream in("v = " + quoted);
+      toml::parse(in, "quoted");
+      return "strings in an array are quoted: '" + quoted + "'";
+    } catch (const std::exception&) {
+    }
+  }
+  const auto comma = text.find(',');
+  if (comma != std::string::npos && comma > 0 && comma + 1 < text.size() &&
+      std::isdigit(static_cast<unsigned char>(text[comma - 1])) &&
+      std::isdigit(static_cast<unsigned char>(text[comma + 1])) && text.front() != '[') {
+    std::string point = text;
+    point[comma] = '.';
+    return "a decimal point, not a comma (" + point + ")";
+  }
+  return oneLine(parserMessage);
 }
 
 // Case files are read whole, regular files only (a FIFO or /dev/zero never ends), at most
@@ -235,7 +280,17 @@ void applyOverride(toml::value& root, const std::string& file, const std::string
       if (root.is_table() && root.as_table().count("units") &&
           root.as_table().at("units").is_string())
         units = root.as_table().at("units").as_string().str;
-      throw CaseError(where + ": " + shown + ": numbers take no units (give " + number +
+      std::string unit = text.substr(number.size());
+      unit.erase(0, unit.find_first_not_of(' '));
+      std::string plain = number;
+      plain.erase(std::remove(plain.begin(), plain.end(), '_'), plain.end());
+      const auto converted = inCaseUnits(std::strtod(plain.c_str(), nullptr), unit, units);
+      std::ostringstream give;
+      if (converted)
+        give << "give " << std::setprecision(6) << *converted << " for " << text;
+      else
+        give << "give the number";
+      throw CaseError(where + ": " + shown + ": numbers take no units (" + give.str() +
                       " in the case's units" + (units.empty() ? "" : ", " + units) + ")");
     }
     // A bare word is a string (--set solver.mass=consistent), as a user types it in a shell.
@@ -245,10 +300,8 @@ void applyOverride(toml::value& root, const std::string& file, const std::string
             "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-.") ==
             std::string::npos;
     if (!bareWord)
-      throw CaseError(where + ": " + shown + ": not a TOML value: " + oneLine(e.what()) +
-                      (text[0] == '['
-                           ? " (strings in an array are quoted: '" + shown + "=[\"a\", \"b\"]')"
-                           : ""));
+      throw CaseError(where + ": " + shown +
+                      ": not a TOML value: " + notTomlReason(text, e.what()));
     std::istringstream quoted("v = \"" + text + "\"");  // keeps the --set as its origin
     parsed = toml::parse(quoted, where).as_table().at("v");
   }

@@ -17,6 +17,9 @@ namespace {
 const char* roleOfDim(int dim) {
   return dim == 2 ? "a surface (2-D)" : dim == 1 ? "a curve (1-D)" : "a point (0-D)";
 }
+const char* groupsOfDim(int dim) {
+  return dim == 2 ? "surface (2-D) groups" : dim == 1 ? "curve (1-D) groups" : "point (0-D) groups";
+}
 
 int lineMaterialRef(const Model& m, TomlTable& t) {
   const std::string name = t.string("material");
@@ -64,7 +67,7 @@ const mesh::MeshGroup& MeshImport::group(TomlTable& t, const std::string& key, i
     for (const auto& h : mesh.groups)
       if (h.dim == dim) names.push_back(h.name);
     t.fail(key, "no physical group '" + name + "' in " + file +
-                    caseio::nameSuggestion(name, names, std::string(roleOfDim(dim)) + " groups"));
+                    caseio::nameSuggestion(name, names, groupsOfDim(dim)));
   }
   if (g->dim != dim)
     t.fail(key, "physical group '" + name + "' in " + file + " is " + roleOfDim(g->dim) +
@@ -99,8 +102,12 @@ std::unique_ptr<MeshImport> importMesh(Model& m, TomlTable t, const std::string&
     if (it == imp->mesh.views.end()) {
       std::string list;
       for (const auto& [name, v] : imp->mesh.views) list += (list.empty() ? "" : ", ") + name;
-      t.fail("initial_displacement", "no 3-component NodeData view '" + view + "' in " + imp->file +
-                                         " (views: " + (list.empty() ? "none" : list) + ")");
+      // gmsh's File > Save Mesh writes no views: the usual way a generated start is lost.
+      t.fail("initial_displacement",
+             "no 3-component NodeData view '" + view + "' in " + imp->file +
+                 (list.empty() ? " (it has no views: a mesh saved by gmsh drops them; save the "
+                                 "view too, or remove this key for a flat start)"
+                               : " (views: " + list + ")"));
     }
     start = &it->second;
   }

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "case/CaseText.hpp"
+
 namespace chute {
 
 namespace {
@@ -175,7 +177,9 @@ std::string TomlTable::choice(const std::string& key, const std::string& fallbac
   if (std::find(allowed.begin(), allowed.end(), s) == allowed.end()) {
     std::string list;
     for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + ("\"" + a + "\"");
-    fail(key, "\"" + s + "\" is not one of " + list);
+    // A near miss is named first (integrator = "bosak"); the list follows, it is short.
+    const std::string near = caseio::didYouMean(s, allowed);
+    fail(key, "\"" + s + "\" is not one of " + list + near);
   }
   return s;
 }

@@ -4,6 +4,7 @@
 #include <map>
 #include <stdexcept>
 
+#include "case/CaseText.hpp"
 #include "kernels/PressureKernel.hpp"
 
 namespace chute::coupling {
@@ -18,8 +19,12 @@ WetSurface WetSurface::fromModel(const Model& m, const std::vector<std::string>&
     for (const auto& name : setNames) {
       auto it = std::find_if(m.membraneSets.begin(), m.membraneSets.end(),
                              [&](const MembraneSet& s) { return s.name == name; });
-      if (it == m.membraneSets.end())
-        throw std::invalid_argument("no membrane set '" + name + "' for the wet surface");
+      if (it == m.membraneSets.end()) {
+        std::vector<std::string> known;
+        for (const auto& s : m.membraneSets) known.push_back(s.name);
+        throw std::invalid_argument("no membrane set '" + name + "' for the wet surface" +
+                                    caseio::nameSuggestion(name, known, "membrane sets"));
+      }
       w.sets.push_back(static_cast<int>(it - m.membraneSets.begin()));
     }
   }

@@ -14,18 +14,22 @@ namespace {
 // FL7's base pressure coefficient, calibrated once on the generated 5 m solid flat circular
 // canopy's drag coefficient (docs/flight.md, "Calibration").
 constexpr double kCalibratedBasePressure = -0.83;
+
+// The membrane set a load names under key "membranes" (one lookup, one message for every load).
+int membraneSetOf(const Model& m, TomlTable& t) {
+  const std::string set = t.string("membranes");
+  for (size_t k = 0; k < m.membraneSets.size(); ++k)
+    if (m.membraneSets[k].name == set) return static_cast<int>(k);
+  t.fail("membranes", "unknown membrane set '" + set + "'" +
+                          nameSuggestion(set, membraneSetNames(m), "membrane sets"));
+}
 }  // namespace
 
 void readLoads(Model& m, const MeshImport* mesh, TomlTable l) {
   m.gravity = l.vec3("gravity", Vec3::Zero());
   for (auto& t : l.tables("pressure")) {
     PressureLoadDef p;
-    const std::string set = t.string("membranes");
-    for (size_t k = 0; k < m.membraneSets.size(); ++k)
-      if (m.membraneSets[k].name == set) p.set = static_cast<int>(k);
-    if (p.set < 0)
-      t.fail("membranes", "unknown membrane set '" + set + "'" +
-                              nameSuggestion(set, membraneSetNames(m), "membrane sets"));
+    p.set = membraneSetOf(m, t);
     p.pressure = t.number("pressure");
     p.rampTime = t.nonNegative("ramp_time", 0.0);
     if (t.has("element_factors")) {
@@ -41,8 +45,8 @@ void readLoads(Model& m, const MeshImport* mesh, TomlTable l) {
       long count = 0;
       for (const auto& e : m.membranes) count += e.set == p.set;
       if (static_cast<long>(p.elementFactor.size()) != count)
-        t.fail("element_factors",
-               "needs one factor per element of '" + set + "' (" + std::to_string(count) + ")");
+        t.fail("element_factors", "needs one factor per element of '" + m.membraneSets[p.set].name +
+                                      "' (" + std::to_string(count) + ")");
     }
     t.finish();
     m.pressures.push_back(p);
@@ -82,12 +86,7 @@ void readLoads(Model& m, const MeshImport* mesh, TomlTable l) {
   // [[loads.face_drag]]: drag on the faces of a membrane set (docs/formulation.md FD1).
   for (auto& t : l.tables("face_drag")) {
     FaceDragLoadDef d;
-    const std::string set = t.string("membranes");
-    for (size_t k = 0; k < m.membraneSets.size(); ++k)
-      if (m.membraneSets[k].name == set) d.set = static_cast<int>(k);
-    if (d.set < 0)
-      t.fail("membranes", "unknown membrane set '" + set + "'" +
-                              nameSuggestion(set, membraneSetNames(m), "membrane sets"));
+    d.set = membraneSetOf(m, t);
     const double cd = t.positive("cd");
     const double rho = t.positive("air_density");
     d.coefficient = 0.5 * rho * cd;
@@ -100,10 +99,8 @@ void readLoads(Model& m, const MeshImport* mesh, TomlTable l) {
   for (auto& t : l.tables("canopy_flow")) {
     if (!m.air.given) t.fail("membranes", "loads from the airflow need the air: an [air] table");
     CanopyFlowDef d;
-    const std::string set = t.string("membranes");
-    for (size_t k = 0; k < m.membraneSets.size(); ++k)
-      if (m.membraneSets[k].name == set) d.set = static_cast<int>(k);
-    if (d.set < 0) t.fail("membranes", "unknown membrane set '" + set + "'");
+    d.set = membraneSetOf(m, t);
+    const std::string set = m.membraneSets[d.set].name;
     for (const auto& other : m.canopyFlows)
       if (other.set == d.set) t.fail("membranes", "'" + set + "' has loads from the airflow twice");
     d.baseCoefficient = t.number("base_pressure", kCalibratedBasePressure);

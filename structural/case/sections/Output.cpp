@@ -126,8 +126,12 @@ ProbeSpec readProbe(const Model& m, TomlTable t) {
     const std::string set = t.string("membranes");
     for (const auto& f : m.canopyFlows)
       if (m.membraneSets[f.set].name == set) p.membraneSet = f.set;
-    if (p.membraneSet < 0)
-      t.fail("membranes", "no membrane set '" + set + "' with loads from the airflow");
+    if (p.membraneSet < 0) {
+      std::vector<std::string> flown;
+      for (const auto& f : m.canopyFlows) flown.push_back(m.membraneSets[f.set].name);
+      t.fail("membranes", "no membrane set '" + set + "' with loads from the airflow" +
+                              caseio::nameSuggestion(set, flown, "membrane sets with them"));
+    }
   } else if (p.kind == ProbeKind::EdgeAngle) {
     p.node = nodeRef(m, t, "from", t.string("from"));
     p.node2 = nodeRef(m, t, "to", t.string("to"));

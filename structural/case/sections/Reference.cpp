@@ -59,7 +59,9 @@ void readReference(CaseSpec& c, TomlTable r) {
     for (size_t k = 0; k < m.membraneSets.size(); ++k)
       if (m.membraneSets[k].name == set) setId = static_cast<int>(k);
     auto rim = m.nodeSets.find(set + ".rim");
-    if (setId < 0 || rim == m.nodeSets.end()) r.fail("membranes", "no disk membrane '" + set + "'");
+    if (setId < 0 || rim == m.nodeSets.end())
+      r.fail("membranes", "no disk membrane '" + set + "'" +
+                              nameSuggestion(set, membraneSetNames(m), "membrane sets"));
     const int centre = c.output.probes[ref.probe].node;
     for (int n : rim->second) ref.radius = std::max(ref.radius, (m.X[n] - m.X[centre]).norm());
     for (const auto& e : m.membranes) {
