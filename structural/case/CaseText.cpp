@@ -91,6 +91,12 @@ std::string notTomlReason(const std::string& text, const std::string& parserMess
     point[comma] = '.';
     return "a decimal point, not a comma (" + point + ")";
   }
+  // A number whose exponent has no digits ("1e", "2.5E-").
+  const auto mark = text.find_first_of("eE");
+  if (mark != std::string::npos && mark > 0 && text.find_first_not_of("0123456789+-._") == mark &&
+      text.find_first_not_of("+-", mark + 1) == std::string::npos)
+    return "the exponent after '" + text.substr(0, mark + 1) + "' has no digits (e.g. " +
+           text.substr(0, mark + 1) + "-3)";
   return oneLine(parserMessage);
 }
 
