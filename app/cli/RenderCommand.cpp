@@ -31,6 +31,8 @@ Command addRenderCommand(CLI::App& app) {
                   "stress (membranes by max principal stress, lines by axial force) or one point "
                   "or cell field for everything (vectors by magnitude)")
       ->default_val("stress");
+  cmd->add_flag("--cell-values", a->o.cellValues,
+                "membrane fields element by element (default: averaged at the nodes for display)");
   cmd->add_option("--compare", a->o.compareDir, "a second run shown side by side");
   cmd->add_option("--size", a->size, "image size WxH")->default_val("1280x720");
   cmd->add_option("--out", a->o.outDir, "directory for the PNG files (default RUN_DIR/snapshots)");

@@ -4,6 +4,8 @@
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
 #include <vtkFieldData.h>
+#include <vtkIdList.h>
+#include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkStringArray.h>
 #include <vtkUnstructuredGrid.h>
@@ -78,7 +80,7 @@ std::string codeName(const std::string& field, double code, vtkUnstructuredGrid*
 }  // namespace
 
 std::vector<ColourLayer> colourLayers(const std::string& colour, vtkUnstructuredGrid* grid,
-                                      const UnitSystem& units) {
+                                      const UnitSystem& units, bool cellValues) {
   const int membrane = static_cast<int>(CellKind::Membrane);
   const int mass = static_cast<int>(CellKind::PointMass);
   bool onPoints = false;
@@ -89,12 +91,15 @@ std::vector<ColourLayer> colourLayers(const std::string& colour, vtkUnstructured
     findField(grid, "principal_stress", onPoints);
     findField(grid, "axial_force", onPoints);
     const FieldInfo stress = vtuField("principal_stress"), force = vtuField("axial_force");
-    return {
+    ColourLayer fabric =
         layer(membrane, membrane, "principal_stress", 0,
-              withUnit(stress.title + " " + stress.components[0], stress.quantity, units), 99.0),
-        layer(static_cast<int>(CellKind::Cable), static_cast<int>(CellKind::SlidingActivePart),
-              "axial_force", 0, withUnit(force.title, force.quantity, units), 99.0),
-        layer(mass, mass, "", -1, "", 100.0)};
+              withUnit(stress.title + " " + stress.components[0], stress.quantity, units), 99.0);
+    fabric.atNodes = !cellValues && !onPoints;
+    if (fabric.atNodes) fabric.title += ", nodal mean";
+    return {fabric,
+            layer(static_cast<int>(CellKind::Cable), static_cast<int>(CellKind::SlidingActivePart),
+                  "axial_force", 0, withUnit(force.title, force.quantity, units), 99.0),
+            layer(mass, mass, "", -1, "", 100.0)};
   }
   const int components = findField(grid, colour, onPoints)->GetNumberOfComponents();
   const FieldInfo info = vtuField(colour);
@@ -148,7 +153,28 @@ void widenRanges(std::vector<ColourLayer>& layers, vtkUnstructuredGrid* grid) {
       lo = std::min(lo, v), hi = std::max(hi, v);
       if (keep) sampleValue(layer, v);
     };
-    if (onPoints || !kind) {
+    if (layer.atNodes && !onPoints && kind) {
+      // The values drawn: each node's mean over the layer's cells around it (as
+      // vtkCellDataToPointData makes them for the picture).
+      std::vector<double> sum(static_cast<size_t>(grid->GetNumberOfPoints()), 0.0);
+      std::vector<int> count(sum.size(), 0);
+      vtkNew<vtkIdList> ids;
+      for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c) {
+        const double k = kind->GetComponent(c, 0);
+        if (!(k >= layer.kindLo && k <= layer.kindHi)) continue;
+        const double v = valueOf(a, c, layer.component);
+        grid->GetCellPoints(c, ids);
+        for (vtkIdType j = 0; j < ids->GetNumberOfIds(); ++j)
+          sum[ids->GetId(j)] += v, ++count[ids->GetId(j)];
+      }
+      for (size_t i = 0; i < sum.size(); ++i) {
+        if (count[i] == 0) continue;
+        const double v = sum[i] / count[i];
+        if (!std::isfinite(v)) continue;
+        lo = std::min(lo, v), hi = std::max(hi, v);
+        if (keep) sampleValue(layer, v);
+      }
+    } else if (onPoints || !kind) {
       for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i) take(i);
     } else {
       for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c) {

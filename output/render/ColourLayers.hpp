@@ -49,12 +49,17 @@ struct ColourLayer {
   double notApplicable = -1.0;  // the code of those cells (or NaN)
   std::vector<Category> categories;
   bool notApplicableSeen = false;
+  // A membrane layer's cell field shown averaged at the nodes over the membrane elements around
+  // each (display only: an element field is a checkerboard that hides its trend); its range and
+  // percentile are those of the averages, the values drawn.
+  bool atNodes = false;
 };
 
 // The layers for `colour` ("stress" or a field name), titled in the units `units`. Throws
 // std::runtime_error for a field the grid does not carry (naming the fields it does).
+// cellValues: membrane fields element by element (no layer atNodes).
 std::vector<ColourLayer> colourLayers(const std::string& colour, vtkUnstructuredGrid* grid,
-                                      const UnitSystem& units = {});
+                                      const UnitSystem& units = {}, bool cellValues = false);
 
 // Widens each layer's range to the finite values of its field on its cells in `grid` (a frame);
 // a categorical layer collects the codes that occur.

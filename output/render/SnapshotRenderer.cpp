@@ -4,6 +4,7 @@
 #include <vtkActor.h>
 #include <vtkCamera.h>
 #include <vtkCellData.h>
+#include <vtkCellDataToPointData.h>
 #include <vtkDataArray.h>
 #include <vtkDoubleArray.h>
 #include <vtkGeometryFilter.h>
@@ -30,6 +31,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "SceneFrame.hpp"
 #include "VtuSeries.hpp"
 #include "render/ColourLayers.hpp"
 #include "render/FrameFile.hpp"
@@ -135,12 +137,12 @@ struct Scene {
 };
 
 void colourBy(vtkPolyDataMapper* m, vtkUnstructuredGrid* grid, const ColourLayer& layer,
-              vtkLookupTable* lut) {
+              vtkLookupTable* lut, bool averagedAtNodes = false) {
   if (layer.field.empty()) {
     m->ScalarVisibilityOff();
     return;
   }
-  if (grid->GetPointData()->GetArray(layer.field.c_str()))
+  if (averagedAtNodes || grid->GetPointData()->GetArray(layer.field.c_str()))
     m->SetScalarModeToUsePointFieldData();
   else
     m->SetScalarModeToUseCellFieldData();
@@ -165,12 +167,26 @@ Scene buildScene(vtkUnstructuredGrid* grid, const std::vector<ColourLayer>& laye
     cells->SetThresholdFunction(vtkThreshold::THRESHOLD_BETWEEN);
     cells->Update();
     if (cells->GetOutput()->GetNumberOfCells() == 0) continue;
+    // A membrane layer's element field (constant per element: a checkerboard that hides the
+    // field's trend) is shown averaged at each node over the membrane elements around it,
+    // weighted equally (ColourLayer::atNodes). Only the layer's cells are in `cells`, so no
+    // line's value enters.
+    const bool average = layer.atNodes && grid->GetCellData()->GetArray(layer.field.c_str());
+    vtkNew<vtkCellDataToPointData> atNodes;
     vtkNew<vtkGeometryFilter> geometry;
-    geometry->SetInputConnection(cells->GetOutputPort());
+    if (average) {
+      atNodes->SetInputConnection(cells->GetOutputPort());
+      atNodes->ProcessAllArraysOff();
+      atNodes->AddCellDataArray(layer.field.c_str());
+      atNodes->PassCellDataOff();
+      geometry->SetInputConnection(atNodes->GetOutputPort());
+    } else {
+      geometry->SetInputConnection(cells->GetOutputPort());
+    }
 
     vtkNew<vtkPolyDataMapper> surfaceMapper;
     surfaceMapper->SetInputConnection(geometry->GetOutputPort());
-    colourBy(surfaceMapper, grid, layer, luts[i]);
+    colourBy(surfaceMapper, grid, layer, luts[i], average);
     auto surface = vtkSmartPointer<vtkActor>::New();
     surface->SetMapper(surfaceMapper);
     surface->GetProperty()->SetPointSize(10.0);
@@ -186,7 +202,7 @@ Scene buildScene(vtkUnstructuredGrid* grid, const std::vector<ColourLayer>& laye
     tubes->CappingOn();
     vtkNew<vtkPolyDataMapper> tubeMapper;
     tubeMapper->SetInputConnection(tubes->GetOutputPort());
-    colourBy(tubeMapper, grid, layer, luts[i]);
+    colourBy(tubeMapper, grid, layer, luts[i], average);
     auto tube = vtkSmartPointer<vtkActor>::New();
     tube->SetMapper(tubeMapper);
     if (layer.field.empty()) tube->GetProperty()->SetColor(0.45, 0.45, 0.45);
@@ -393,7 +409,7 @@ std::vector<std::string> renderSnapshots(const SnapshotOptions& o) {
   for (size_t r = 0; r < runs.size(); ++r)
     for (size_t f = 0; f < runs[r].frames.size(); ++f) {
       const auto g = load(runs[r], static_cast<int>(f));
-      if (layers.empty()) layers = colourLayers(o.color, g, runs[0].units);
+      if (layers.empty()) layers = colourLayers(o.color, g, runs[0].units, o.cellValues);
       widenRanges(layers, g);
       if (std::find(shown[r].begin(), shown[r].end(), static_cast<int>(f)) == shown[r].end())
         continue;

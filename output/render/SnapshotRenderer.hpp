@@ -16,6 +16,10 @@ struct SnapshotOptions {
   bool allFrames = false;        // every frame of the series
   std::string view = "iso";      // side (along +y), below (looking up +z), iso
   std::string color = "stress";  // "stress" (membrane stress, line force) or one field
+  // A continuous cell field on membranes is drawn averaged at the nodes over the membrane
+  // elements around each (display only: the VTU keeps the element values); true: element by
+  // element.
+  bool cellValues = false;
   int width = 1280, height = 720;
   std::string outDir;
 };

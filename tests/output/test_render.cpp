@@ -186,6 +186,34 @@ std::vector<double> valuesOver(const fs::path& dir, const char* field, int c, in
   return v;
 }
 
+// Each node's mean of a cell field over the cells of kind [lo, hi] around it, over every frame
+// (what a membrane layer draws by default), sorted.
+std::vector<double> nodalMeansOver(const fs::path& dir, const char* field, int c, int lo, int hi) {
+  std::vector<double> v;
+  for (const auto& e : fs::directory_iterator(dir)) {
+    if (e.path().extension() != ".vtu") continue;
+    vtkNew<vtkXMLUnstructuredGridReader> r;
+    r->SetFileName(e.path().c_str());
+    r->Update();
+    vtkUnstructuredGrid* g = r->GetOutput();
+    auto* kind = g->GetCellData()->GetArray("kind");
+    auto* a = g->GetCellData()->GetArray(field);
+    std::vector<double> sum(static_cast<size_t>(g->GetNumberOfPoints()), 0.0);
+    std::vector<int> count(sum.size(), 0);
+    for (vtkIdType i = 0; i < g->GetNumberOfCells(); ++i) {
+      if (!(kind->GetComponent(i, 0) >= lo && kind->GetComponent(i, 0) <= hi)) continue;
+      vtkIdType n = 0;
+      const vtkIdType* pts = nullptr;
+      g->GetCellPoints(i, n, pts);
+      for (vtkIdType j = 0; j < n; ++j) sum[pts[j]] += a->GetComponent(i, c), ++count[pts[j]];
+    }
+    for (size_t i = 0; i < sum.size(); ++i)
+      if (count[i] > 0) v.push_back(sum[i] / count[i]);
+  }
+  std::sort(v.begin(), v.end());
+  return v;
+}
+
 // The top of a stress or force scale: the 99th percentile of the values (kept as floats), or the
 // largest value when the percentile is the smallest value (mostly unloaded).
 double scaleTop(const std::vector<double>& v) {
@@ -258,16 +286,31 @@ TEST(Render, ColoursMembranesByStressAndLinesByForceByDefault) {
   for (const auto& e : fs::directory_iterator(dir))
     if (e.path().extension() == ".vtu") frames.push_back(e.path());
   ASSERT_GE(frames.size(), 5u);
-  std::vector<chute::render::ColourLayer> layers;
+  std::vector<chute::render::ColourLayer> layers, averaged;
   for (const auto& frame : frames) {
     vtkNew<vtkXMLUnstructuredGridReader> r;
     r->SetFileName(frame.c_str());
     r->Update();
-    if (layers.empty()) layers = chute::render::colourLayers("stress", r->GetOutput());
+    if (layers.empty()) layers = chute::render::colourLayers("stress", r->GetOutput(), {}, true);
     chute::render::widenRanges(layers, r->GetOutput());
+    if (averaged.empty()) averaged = chute::render::colourLayers("stress", r->GetOutput());
+    chute::render::widenRanges(averaged, r->GetOutput());
   }
   chute::render::finishRanges(layers);
+  chute::render::finishRanges(averaged);
   ASSERT_EQ(layers.size(), 3u);
+  // By default the fabric's stress is drawn as nodal means (the element field is a
+  // checkerboard), and its scale is that of the means; --cell-values draws the elements.
+  const auto means = nodalMeansOver(dir, "principal_stress", 0, 5, 5);
+  ASSERT_FALSE(means.empty());
+  std::printf("membrane stress S1, nodal means: scale [%g, %g], largest %g\n", averaged[0].range[0],
+              averaged[0].range[1], means.back());
+  EXPECT_TRUE(averaged[0].atNodes);
+  EXPECT_FALSE(layers[0].atNodes);
+  EXPECT_EQ(averaged[0].range[1], scaleTop(means));
+  EXPECT_EQ(averaged[0].largest, means.back());
+  EXPECT_NE(averaged[0].title.find("nodal mean"), std::string::npos);
+  EXPECT_EQ(averaged[1].range[1], layers[1].range[1]);  // lines are not averaged
   const auto s1 = valuesOver(dir, "principal_stress", 0, 5, 5);
   const auto n = valuesOver(dir, "axial_force", 0, 1, 4);
   std::printf(
