@@ -33,7 +33,7 @@ per_step() {  # instructions per step of case $1 between t = 0.004 and 0.008
     valgrind --tool=callgrind --callgrind-out-file=cg_$1_$te "$CHUTE" run $1.toml --set solver.t_end=$te --out o_$1_$te > log_$1_$te 2>&1
   done
   a=$(grep 'I   refs' log_$1_0.004 | awk '{gsub(",","",$4); print $4}'); b=$(grep 'I   refs' log_$1_0.008 | awk '{gsub(",","",$4); print $4}')
-  sa=$(grep -oE '[0-9]+ steps' log_$1_0.004 | awk '{print $1}'); sb=$(grep -oE '[0-9]+ steps' log_$1_0.008 | awk '{print $1}')
+  sa=$(grep -oE '[0-9]+ steps,' log_$1_0.004 | head -1 | tr -dc 0-9); sb=$(grep -oE '[0-9]+ steps,' log_$1_0.008 | head -1 | tr -dc 0-9)
   python3 -c "print(($b - $a) / ($sb - $sa))"
 }
 IW=$(per_step with_flow); IO=$(per_step without_flow); IP=$(per_step pressure_face_drag)
