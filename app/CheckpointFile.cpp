@@ -95,7 +95,6 @@ long count(const nlohmann::json& v, const char* key, long min, long max) {
 
 Checkpoint checkpointOf(const nlohmann::json& j) {
   Checkpoint c;
-  constexpr long kMax = std::numeric_limits<long>::max();
   c.caseName = j.at("case").get<std::string>();
   c.modelHash = j.at("model_hash").get<std::uint64_t>();
   c.settings = j.at("settings").get<std::map<std::string, std::string>>();
@@ -118,17 +117,21 @@ Checkpoint checkpointOf(const nlohmann::json& j) {
   c.stepping.linearSolverLU = j.at("linear_solver_lu").get<bool>();
   const auto& n = j.at("counters");
   if (!n.is_array() || n.size() != 5) throw std::runtime_error("counters: 5 integers expected");
-  c.stepping.counters.steps = count(n[0], "steps", 0, kMax);
-  c.stepping.counters.rejectedSteps = count(n[1], "rejected_steps", 0, kMax);
-  c.stepping.counters.eventRetries = count(n[2], "event_retries", 0, kMax);
-  c.stepping.counters.newtonIterations = count(n[3], "newton_iterations", 0, kMax);
+  // Counters a run can reach (a run is held to 1e9 steps, docs/limits.md; Newton to 1000
+  // iterations a step), far from where the counting on would overflow: a forged 2^63 - 1 was
+  // read and wrapped to a negative count (or, under a sanitizer, stopped the run).
+  constexpr long kMaxSteps = 1'000'000'000'000L, kMaxIterations = 1'000'000'000'000'000L;
+  c.stepping.counters.steps = count(n[0], "steps", 0, kMaxSteps);
+  c.stepping.counters.rejectedSteps = count(n[1], "rejected_steps", 0, kMaxSteps);
+  c.stepping.counters.eventRetries = count(n[2], "event_retries", 0, kMaxSteps);
+  c.stepping.counters.newtonIterations = count(n[3], "newton_iterations", 0, kMaxIterations);
   c.stepping.counters.maxNewtonInStep =
       static_cast<int>(count(n[4], "max_newton_in_step", 0, 1 << 20));
   const auto& o = j.at("output");
-  c.output.probeRows = count(o.at("probe_rows"), "probe_rows", 0, kMax);
+  c.output.probeRows = count(o.at("probe_rows"), "probe_rows", 0, kMaxSteps);
   c.output.vtuFrames = count(o.at("vtu_frames"), "vtu_frames", 0, 1 << 30);
-  c.output.probeClockIndex = count(o.at("probe_clock"), "probe_clock", 0, kMax);
-  c.output.vtuClockIndex = count(o.at("vtu_clock"), "vtu_clock", 0, kMax);
+  c.output.probeClockIndex = count(o.at("probe_clock"), "probe_clock", 0, kMaxSteps);
+  c.output.vtuClockIndex = count(o.at("vtu_clock"), "vtu_clock", 0, kMaxSteps);
   c.output.vtuLast = o.at("vtu_last").get<double>();  // -inf before the first frame
   if (std::isnan(c.output.vtuLast)) throw std::runtime_error("vtu_last is not a number");
   const auto e = o.at("energy").get<std::vector<double>>();

@@ -19,10 +19,10 @@
 #include "app/CheckpointFile.hpp"
 #include "app/Progress.hpp"
 #include "app/RestartSettings.hpp"
-#include "app/RunLimits.hpp"
 #include "app/RunOutput.hpp"
 #include "app/SanityNotes.hpp"
 #include "app/StopSignals.hpp"
+#include "case/RunLimits.hpp"
 #include "case/SolverSetup.hpp"
 #include "solver/EnergyMonitor.hpp"
 #include "solver/StaticLoadStepper.hpp"
@@ -108,6 +108,21 @@ Checkpoint readRestart(const std::string& file, const CaseSpec& spec, std::uint6
         "{}: is {:.9g}, before the checkpoint's time {:.9g}: a restart goes on from the "
         "checkpoint to a later end",
         whereIn(spec.settings, spec.file, "solver.t_end"), spec.solver.tEnd, t));
+  // The output clocks must be those of the checkpoint's time: the next probe (frame) time the
+  // first output time after t. A clock beyond it wrote no more rows and still "completed".
+  auto clockFits = [&](long index, double interval, const char* field) {
+    if (!(interval > 0.0)) return;  // output every n steps: no time to check against
+    const double next = static_cast<double>(index) * interval;
+    const double slack = 1e-6 * interval + 1e-12 * std::abs(t);
+    if (!(next >= t - slack && next - interval <= t + slack))
+      throw std::runtime_error(fmt::format(
+          "{}: not a valid chute checkpoint ({} {} puts the next output at t = {:.9g}, not the "
+          "first after the checkpoint's time {:.9g})",
+          file, field, index, next, t));
+  };
+  clockFits(restart.output.probeClockIndex, spec.output.interval, "probe_clock");
+  if (spec.output.vtu.write)
+    clockFits(restart.output.vtuClockIndex, spec.output.vtu.interval, "vtu_clock");
   try {
     state = stepper.resume(restart.stepping);
   } catch (const HistoryError& e) {

@@ -11,6 +11,7 @@
 // (which can run commands) and writes its mesh (GeoScript.hpp); the only way chute runs a .geo.
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -32,12 +33,41 @@
 #include "ParachuteGenerator.hpp"
 #include "app/cli/Command.hpp"
 #include "case/CaseSpec.hpp"
+#include "case/RunLimits.hpp"
 #include "case/TomlDepth.hpp"
 #include "io/InputFile.hpp"
 
 namespace chute::cli {
 
 namespace {
+
+// A case is written only if `chute run` would start it (docs/meshing.md): the reader and the
+// limits judged before a run (an explicit run's steps at its stable step: a payload of 1e-6 on
+// a box's corners gave a stable step of 5e-10 s, 4e9 steps). If not, the mesh and the case just
+// written are removed and the reason, with the option the limiting node belongs to, is given.
+void refuseCaseRunWouldRefuse(const std::string& caseFile, const std::string& meshFile) {
+  int node = -1;
+  CaseSpec spec;
+  try {
+    spec = readCase(caseFile);
+    checkRunCanStart(spec, &node);
+  } catch (const std::exception& e) {
+    std::error_code ec;
+    std::filesystem::remove(caseFile, ec);
+    std::filesystem::remove(meshFile, ec);
+    std::string why = e.what();
+    const auto colon = why.find(": ");  // "case.toml:NN: key: reason": the file is ours, not theirs
+    if (colon != std::string::npos && why.rfind(caseFile, 0) == 0) why = why.substr(colon + 2);
+    // The option behind the node that sets the step: the payload's nodes are in its groups.
+    std::string option;
+    if (node >= 0)
+      for (const auto& [set, nodes] : spec.model.nodeSets)
+        if (set.find("payload") != std::string::npos &&
+            std::find(nodes.begin(), nodes.end(), node) != nodes.end())
+          option = "--payload-mass: ";
+    throw std::invalid_argument(option + "the case would not run (nothing written): " + why);
+  }
+}
 
 // Options from a TOML parameter file (key = option name without "--"), for the options the
 // command line did not give. Returns an error message ("file:line: key: reason") or "".
@@ -361,8 +391,10 @@ Command addMeshCommand(CLI::App& app) {
             try {
               if (!a->o.caseFile.empty()) mesh::checkParachuteCaseOptions(a->o.caseOptions);
               g = mesh::generateParachute(a->spec, a->o.out);
-              if (!a->o.caseFile.empty())
+              if (!a->o.caseFile.empty()) {
                 mesh::writeParachuteCase(a->spec, g, a->o.caseFile, a->o.out, a->o.caseOptions);
+                refuseCaseRunWouldRefuse(a->o.caseFile, a->o.out);
+              }
             } catch (const std::invalid_argument& e) {
               fmt::print(stderr, "chute: mesh parachute: {}\n", e.what());
               return kExitBadInput;

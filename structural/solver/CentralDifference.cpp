@@ -141,12 +141,26 @@ void CentralDifference::refuseMassless(const Eigen::VectorXd& massEq) const {
   for (size_t i = 0; i < massless.size() && i < 8; ++i)
     names += (i ? ", " : "") + nodeLabel(m, massless[i]);
   if (massless.size() > 8) names += " and " + std::to_string(massless.size() - 8) + " more";
+  // A mass that is not a number (a density or stiffness out of scale: E = 1e300 overflows the
+  // mass scaling) is not a missing one: say which.
+  bool notFinite = false;
+  for (int n : massless)
+    for (int k = 0; k < 3; ++k)
+      if (const int e = sys_->dofs().eq(n, k); e >= 0 && !std::isfinite(massEq[e]))
+        notFinite = true;
+  if (notFinite)
+    throw MasslessNodesError(
+        "solver.integrator = \"central_difference\": " + std::to_string(massless.size()) +
+        " free node(s) whose mass is not a finite number (" + names +
+        "): a density, E or area out of scale (the mass of an element, or its mass scaling "
+        "with solver.target_dt, overflowed)");
   throw MasslessNodesError(
       "solver.integrator = \"central_difference\": " + std::to_string(massless.size()) +
       " free node(s) without mass (" + names +
       "): explicit integration needs a mass at every free node (give the lines or fabric a "
       "density, add a point mass, set solver.target_dt for mass scaling, or use an implicit "
-      "integrator)");
+      "integrator; a stiffness out of scale, E x thickness beyond 1e16 times the mass, hides the "
+      "mass the same way: it is read as r(a = 1) - r(a = 0), EX2)");
 }
 
 void CentralDifference::computeAcceleration(StructuralState& s) {

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "VtuSeries.hpp"
+#include "support/RunChute.hpp"
 #include "support/TempDir.hpp"
 
 namespace fs = std::filesystem;
@@ -27,39 +28,12 @@ namespace fs = std::filesystem;
 namespace {
 const std::string kChute = CHUTE_BINARY;
 
-struct Outcome {
-  int status = -1;
-  std::string err;
-};
+using chute::testing::bytes;
+using chute::testing::lines;
+using chute::testing::Outcome;
 
 Outcome runChute(const std::string& args, const std::string& prefix = "") {
-  // One file per test process: ctest runs these tests in parallel.
-  const fs::path err = fs::temp_directory_path() /
-                       ("chute_output_integrity_stderr_" + std::to_string(::getpid()) + ".txt");
-  const std::string cmd = prefix + kChute + " " + args + " > /dev/null 2> " + err.string();
-  std::string quoted;  // cmd inside bash -c '...'
-  for (char c : cmd) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  const int raw = std::system(("bash -c '" + quoted + "'").c_str());
-  Outcome o;
-  o.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
-  std::ifstream in(err);
-  std::stringstream s;
-  s << in.rdbuf();
-  o.err = s.str();
-  return o;
-}
-
-int lines(const std::string& s) {
-  int n = 0;
-  for (char c : s) n += c == '\n';
-  return n;
-}
-
-std::string bytes(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
+  return chute::testing::runChute(kChute, args, prefix);
 }
 
 const std::string kBead = CHUTE_SOURCE_DIR "/cases/bead_5.toml";

@@ -465,6 +465,19 @@ def corpus(ctx):
                        ("t = -1", setter("t", -1.0)),
                        ("dt = 0", setter("dt", 0.0)),
                        ("counters 2^63", setter("counters", [2 ** 63 - 1] * 5)),
+                       # One counter at a time: each alone once passed the reader and overflowed
+                       # as the run counted on (a negative step count, no step limit).
+                       ("steps 2^63 - 1 alone", lambda p: p["counters"].__setitem__(0, 2 ** 63 - 1)),
+                       ("event retries 2^63 - 1 alone",
+                        lambda p: p["counters"].__setitem__(2, 2 ** 63 - 1)),
+                       ("newton iterations 2^63 - 1 alone",
+                        lambda p: p["counters"].__setitem__(3, 2 ** 63 - 1)),
+                       # An output clock not of the checkpoint's time: no more rows were written
+                       # and the run "completed".
+                       ("probe clock 2^63 - 1", lambda p: p["output"].__setitem__(
+                           "probe_clock", 2 ** 63 - 1)),
+                       ("probe clock 10^6", lambda p: p["output"].__setitem__("probe_clock", 10 ** 6)),
+                       ("probe clock 0", lambda p: p["output"].__setitem__("probe_clock", 0)),
                        ("terms emptied", setter("terms", [])),
                        ("a term's ints out of range", lambda p: p["terms"][0].__setitem__(
                            "ints", [2 ** 31 + 7] * len(p["terms"][0]["ints"]))),
@@ -614,9 +627,22 @@ def corpus(ctx):
                        ("--slider-divisions 1000 with --case",
                         ["--slider", "0.3", "--slider-divisions", "1000", "--case",
                          ctx.path("pc.toml")]),
-                       ("--out without .msh", ["--out", ctx.path("p.mesh")])]:
-        cmd = opt(args, args[0]) if args[0] != "--out" else (
-            mp[:mp.index("--out")] + args + ["--quiet"])
+                       ("--out without .msh", ["--out", ctx.path("p.mesh")]),
+                       # A case whose explicit step would take more than 1e9 steps (a payload of
+                       # 1e-6 on the confluence): refused at generation, nothing written.
+                       ("--payload-mass 1e-6 on a box with --case",
+                        ["--payload-mass", "1e-6", "--payload-box", "0.2,0.2,0.2",
+                         "--riser-length", "0.5", "--line-elements", "4", "--case",
+                         ctx.path("pm.toml")])]:
+        # mp with every option of args replaced by args' own (options and their values): the
+        # option named once, so the input tests what it is named for (it once repeated the
+        # name and stopped at the argument parser).
+        cmd = list(mp)
+        for option in [x for x in args if x.startswith("--")]:
+            if option in cmd:
+                i = cmd.index(option)
+                del cmd[i:i + 2]
+        cmd = cmd + args if args[0] != "--out" else mp[:mp.index("--out")] + args + ["--quiet"]
         add(Input(A, "mesh parachute " + name, cmd, ERROR, None, 30))
     # Paths written into the generated case: quotes, backslashes, newlines, tabs, spaces,
     # non-ASCII are escaped; a path that is not UTF-8 cannot be named in TOML (refused).

@@ -1,4 +1,4 @@
-#include "app/RunLimits.hpp"
+#include "case/RunLimits.hpp"
 
 #include <fmt/core.h>
 
@@ -8,7 +8,9 @@
 #include <optional>
 
 #include "case/CaseError.hpp"
+#include "case/SolverSetup.hpp"
 #include "solver/StableStep.hpp"
+#include "solver/StructuralSystem.hpp"
 
 namespace chute {
 
@@ -84,11 +86,14 @@ void checkRunSize(const CaseSpec& spec, TimeIntegrator& integrator, const Struct
       const double damping = dampedStableStep(est->undamped, sv.stiffnessDamping) / est->undamped;
       if (damping < sv.safetyFactor) {
         key = "solver.stiffness_damping";
-        why = fmt::format("stiffness_damping = {} shrinks the stable step {} to {}",
-                          g3(sv.stiffnessDamping), g3(est->undamped), g3(damping * est->undamped));
+        why = fmt::format("stiffness_damping = {} shrinks the stable step {} (at {}) to {}",
+                          g3(sv.stiffnessDamping), g3(est->undamped),
+                          nodeLabel(m, est->limitingNode), g3(damping * est->undamped));
       } else {
         key = "solver.safety_factor";
-        why = fmt::format("safety_factor = {} makes the step {}", g3(sv.safetyFactor), g3(est->dt));
+        why = fmt::format("safety_factor = {} makes the step {} (the stable step {} at {})",
+                          g3(sv.safetyFactor), g3(est->dt), g3(est->undamped),
+                          nodeLabel(m, est->limitingNode));
       }
     }
     throw CaseError(fmt::format(
@@ -144,6 +149,16 @@ std::string stopReason(const CaseSpec& spec, const TimeIntegrator& integrator,
         "(docs/limits.md)",
         s.t, frames);
   return "";
+}
+
+void checkRunCanStart(const CaseSpec& spec, int* limitingNode) {
+  if (spec.solver.type != AnalysisType::Dynamic) return;
+  StructuralSystem sys(spec.model, spec.solver.search);
+  const auto integrator = makeIntegrator(sys, spec.solver, spec.model, false);
+  const StructuralState start = sys.initialState();
+  if (limitingNode)
+    if (const auto est = integrator->estimateStep(start)) *limitingNode = est->limitingNode;
+  checkRunSize(spec, *integrator, start, 0);
 }
 
 }  // namespace chute

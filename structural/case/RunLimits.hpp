@@ -24,6 +24,12 @@ inline constexpr double kMaxRunSteps = 1e9;
 void checkRunSize(const CaseSpec& spec, TimeIntegrator& integrator, const StructuralState& from,
                   long stepsSoFar);
 
+// What `chute run` judges of a case before its run starts, beyond the reader: an explicit run's
+// steps, rows and frames at its stable step from the case's start (checkRunSize). Throws
+// CaseError naming the key; limitingNode (if given) receives the node whose stable step is the
+// least (-1: none). `chute mesh parachute --case` asks it of the case it writes.
+void checkRunCanStart(const CaseSpec& spec, int* limitingNode = nullptr);
+
 // Why the run must stop after a step to s (steps taken so far, rows and frames written), or "":
 // the steps left at the current step beyond the limit (explicit), or the rows or frames at
 // their limits.

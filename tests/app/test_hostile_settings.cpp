@@ -1,0 +1,200 @@
+// Legal settings that would never end, restarts that would change the physics, and runs that end
+// badly, through the `chute` command as a user types it: each refused with one line and a
+// documented status before anything is written, or ended with its output whole and truthful
+// (docs/limits.md, docs/exit-codes.md). One test per class of the second hostile-input round.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "support/RunChute.hpp"
+#include "support/TempDir.hpp"
+
+namespace fs = std::filesystem;
+using chute::testing::bytes;
+using chute::testing::lines;
+using chute::testing::Outcome;
+
+namespace {
+const std::string kChute = CHUTE_BINARY;
+const std::string kBead = CHUTE_SOURCE_DIR "/cases/bead_5.toml";
+const std::string kDrop = CHUTE_SOURCE_DIR "/cases/contact_drop.toml";
+
+Outcome runChute(const std::string& args) {
+  return chute::testing::runChute(kChute, args);
+}
+
+fs::path scratch(const std::string& name, bool create = false) {
+  return chute::testing::freshTempDir("chute_hostile_", name, create);
+}
+
+// Refused: status 2, one stderr line holding `fragment`, and no output directory.
+void expectRefused(const std::string& what, const std::string& args, const std::string& fragment) {
+  const fs::path out = scratch("refused");
+  const Outcome o = runChute(args + " --out " + out.string());
+  std::printf("%-44s -> %d: %s", what.c_str(), o.status, o.err.c_str());
+  EXPECT_EQ(o.status, 2) << what;
+  EXPECT_EQ(lines(o.err), 1) << what;
+  EXPECT_NE(o.err.find(fragment), std::string::npos) << what << ": " << o.err;
+  EXPECT_FALSE(fs::exists(out)) << what << ": the refused run created its output directory";
+}
+
+std::vector<std::string> splitCsv(const std::string& line) {
+  std::vector<std::string> cells;
+  std::stringstream s(line);
+  for (std::string c; std::getline(s, c, ',');) cells.push_back(c);
+  return cells;
+}
+}  // namespace
+
+// Output settings that are legal numbers but would write without end (4e11 rows, 4e9 frames).
+TEST(HostileSettings, OutputIntervalsThatWouldNeverEndAreRefused) {
+  expectRefused("output.interval = 1e-11", "run " + kBead + " --set output.interval=1e-11",
+                "output.max_rows");
+  expectRefused("output.vtu.interval = 1e-9",
+                "run " CHUTE_SOURCE_DIR "/cases/c9_slider.toml --set output.vtu.interval=1e-9",
+                "max_frames");
+}
+
+// Explicit runs whose stable step would take more than the 1e9 steps a run may take: refused,
+// naming the key, before anything is written.
+TEST(HostileSettings, ExplicitStepsThatWouldNeverEndAreRefused) {
+  expectRefused("density 1e-300", "run " + kDrop + " --set materials.cloth.density=1e-300",
+                "without mass");
+  expectRefused("E 1e300", "run " + kDrop + " --set materials.cloth.E=1e300",
+                "a stiffness out of scale");
+  expectRefused("safety_factor 1e-300", "run " + kDrop + " --set solver.safety_factor=1e-300",
+                "solver.safety_factor");
+  expectRefused("stiffness_damping 1e3", "run " + kDrop + " --set solver.stiffness_damping=1e3",
+                "solver.stiffness_damping");
+}
+
+// A line of 100,000 elements: the work per step grows with the elements, not their square (two
+// steps took more than 180 s, 20,000 elements 161 s; now seconds).
+TEST(HostileSettings, ALongLineCostsInProportionToItsElements) {
+  const fs::path dir = scratch("long_line", true);
+  const fs::path caseFile = dir / "line.toml";
+  std::ofstream(caseFile) << R"(name = "line"
+[nodes]
+a = [0.0, 0.0, 0.0]
+b = [100.0, 0.0, 0.0]
+[materials.rope]
+kind = "cable"
+E = 1.0e9
+area = 1.0e-4
+density = 1000.0
+[[cables]]
+name = "long"
+material = "rope"
+path = ["a", "b"]
+elements_per_segment = 100000
+[boundary]
+fixed = ["a"]
+[loads]
+gravity = [0.0, 0.0, -9.81]
+[solver]
+type = "dynamic"
+dt = 1.0e-3
+t_end = 2.0e-3
+)";
+  const auto t0 = std::chrono::steady_clock::now();
+  const Outcome o =
+      runChute("run " + caseFile.string() + " --quiet --out " + (dir / "out").string());
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::printf("100,000-element line, 2 implicit steps: status %d in %.1f s\n", o.status, s);
+  EXPECT_EQ(o.status, 0) << o.err;
+  EXPECT_LT(s, 90.0) << "a line's cost grew faster than its elements";
+}
+
+// A restart continues the checkpointed run: only the end time (and output limits) may differ.
+// Every physics or output setting given anew is refused, with the output left as it was; a
+// refused restart into an empty directory leaves nothing there; an end before the checkpoint is
+// refused.
+TEST(HostileSettings, ARestartRefusesOtherPhysicsAndLeavesNothing) {
+  const fs::path dir = scratch("restart", true);
+  const fs::path out = dir / "out";
+  const Outcome first = runChute("run " + kBead + " --quiet --set solver.t_end=0.1 " +
+                                 "--checkpoint-every 2 --out " + out.string());
+  ASSERT_EQ(first.status, 0) << first.err;
+  const fs::path ckpt = out / "checkpoint.cbor";
+  ASSERT_TRUE(fs::exists(ckpt));
+  const std::string probes = bytes(out / "probes.csv");
+  for (const std::string set :
+       {"loads.gravity=[0.0, 0.0, -5.0]", "materials.rope.E=2e10", "point_masses.0.mass=2.0",
+        "output.interval=0.02", "solver.energy_tolerance=0.5", "solver.rho_inf=0.5"}) {
+    const Outcome o = runChute("run " + kBead + " --quiet --set solver.t_end=0.2 --set '" + set +
+                               "' --restart " + ckpt.string() + " --out " + out.string());
+    std::printf("restart with --set %-32s -> %d: %s", set.c_str(), o.status, o.err.c_str());
+    EXPECT_EQ(o.status, 2) << set;
+    EXPECT_EQ(lines(o.err), 1) << set;
+    EXPECT_EQ(bytes(out / "probes.csv"), probes) << set << ": the output changed";
+  }
+  const Outcome early = runChute("run " + kBead + " --quiet --set solver.t_end=0.05 --restart " +
+                                 ckpt.string() + " --out " + out.string());
+  std::printf("restart to t_end 0.05 < the checkpoint's time -> %d: %s", early.status,
+              early.err.c_str());
+  EXPECT_EQ(early.status, 2);
+  EXPECT_NE(early.err.find("before the checkpoint's time"), std::string::npos) << early.err;
+  EXPECT_EQ(bytes(out / "probes.csv"), probes);
+  const fs::path empty = dir / "empty";
+  fs::create_directories(empty);
+  const Outcome into = runChute("run " + kBead + " --quiet --set solver.t_end=0.2 --restart " +
+                                ckpt.string() + " --out " + empty.string());
+  std::printf("restart into an empty directory -> %d: %s", into.status, into.err.c_str());
+  EXPECT_EQ(into.status, 2);
+  EXPECT_TRUE(fs::is_empty(empty)) << "a refused restart left something (a lock?)";
+}
+
+// A run that ends unstable writes as its last probe row the last state whose energy balance
+// held, not the blown-up one: the row's time is the summary's final time and every value is
+// finite.
+TEST(HostileSettings, AnUnstableRunsLastRowIsItsLastGoodState) {
+  const fs::path out = scratch("unstable");
+  const Outcome o =
+      runChute("run " CHUTE_SOURCE_DIR "/cases/stress_snatch.toml --quiet " +
+               std::string("--set solver.t_end=1 --set materials.line.density=10000 ") + "--out " +
+               out.string());
+  std::printf("snatch with a massive line: status %d: %s", o.status, o.err.c_str());
+  ASSERT_EQ(o.status, 3) << "expected to end unstable";
+  std::ifstream csv(out / "probes.csv");
+  std::string line, last;
+  while (std::getline(csv, line))
+    if (!line.empty()) last = line;
+  const auto cells = splitCsv(last);
+  ASSERT_FALSE(cells.empty());
+  for (const auto& c : cells) EXPECT_TRUE(std::isfinite(std::stod(c))) << last;
+  const std::string summary = bytes(out / "summary.json");
+  const auto at = summary.find("\"final_time\":");
+  ASSERT_NE(at, std::string::npos);
+  const double finalTime = std::stod(summary.substr(at + 13));
+  std::printf("last row at t = %s, summary final_time %.9g\n", cells[0].c_str(), finalTime);
+  EXPECT_NEAR(std::stod(cells[0]), finalTime, 1e-12 * (1.0 + finalTime));
+}
+
+// A --set value with a newline in it: still one stderr line (the newline shown escaped).
+TEST(HostileSettings, ASetValueWithANewlineGivesOneLine) {
+  expectRefused("--set with a newline", "run " + kBead + " --set $'solver.dt=1\\n2'", "solver.dt");
+}
+
+// `chute mesh parachute --case` writes a case only if `chute run` would start it: a payload of
+// 1e-6 on a box's corners set a stable step of 5e-10 s (4e9 steps), and the case was written.
+TEST(HostileSettings, AGeneratedCaseARunWouldRefuseIsNotWritten) {
+  const fs::path dir = scratch("generated", true);
+  const fs::path msh = dir / "p.msh", toml = dir / "p.toml";
+  const Outcome o = runChute(
+      "mesh parachute --gores 8 --diameter 2 --line-length 2 --element-size 0.4 "
+      "--line-elements 4 --payload-box 0.2,0.2,0.2 --riser-length 0.5 --payload-mass 1e-6 --out " +
+      msh.string() + " --case " + toml.string() + " --quiet");
+  std::printf("payload 1e-6 on a box -> %d: %s", o.status, o.err.c_str());
+  EXPECT_EQ(o.status, 2);
+  EXPECT_EQ(lines(o.err), 1);
+  EXPECT_NE(o.err.find("--payload-mass: the case would not run"), std::string::npos) << o.err;
+  EXPECT_FALSE(fs::exists(msh));
+  EXPECT_FALSE(fs::exists(toml));
+}
