@@ -199,13 +199,15 @@ int main(int argc, char** argv) {
     chuteNs.push_back(1e9 * cpuPerStep / lean.tri.size());
   }
   const double leanMedian = median(leanNs), chuteMedian = median(chuteNs);
+  rusage self{};
+  getrusage(RUSAGE_SELF, &self);  // ru_maxrss in KiB: the peak of this process, runs included
   fmt::print(
       "{{\"case\": \"{}\", \"triangles\": {}, \"equations_dofs\": {}, \"lean_ns_per_triangle\": "
       "{:.2f}, \"chute_ns_per_triangle_step\": {:.2f}, \"ratio\": {:.3f}, \"step_s\": {:.4g}, "
       "\"steps_per_simulated_s\": {:.5g}, \"cpu_per_simulated_s\": {:.4g}, \"lean_all\": [{}], "
-      "\"chute_all\": [{}], \"checksum\": {:.6g}}}\n",
+      "\"chute_all\": [{}], \"peak_rss_MiB\": {:.1f}, \"checksum\": {:.6g}}}\n",
       caseFile, lean.tri.size(), nd, leanMedian, chuteMedian, chuteMedian / leanMedian, dtTaken,
       1.0 / dtTaken, median(perStep) / dtTaken, fmt::join(leanNs, ", "), fmt::join(chuteNs, ", "),
-      checksum);
+      self.ru_maxrss / 1024.0, checksum);
   return 0;
 }

@@ -6,14 +6,13 @@ both in one process), and the scaling table: triangles, steps per simulated seco
 triangle-step, CPU per simulated second, peak memory, and the exponents of steps and CPU per
 simulated second against the number of triangles (least squares on the logs).
 
-    python3 bench/speed/run.py [--sizes 1.0,0.7,0.5,0.35] [--steps 300] [--repeat 5]
+    python3 bench/speed/run.py [--sizes 0.7,0.5,0.35,0.25] [--steps 300] [--repeat 5]
 writes bench/results/lean_canopy_step.md and .csv.
 """
 import argparse
 import json
 import math
 import os
-import resource
 import subprocess
 import tempfile
 
@@ -30,7 +29,7 @@ def fit(xs, ys):
 
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("--sizes", default="1.0,0.7,0.5,0.35", help="element sizes in ft")
+    ap.add_argument("--sizes", default="0.7,0.5,0.35,0.25", help="element sizes in ft")
     ap.add_argument("--steps", type=int, default=300)
     ap.add_argument("--repeat", type=int, default=5)
     a = ap.parse_args()
@@ -43,7 +42,6 @@ def main():
                         "--line-elements", "8", "--element-size", str(size), "--payload-mass",
                         "7.05", "--start", "folded", "--units", "ft", "--t-end", "1",
                         "--speed", "65.6168", "--out", msh, "--case", case, "--quiet"], check=True)
-        before = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
         # One thread: CPU per step without the second thread's polling (docs/performance.md).
         env = dict(os.environ, CHUTE_THREADS="1")
         out = subprocess.run([os.path.join(BIN, "bench_lean_canopy_step"), case, "--steps",
@@ -51,7 +49,6 @@ def main():
                              capture_output=True, text=True, env=env).stdout
         r = json.loads(out.strip().splitlines()[-1])
         r["size_ft"] = size
-        r["peak_rss_MiB"] = max(before, resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss) / 1024
         rows.append(r)
         print(json.dumps(r))
     tri = [r["triangles"] for r in rows]
