@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Regenerates the scenes of fabric contact (issue: self-contact, packed starts, clusters) with
 # `chute mesh`: their .msh and case files in cases/. Run from the repository root after a build.
-# Each case runs as written without contact (the fabric passes through itself); add a [contact]
-# section to run it with contact. Intersection counts: chute intersections out/<case>.
+# Each case gets the [contact] section its acceptance run used (docs/contact.md, "The scenes");
+# `--set contact.enabled=false` runs it without (the fabric passes through itself).
+# Intersection counts: chute intersections out/<case>.
 set -euo pipefail
 CHUTE=${CHUTE:-build/bin/chute}
 cd "$(dirname "$0")"
@@ -20,3 +21,19 @@ C=../$CHUTE
 "$C" mesh cluster --canopies 3 --gores 28 --diameter 14 --vent-diameter 1.4 --line-length 11.5 \
   --element-size 0.49 --payload-mass 18 --start packed --t-end 2 \
   --out cluster3.msh --case cluster3.toml --quiet
+
+# The contact settings of each scene (docs/contact.md), before its [solver] table.
+add_contact() {  # case thickness skin
+  python3 - "$1" "$2" "$3" <<'PY'
+import sys
+path, thickness, skin = sys.argv[1:]
+s = open(path).read()
+block = ("[contact]   # the packed canopy apart (docs/contact.md, \"The scenes\")\n"
+         "thickness = %s\nskin = %s\nstiffness_scale = 0.3\n\n" % (thickness, skin))
+i = s.index("\n[solver]") + 1
+open(path, "w").write(s[:i] + block + s[i:])
+PY
+}
+add_contact c9_packed.toml 0.005 0.003
+add_contact cluster3.toml 0.005 0.003
+add_contact c9_slider_packed.toml 0.01 0.006
