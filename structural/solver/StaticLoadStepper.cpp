@@ -32,7 +32,18 @@ NewtonReport StaticLoadStepper::solve(StructuralState& s, int nSteps, double ini
   if (geometric) increment = initialFactor;
   const double tol = newton_->settings().tolDisplacement;
   bool halvedInThisStep = false;
+  long increments = 0;
   while (lambda < 1.0 - 1e-12) {
+    // A bound on the work (docs/limits.md): a load that equilibrium follows only in increments
+    // halved near their floor (gravity 1e9 on a small case) converged step after step of 1e-8
+    // of the load, for hours.
+    if (++increments > kMaxIncrements) {
+      char factor[32];
+      std::snprintf(factor, sizeof factor, "%.6g", lambda);
+      total.failure = "no equilibrium path within " + std::to_string(kMaxIncrements) +
+                      " load increments (reached load factor " + factor + ")";
+      return total;
+    }
     const double target = std::min(1.0, lambda + increment);
     StaticProblem problem(x, s.t, target);
     const Eigen::VectorXd start = x;

@@ -24,6 +24,8 @@ class StaticLoadStepper {
   // iterations, before its load is halved. 3: 100 iterations at the default 25; the ring on a
   // stiff rope needs up to 62 from starts one rope length away (tests/cases/test_static_far_start).
   static constexpr int kContinuations = 3;
+  // Load increments one solve may take, halved ones included (docs/limits.md).
+  static constexpr long kMaxIncrements = 100000;
 
   StructuralSystem* sys_;
   Newton* newton_;

@@ -198,3 +198,20 @@ TEST(HostileSettings, AGeneratedCaseARunWouldRefuseIsNotWritten) {
   EXPECT_FALSE(fs::exists(msh));
   EXPECT_FALSE(fs::exists(toml));
 }
+
+// A static load that equilibrium follows only in increments halved near their floor (gravity
+// 1e9 on the capstan belt) converged one 1e-8 step of the load after another for hours; the
+// load stepping's increments are bounded (docs/limits.md) and the run ends as diverged.
+TEST(HostileSettings, AStaticLoadOfEndlessIncrementsEnds) {
+  const fs::path out = scratch("static_load");
+  const auto t0 = std::chrono::steady_clock::now();
+  const Outcome o = runChute("run " CHUTE_SOURCE_DIR "/cases/capstan_belt.toml --quiet " +
+                             std::string("--set loads.gravity.0=1e9 --out ") + out.string());
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::printf("capstan belt under gravity 1e9: status %d in %.1f s: %s", o.status, s,
+              o.err.c_str());
+  EXPECT_EQ(o.status, 3);
+  EXPECT_EQ(lines(o.err), 1);
+  EXPECT_NE(o.err.find("load increments"), std::string::npos) << o.err;
+  EXPECT_LT(s, 60.0);
+}
