@@ -9,6 +9,7 @@
 
 #include <atomic>
 #include <cerrno>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <stdexcept>
@@ -45,15 +46,14 @@ void stopServerOnSignals() {
 }
 }  // namespace
 
-VirtualDisplay::VirtualDisplay() {
-  if (const char* d = std::getenv("DISPLAY"); d && *d) {
-    display_ = d;
-    return;
-  }
-  // Xvfb picks a free display itself and writes its number to -displayfd when it is ready.
+// Starts Xvfb on display `wanted`; its number once it is ready ("" if it could not start: the
+// number taken, no Xvfb). The server's pid in pid_.
+std::string VirtualDisplay::startServer(int wanted) {
   int fds[2];
   if (::pipe2(fds, O_CLOEXEC) != 0) throw std::runtime_error("cannot start Xvfb: pipe failed");
   const pid_t parent = ::getpid();
+  char display[16];  // ":N" (snprintf: gcc 12 warns falsely on ":" + std::to_string)
+  std::snprintf(display, sizeof display, ":%d", wanted);
   pid_ = ::fork();
   if (pid_ < 0) throw std::runtime_error("cannot start Xvfb: fork failed");
   if (pid_ == 0) {
@@ -64,8 +64,8 @@ VirtualDisplay::VirtualDisplay() {
     ::dup2(fds[1], 3);  // dup2 clears close-on-exec on the copy
     const int devnull = ::open("/dev/null", O_RDWR);
     if (devnull >= 0) ::dup2(devnull, 1), ::dup2(devnull, 2);
-    ::execlp("Xvfb", "Xvfb", "-displayfd", "3", "-screen", "0", "3840x2160x24", "-nolisten", "tcp",
-             static_cast<char*>(nullptr));
+    ::execlp("Xvfb", "Xvfb", display, "-displayfd", "3", "-screen", "0", "3840x2160x24",
+             "-nolisten", "tcp", static_cast<char*>(nullptr));
     ::_exit(127);
   }
   ::close(fds[1]);
@@ -87,6 +87,26 @@ VirtualDisplay::VirtualDisplay() {
     ::waitpid(pid_, nullptr, 0);
     gServer.store(-1);
     pid_ = -1;
+  }
+  return number;
+}
+
+VirtualDisplay::VirtualDisplay() {
+  if (const char* d = std::getenv("DISPLAY"); d && *d) {
+    display_ = d;
+    return;
+  }
+  // A display number of our own, away from the low numbers: Xvfb's -displayfd alone takes the
+  // lowest free one, and a server that is just exiting removes the socket of its number after
+  // giving up its lock, so a server started then on the same number lost its socket and clients
+  // failed with "bad X server connection" (seen in CI, with other renders starting and stopping
+  // servers). A number taken makes Xvfb exit at once: the next is tried.
+  std::string number;
+  for (int attempt = 0; attempt < 8 && number.empty(); ++attempt) {
+    const int wanted = 100 + static_cast<int>((::getpid() * 7919L + attempt * 131L) % 800);
+    number = startServer(wanted);
+  }
+  if (number.empty()) {
     throw std::runtime_error(
         "no DISPLAY and Xvfb could not be started (install the Debian package xvfb)");
   }

@@ -22,6 +22,7 @@ class VirtualDisplay {
   const std::string& display() const { return display_; }
 
  private:
+  std::string startServer(int wanted);
   pid_t pid_ = -1;
   std::string display_;
 };
