@@ -96,9 +96,13 @@ def case_inputs(ctx, rng, n):
         if solver.get("type", "dynamic") == "dynamic" and "dt" in solver:
             # A few steps: an implicit case's dt is its step; an explicit case's dt only caps
             # the stable step, often a hundred times shorter (3 dt of the packed slider C-9 were
-            # 600 steps with its contact: 7 s in Release, past the sanitizer build's limit).
+            # 600 steps with its contact: 7 s in Release, past the sanitizer build's limit), so
+            # an explicit case runs 3 dt / 100 with dt / 100 as its cap.
             explicit = solver.get("integrator") == "central_difference"
-            extra = ["--set", "solver.t_end=%r" % (3 * solver["dt"] * (0.01 if explicit else 1.0))]
+            scale = 0.01 if explicit else 1.0  # dt scaled with t_end: a step still fits
+            extra = ["--set", "solver.t_end=%r" % (3 * solver["dt"] * scale)]
+            if explicit:
+                extra += ["--set", "solver.dt=%r" % (solver["dt"] * scale)]
         out.append(Input("case TOML", "%s %s" % (name, kind), inputs.run_case(ctx, path, *extra),
                          ANY_CLEAN, None, 90))
     return out
@@ -143,9 +147,13 @@ def set_inputs(ctx, rng, n):
         if solver.get("type", "dynamic") == "dynamic" and "dt" in solver:
             # A few steps: an implicit case's dt is its step; an explicit case's dt only caps
             # the stable step, often a hundred times shorter (3 dt of the packed slider C-9 were
-            # 600 steps with its contact: 7 s in Release, past the sanitizer build's limit).
+            # 600 steps with its contact: 7 s in Release, past the sanitizer build's limit), so
+            # an explicit case runs 3 dt / 100 with dt / 100 as its cap.
             explicit = solver.get("integrator") == "central_difference"
-            extra = ["--set", "solver.t_end=%r" % (3 * solver["dt"] * (0.01 if explicit else 1.0))]
+            scale = 0.01 if explicit else 1.0  # dt scaled with t_end: a step still fits
+            extra = ["--set", "solver.t_end=%r" % (3 * solver["dt"] * scale)]
+            if explicit:
+                extra += ["--set", "solver.dt=%r" % (solver["dt"] * scale)]
         assignment = ".".join(parts) + "=" + value
         out.append(Input("--set", assignment[:60], inputs.run_case(ctx, case, *extra, "--set",
                                                                    assignment),
