@@ -53,6 +53,9 @@ struct EvalPoint {
   // A Newton iteration's Jacobian may give tension-only parts on the kink their taut tangent
   // (RG10); off for the iteration that confirms convergence with the exact tangent.
   bool kinkTangent = false;
+  // Every term's Term::updateCouplings has just run at these positions x (StructuralSystem's
+  // assembly): a term that keeps lists by position need not check them again.
+  bool couplingsUpdated = false;
 
   // The state (x, v, a) at t as it is: residual r(x, v, a, t), Jacobian dr/dx (output, the
   // energy balance, checks).

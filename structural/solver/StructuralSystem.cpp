@@ -126,13 +126,15 @@ void StructuralSystem::assemble(const EvalPoint& p, bool wantMatrix) {
   assemble(p, wantMatrix, nullptr);
 }
 
-void StructuralSystem::assemble(const EvalPoint& p, bool wantMatrix,
+void StructuralSystem::assemble(const EvalPoint& at, bool wantMatrix,
                                 const std::function<void()>& alongside) {
   ScopedTimer timer(timings_.assembly);
   ++timings_.assemblies;
   // Couplings that move (contact pairs): a pattern that no longer covers them is built again
   // before the next matrix (and the linear solver analyses it afresh).
-  for (auto* t : dynamicCouplings_) patternStale_ |= t->updateCouplings(p.x);
+  for (auto* t : dynamicCouplings_) patternStale_ |= t->updateCouplings(at.x);
+  EvalPoint p = at;
+  p.couplingsUpdated = true;
   if (wantMatrix && patternStale_) {
     std::vector<std::vector<int>> cliques;
     for (const auto& t : terms_) t->addCouplings(cliques);

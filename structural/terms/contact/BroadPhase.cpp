@@ -13,6 +13,18 @@ Eigen::Vector3d at(const Eigen::VectorXd& x, int n) {
 }
 }  // namespace
 
+// Any shift keeps the lists' bounds exact (CT10); the mean over a sample of about 256 nodes
+// is close enough to the mean over all, for a sixteenth of the pass on the C-9.
+Eigen::Vector3d commonShift(const std::vector<int>& nodes, const Eigen::VectorXd& x,
+                            const Eigen::VectorXd& packed) {
+  const size_t stride = std::max<size_t>(1, nodes.size() / 256);
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  size_t count = 0;
+  for (size_t i = 0; i < nodes.size(); i += stride, ++count)
+    sum += at(x, nodes[i]) - packed.segment<3>(3 * i);
+  return count == 0 ? sum : Eigen::Vector3d(sum / static_cast<double>(count));
+}
+
 BroadPhase::BroadPhase(const ContactMesh& mesh, double thickness, double skin)
     : mesh_(&mesh), radius_(0.5 * (thickness + skin)), skin_(skin) {}
 
@@ -20,8 +32,10 @@ bool BroadPhase::covers(const Eigen::VectorXd& x, const std::vector<int>& slider
   if (!built_ || sliders != state_.sliders) return false;
   const double limit = 0.25 * skin_ * skin_;  // (skin / 2)^2
   const auto& nodes = mesh_->nodes();
+  const Eigen::Vector3d shift = commonShift(nodes, x, state_.positions);
   for (size_t i = 0; i < nodes.size(); ++i)
-    if ((at(x, nodes[i]) - state_.positions.segment<3>(3 * i)).squaredNorm() > limit) return false;
+    if ((at(x, nodes[i]) - state_.positions.segment<3>(3 * i) - shift).squaredNorm() > limit)
+      return false;
   return true;
 }
 

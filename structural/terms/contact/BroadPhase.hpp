@@ -45,11 +45,19 @@ struct BuildState {
   std::vector<int> sliders;
 };
 
+// CT10: the mesh's common translation from `packed` (its nodes' positions in ContactMesh::nodes()
+// order) to x (all dofs of the model): the mean displacement of a sample of its nodes. Distances
+// between primitives do not change under a common translation, so the lists' skins count each
+// node's motion less this shift: a canopy carried along as a whole does not wear them out.
+Eigen::Vector3d commonShift(const std::vector<int>& nodes, const Eigen::VectorXd& x,
+                            const Eigen::VectorXd& packed);
+
 class BroadPhase {
  public:
   BroadPhase(const ContactMesh& mesh, double thickness, double skin);
 
-  // Whether the last build still covers positions x with these sliders on the line elements.
+  // Whether the last build still covers positions x with these sliders on the line elements: no
+  // node has moved more than skin/2 since, less the common shift (CT10).
   bool covers(const Eigen::VectorXd& x, const std::vector<int>& sliders) const;
   // The positions of the last build, over all nodes of the model (zero at nodes not in the mesh).
   Eigen::VectorXd buildPositions(int numNodes) const;

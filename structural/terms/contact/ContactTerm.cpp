@@ -92,6 +92,13 @@ ContactTerm::ContactTerm(const Model& m, std::vector<const SlidingGroupState*> g
   for (int n : mesh_->nodes()) nodeStiffness_[n] = 0.25 * def.stiffnessScale * S[n];
   nodeMass_ = lumpedNodeMass(m);
   moved_.assign(m.numNodes(), 0.0);
+  lineOfElement_.resize(m.groups.size());
+  for (size_t g = 0; g < m.groups.size(); ++g)
+    lineOfElement_[g].assign(m.groups[g].numElements(), -1);
+  for (size_t i = 0; i < mesh_->lines().size(); ++i) {
+    const auto& l = mesh_->lines()[i];
+    if (l.group >= 0) lineOfElement_[l.group][l.element] = static_cast<int>(i);
+  }
   Eigen::VectorXd x0(3 * m.numNodes());
   for (int n = 0; n < m.numNodes(); ++n) x0.segment<3>(3 * n) = m.X[n] + m.u0[n];
   startGapsAt(x0);
@@ -99,11 +106,20 @@ ContactTerm::ContactTerm(const Model& m, std::vector<const SlidingGroupState*> g
 
 ContactTerm::~ContactTerm() = default;
 
+// The same as ContactMesh::sliderOn for every line element, from the sliders' active elements
+// (a pass over the sliders, not a search per element); where two sliders share an element, the
+// first one's, as SlidingGroupState::sliderOfElement gives.
 void ContactTerm::slidersNow(std::vector<int>& s) const {
-  const auto& lines = mesh_->lines();
-  s.resize(lines.size());
-  for (size_t i = 0; i < s.size(); ++i)
-    s[i] = lines[i].group < 0 ? -1 : mesh_->sliderOn(lines[i], groups_);
+  s.assign(mesh_->lines().size(), -1);
+  for (size_t g = 0; g < groups_.size() && g < lineOfElement_.size(); ++g) {
+    const SlidingGroupState& st = *groups_[g];
+    const auto& sliders = st.def().sliders;
+    for (int k = static_cast<int>(sliders.size()) - 1; k >= 0; --k) {
+      const int e = st.activeElement(k);
+      if (e >= 0 && e < static_cast<int>(lineOfElement_[g].size()) && lineOfElement_[g][e] >= 0)
+        s[lineOfElement_[g][e]] = sliders[k];
+    }
+  }
 }
 
 // CT10: the near list's skin, a share of the candidate lists'.
@@ -113,18 +129,20 @@ double ContactTerm::nearSkin() const {
   return kNearSkinShare * m_->contact.skin;
 }
 
-// How far each node of the mesh has moved since the near list was made (into `moved`), and
-// whether both lists still cover x: no node farther than the near skin's half from where the
-// near list saw it, nor than the skin's half from the candidate lists' build (the motion since
-// that build is at most its motion up to the near list's plus since), the same sliders.
+// How far each node of the mesh has moved since the near list was made, less the mesh's common
+// shift since (CT10; into `moved`), and whether both lists still cover x: no node farther than
+// the near skin's half from where the near list saw it, nor than the skin's half from the
+// candidate lists' build (its motion since that build, less the shift since, is at most its
+// motion up to the near list's less that shift plus since), the same sliders.
 bool ContactTerm::covered(const Eigen::VectorXd& x, const std::vector<int>& sliders,
                           std::vector<double>& moved) const {
   if (!broadPhase_->built() || sliders != broadPhase_->state().sliders || nearAt_.size() == 0)
     return false;
   const auto& nodes = mesh_->nodes();
+  const Vec3 shift = contact::commonShift(nodes, x, nearAt_);
   double near = 0.0, build = 0.0;
   for (size_t i = 0; i < nodes.size(); ++i) {
-    const double d = (x.segment<3>(3 * nodes[i]) - nearAt_.segment<3>(3 * i)).norm();
+    const double d = (x.segment<3>(3 * nodes[i]) - nearAt_.segment<3>(3 * i) - shift).norm();
     moved[nodes[i]] = d;
     near = std::max(near, d);
     build = std::max(build, d + nearFromBuild_[i]);
@@ -136,15 +154,7 @@ void ContactTerm::refresh(const Eigen::VectorXd& x) {
   std::vector<int>& sliders = slidersScratch_;
   slidersNow(sliders);
   if (covered(x, sliders, moved_)) return;
-  const auto& nodes = mesh_->nodes();
-  bool candidatesHold = broadPhase_->built() && sliders == broadPhase_->state().sliders;
-  if (candidatesHold) {
-    const auto& xb = broadPhase_->state().positions;
-    for (size_t i = 0; i < nodes.size() && candidatesHold; ++i)
-      candidatesHold =
-          (x.segment<3>(3 * nodes[i]) - xb.segment<3>(3 * i)).norm() <= 0.5 * m_->contact.skin;
-  }
-  if (!candidatesHold) {
+  if (!broadPhase_->covers(x, sliders)) {
     broadPhase_->build(x, sliders);
     couplingsChanged_ = true;
   }
@@ -155,6 +165,7 @@ void ContactTerm::refresh(const Eigen::VectorXd& x) {
 // While no node has moved more than half the near skin since, no other candidate can come
 // within dHat; each evaluation takes the near pairs' nodes' motion since x off their distance.
 void ContactTerm::nearList(const Eigen::VectorXd& x) {
+  ++nearLists_;
   const double reach = m_->contact.thickness + nearSkin();
   near_.clear();
   forEachPair(*broadPhase_, [&](const Pair& pair) {
@@ -170,9 +181,12 @@ void ContactTerm::nearList(const Eigen::VectorXd& x) {
   nearFromBuild_.resize(nodes.size());
   for (size_t i = 0; i < nodes.size(); ++i) {
     nearAt_.segment<3>(3 * i) = x.segment<3>(3 * nodes[i]);
-    nearFromBuild_[i] = (nearAt_.segment<3>(3 * i) - xb.segment<3>(3 * i)).norm();
     moved_[nodes[i]] = 0.0;
   }
+  // Each node's motion from the build to here less the mesh's common shift between them (CT10).
+  const Vec3 shift = contact::commonShift(nodes, x, xb);
+  for (size_t i = 0; i < nodes.size(); ++i)
+    nearFromBuild_[i] = (nearAt_.segment<3>(3 * i) - xb.segment<3>(3 * i) - shift).norm();
 }
 
 // CT15: each near pair's own thickness, from the sorted table (both lists in key order).
@@ -348,7 +362,8 @@ bool ContactTerm::lagCovered(const std::vector<Lag>& lag) const {
 
 void ContactTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
   if (p.xStart) throw std::logic_error("contact: the energy-momentum integrator is not supported");
-  refresh(p.x);
+  if (p.inertiaOnly) return;  // no mass
+  if (!p.couplingsUpdated) refresh(p.x);
   // The builds are counted on an evaluation of the forces (load factor > 0), not on the lumped
   // mass's (EvalPoint::inertiaOf), whose assembler's counters are not the run's.
   if (p.loadFactor > 0.0 && broadPhase_->builds() != buildsSeen_) {
@@ -508,8 +523,12 @@ void ContactTerm::commit(const CommitPoint&) {
     nearThicknesses();
   }
   if (!lagCovered(lag_)) couplingsChanged_ = true;
-  committedBuild_ = broadPhase_->state();
-  committedNearAt_ = nearAt_;
+  // The lists as this step left them (copied only when a near list was made since).
+  if (nearLists_ != committedNearLists_) {
+    committedBuild_ = broadPhase_->state();
+    committedNearAt_ = nearAt_;
+    committedNearLists_ = nearLists_;
+  }
   record_.builds = broadPhase_->builds();
   record_.treeBuilds = broadPhase_->treeBuilds();
   record_.candidates =
@@ -521,16 +540,17 @@ void ContactTerm::revert() {
   trialLag_ = lag_;
   trialStartGaps_ = startGaps_;
   if (committedBuild_.positions.size() == 0) return;  // nothing committed yet: keep the lists
+  if (nearLists_ == committedNearLists_) return;      // the lists are the committed ones
   const auto& trial = broadPhase_->state();
   const bool sameBuild = trial.sliders == committedBuild_.sliders &&
                          trial.positions.size() == committedBuild_.positions.size() &&
                          trial.positions == committedBuild_.positions;
-  if (sameBuild && nearAt_.size() == committedNearAt_.size() && nearAt_ == committedNearAt_) return;
   if (!sameBuild) {
     broadPhase_->build(committedBuild_);
     couplingsChanged_ = true;
   }
   nearList(unpacked(committedNearAt_));
+  committedNearLists_ = nearLists_;
 }
 
 // Positions over all nodes of the model from the mesh's nodes' (zero elsewhere).
@@ -626,6 +646,7 @@ void ContactTerm::load(HistoryReader& h) {
     broadPhase_->build(committedBuild_);
     nearList(unpacked(committedNearAt_));
   }
+  committedNearLists_ = nearLists_;
   couplingsChanged_ = true;
 }
 
