@@ -29,6 +29,7 @@ void BoundingVolumeHierarchy::buildNode(int self, int first, int count, int dept
     centres.add(0.5 * (boxes_[order_[i]].lo + boxes_[order_[i]].hi));
   }
   nodes_[self].box = box;
+  nodes_[self].end = first + count;
   if (count <= kLeafSize || depth >= 60) {
     nodes_[self].first = first, nodes_[self].count = count;
     return;

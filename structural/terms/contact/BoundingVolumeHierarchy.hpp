@@ -39,6 +39,22 @@ class BoundingVolumeHierarchy {
   double loosenessAtBuild() const { return loosenessAtBuild_; }
   bool empty() const { return nodes_.empty(); }
 
+  // visit(i, j) once for every unordered pair of distinct primitives whose boxes overlap. Each
+  // leaf's box is queried against the tree, skipping the subtrees whose primitives all come
+  // before the leaf's in the tree's order (their pairs with it were met from their side): one
+  // traversal per leaf, not per primitive, and none twice.
+  template <class Visit>
+  void selfPairs(Visit&& visit) const {
+    for (const Node& leaf : nodes_) {
+      if (leaf.count == 0) continue;
+      const int leafEnd = leaf.first + leaf.count;
+      forEachLeafOverlapping(leaf.box, leaf.first, [&](const Node& n) {
+        for (int i = leaf.first; i < leafEnd; ++i)
+          for (int j = n.first == leaf.first ? i + 1 : n.first; j < n.first + n.count; ++j)
+            if (leafBoxes_[i].overlaps(leafBoxes_[j])) visit(order_[i], order_[j]);
+      });
+    }
+  }
   // visit(k) for every primitive k whose box overlaps `box`.
   template <class Visit>
   void query(const Aabb& box, Visit&& visit) const {
@@ -64,7 +80,27 @@ class BoundingVolumeHierarchy {
     Aabb box;
     int first = 0, count = 0;  // leaves: the primitives order_[first, first + count)
     int left = -1;             // inner nodes: children left and left + 1
+    int end = 0;               // every node: its primitives are order_[.., end)
   };
+  // leafVisit(n) for every leaf n whose box overlaps `box`, among the subtrees holding a
+  // primitive at order_ position `from` or after.
+  template <class LeafVisit>
+  void forEachLeafOverlapping(const Aabb& box, int from, LeafVisit&& leafVisit) const {
+    if (nodes_.empty()) return;
+    int stack[128];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+      const Node& n = nodes_[stack[--top]];
+      if (n.end <= from || !n.box.overlaps(box)) continue;
+      if (n.count > 0) {
+        leafVisit(n);
+      } else {
+        stack[top++] = n.left;
+        stack[top++] = n.left + 1;
+      }
+    }
+  }
   void buildNode(int self, int first, int count, int depth);
   std::vector<Node> nodes_;
   std::vector<int> order_;

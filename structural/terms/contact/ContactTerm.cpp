@@ -161,32 +161,51 @@ void ContactTerm::refresh(const Eigen::VectorXd& x) {
   nearList(x);
 }
 
+// CT10: the candidates of the last build with their distance at it, less those farther than
+// dHat + skin there: while no node moves more than skin/2 from the build (less the common
+// shift), those cannot come within dHat. Depends on the build's positions alone.
+void ContactTerm::candidatesAtBuild() {
+  const Eigen::VectorXd xb = unpacked(broadPhase_->state().positions);
+  const double reach = m_->contact.thickness + m_->contact.skin;
+  candidates_.clear();
+  forEachPair(*broadPhase_, [&](const Pair& pair) {
+    const auto xs = gather(xb, pair.nodes);
+    if (kernels::boxesApart(pair.kind == ContactPairKind::PointTriangle, xs, reach)) return;
+    const double d2 = kernels::pairSquaredDistance(pair.kind, xs);
+    if (d2 <= reach * reach) candidates_.push_back({pair, std::sqrt(d2), m_->contact.thickness});
+  });
+  candidatesBuild_ = broadPhase_->builds();
+}
+
 // CT10: the candidates within dHat + the near skin at positions x, with their distance there.
 // While no node has moved more than half the near skin since, no other candidate can come
 // within dHat; each evaluation takes the near pairs' nodes' motion since x off their distance.
+// A candidate whose distance at the build, less its nodes' motion since, is beyond reach is
+// left without computing its distance at x.
 void ContactTerm::nearList(const Eigen::VectorXd& x) {
   ++nearLists_;
+  if (candidatesBuild_ != broadPhase_->builds()) candidatesAtBuild();
+  const auto& nodes = mesh_->nodes();
+  const auto& xb = broadPhase_->state().positions;
+  // Each node's motion from the build to here less the mesh's common shift between them (CT10).
+  const Vec3 shift = contact::commonShift(nodes, x, xb);
+  nearAt_.resize(3 * static_cast<long>(nodes.size()));
+  nearFromBuild_.resize(nodes.size());
+  for (size_t i = 0; i < nodes.size(); ++i) {
+    nearAt_.segment<3>(3 * i) = x.segment<3>(3 * nodes[i]);
+    nearFromBuild_[i] = (nearAt_.segment<3>(3 * i) - xb.segment<3>(3 * i) - shift).norm();
+    moved_[nodes[i]] = nearFromBuild_[i];  // for the filter below, then 0
+  }
   const double reach = m_->contact.thickness + nearSkin();
   near_.clear();
-  forEachPair(*broadPhase_, [&](const Pair& pair) {
+  forEachNearOf(candidates_, moved_, reach, [&](const Pair& pair, double) {
     const auto xs = gather(x, pair.nodes);
     if (kernels::boxesApart(pair.kind == ContactPairKind::PointTriangle, xs, reach)) return;
     const double d2 = kernels::pairSquaredDistance(pair.kind, xs);
     if (d2 <= reach * reach) near_.push_back({pair, std::sqrt(d2), m_->contact.thickness});
   });
+  for (int n : nodes) moved_[n] = 0.0;
   nearThicknesses();
-  const auto& nodes = mesh_->nodes();
-  const auto& xb = broadPhase_->state().positions;
-  nearAt_.resize(3 * static_cast<long>(nodes.size()));
-  nearFromBuild_.resize(nodes.size());
-  for (size_t i = 0; i < nodes.size(); ++i) {
-    nearAt_.segment<3>(3 * i) = x.segment<3>(3 * nodes[i]);
-    moved_[nodes[i]] = 0.0;
-  }
-  // Each node's motion from the build to here less the mesh's common shift between them (CT10).
-  const Vec3 shift = contact::commonShift(nodes, x, xb);
-  for (size_t i = 0; i < nodes.size(); ++i)
-    nearFromBuild_[i] = (nearAt_.segment<3>(3 * i) - xb.segment<3>(3 * i) - shift).norm();
 }
 
 // CT15: each near pair's own thickness, from the sorted table (both lists in key order).
@@ -233,7 +252,15 @@ void ContactTerm::startGapsAt(const Eigen::VectorXd& x0) {
 
 template <class F>
 void ContactTerm::forEachNear(const std::vector<double>& moved, double reach, F&& f) const {
-  for (const auto& n : near_) {
+  forEachNearOf(near_, moved, reach, std::forward<F>(f));
+}
+
+// f(pair, thickness) for the pairs of `list` whose distance there, less the motion of their
+// nodes since (`moved`, per node of the model), is below reach.
+template <class F>
+void ContactTerm::forEachNearOf(const std::vector<Near>& list, const std::vector<double>& moved,
+                                double reach, F&& f) const {
+  for (const auto& n : list) {
     const auto& k = n.pair.nodes;
     double first = moved[k[0]], second;
     if (n.pair.kind == ContactPairKind::PointTriangle) {

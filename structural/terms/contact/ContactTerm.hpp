@@ -105,6 +105,11 @@ class ContactTerm final : public Term {
   Eigen::VectorXd unpacked(const Eigen::VectorXd& packed) const;
   template <class F>
   void forEachNear(const std::vector<double>& moved, double reach, F&& f) const;
+  struct Near;
+  template <class F>
+  void forEachNearOf(const std::vector<Near>& list, const std::vector<double>& moved, double reach,
+                     F&& f) const;
+  void candidatesAtBuild();
   template <class F>
   void forEachPairWithin(const Eigen::VectorXd& x, double reach, F&& f) const;
   // f(pair) for every candidate pair of `bp` (line elements bent at a slider as their two
@@ -122,7 +127,7 @@ class ContactTerm final : public Term {
   std::unique_ptr<contact::BroadPhase> broadPhase_;
   struct Near {
     Pair pair;
-    double distance;   // at the build
+    double distance;   // where the list was made
     double thickness;  // the pair's own (CT15)
   };
   // CT15: the pairs closer than dHat at the start, with their own thickness (sorted by key);
@@ -133,7 +138,10 @@ class ContactTerm final : public Term {
   void raiseStartGap(const Pair& p, double distance);
   void startGapsAt(const Eigen::VectorXd& x0);
   void nearThicknesses();
-  std::vector<Near> near_;     // the candidates within dHat + skin at the build (CT10)
+  std::vector<Near> near_;  // the candidates within dHat + the near skin at nearAt_ (CT10)
+  // The candidates within dHat + skin at the last build, with their distance there (CT10).
+  std::vector<Near> candidates_;
+  long candidatesBuild_ = -1;  // the build they are of (BroadPhase::builds())
   std::vector<double> moved_;  // per node: motion since the near list, at the last refresh
   // Where the mesh's nodes were when the near list was made (packed, ContactMesh::nodes()
   // order), committed; and how far each was then from the candidate lists' build.
