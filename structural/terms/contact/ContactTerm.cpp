@@ -172,7 +172,8 @@ void ContactTerm::candidatesAtBuild() {
     const auto xs = gather(xb, pair.nodes);
     if (kernels::boxesApart(pair.kind == ContactPairKind::PointTriangle, xs, reach)) return;
     const double d2 = kernels::pairSquaredDistance(pair.kind, xs);
-    if (d2 <= reach * reach) candidates_.push_back({pair, std::sqrt(d2), m_->contact.thickness});
+    if (d2 <= reach * reach)
+      candidates_.push_back({pair, std::sqrt(d2), m_->contact.thickness, 0.0});
   });
   candidatesBuild_ = broadPhase_->builds();
 }
@@ -198,11 +199,13 @@ void ContactTerm::nearList(const Eigen::VectorXd& x) {
   }
   const double reach = m_->contact.thickness + nearSkin();
   near_.clear();
-  forEachNearOf(candidates_, moved_, reach, [&](const Pair& pair, double) {
+  forEachNearOf(candidates_, moved_, reach, [&](const Pair& pair, double, double) {
     const auto xs = gather(x, pair.nodes);
     if (kernels::boxesApart(pair.kind == ContactPairKind::PointTriangle, xs, reach)) return;
     const double d2 = kernels::pairSquaredDistance(pair.kind, xs);
-    if (d2 <= reach * reach) near_.push_back({pair, std::sqrt(d2), m_->contact.thickness});
+    if (d2 <= reach * reach)
+      near_.push_back(
+          {pair, std::sqrt(d2), m_->contact.thickness, mollifierThreshold(pair.kind, xs)});
   });
   for (int n : nodes) moved_[n] = 0.0;
   nearThicknesses();
@@ -255,8 +258,8 @@ void ContactTerm::forEachNear(const std::vector<double>& moved, double reach, F&
   forEachNearOf(near_, moved, reach, std::forward<F>(f));
 }
 
-// f(pair, thickness) for the pairs of `list` whose distance there, less the motion of their
-// nodes since (`moved`, per node of the model), is below reach.
+// f(pair, thickness, CT5 threshold) for the pairs of `list` whose distance there, less the motion
+// of their nodes since (`moved`, per node of the model), is below reach.
 template <class F>
 void ContactTerm::forEachNearOf(const std::vector<Near>& list, const std::vector<double>& moved,
                                 double reach, F&& f) const {
@@ -269,7 +272,7 @@ void ContactTerm::forEachNearOf(const std::vector<Near>& list, const std::vector
       first = std::max(first, moved[k[1]]);
       second = std::max(moved[k[2]], moved[k[3]]);
     }
-    if (n.distance - first - second < reach) f(n.pair, n.thickness);
+    if (n.distance - first - second < reach) f(n.pair, n.thickness, n.mollifier);
   }
 }
 
@@ -333,10 +336,10 @@ double ContactTerm::pairMass(ContactPairKind kind, const std::array<int, 4>& n) 
   return sum > 0.0 ? side[0] * side[1] / sum : 0.0;
 }
 
-double ContactTerm::mollifierThreshold(const Pair& p) const {
-  if (p.kind != ContactPairKind::EdgeEdge) return 0.0;
-  const auto& X = m_->X;
-  return kernels::mollifierThreshold(X[p.nodes[1]] - X[p.nodes[0]], X[p.nodes[3]] - X[p.nodes[2]]);
+// CT5: the mollifier's threshold on the edges as they are at xs (the near list's positions).
+double ContactTerm::mollifierThreshold(ContactPairKind kind, const std::array<Vec3, 4>& xs) {
+  if (kind != ContactPairKind::EdgeEdge) return 0.0;
+  return kernels::mollifierThreshold(xs[1] - xs[0], xs[3] - xs[2]);
 }
 
 void ContactTerm::addCouplings(std::vector<std::vector<int>>& cliques) const {
@@ -419,7 +422,7 @@ void ContactTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
     for (int n : nodes) most = std::max(most, lagShare_[n]);
     return most;
   };
-  forEachNear(moved_, dHat, [&](const Pair& pair, double own) {
+  forEachNear(moved_, dHat, [&](const Pair& pair, double own, double epsX) {
     const auto x = gather(p.x, pair.nodes);
     ++out.work().contact;
     const double d2 = kernels::pairSquaredDistance(pair.kind, x);
@@ -442,7 +445,7 @@ void ContactTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
         law.damping =
             std::min(law.damping, kExplicitViscosity * mass / (p.explicitStep * share(pair.nodes)));
     }
-    const auto r = kernels::contactPair(pair.kind, x, v, law, mollifierThreshold(pair), wantJ);
+    const auto r = kernels::contactPair(pair.kind, x, v, law, epsX, wantJ);
     if (stepEvaluation && r.active) {
       // CT13: how far the pair closes in one step, and its approach's energy against CT4's.
       const kernels::Distance& d = r.distance;
@@ -495,9 +498,9 @@ void ContactTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
   }
 }
 
-// f(pair) for every pair that may be within `reach` at x: the near list's, less those its motion
-// since the build cannot have brought that close; at positions the build does not cover (a
-// state never assembled), every candidate of a build of their own.
+// f(pair, thickness, CT5 threshold) for every pair that may be within `reach` at x: the near
+// list's, less those its motion since the build cannot have brought that close; at positions the
+// build does not cover (a state never assembled), every candidate of a build of their own.
 template <class F>
 void ContactTerm::forEachPairWithin(const Eigen::VectorXd& x, double reach, F&& f) const {
   std::vector<int> sliders;
@@ -509,21 +512,22 @@ void ContactTerm::forEachPairWithin(const Eigen::VectorXd& x, double reach, F&& 
   }
   BroadPhase own(*mesh_, m_->contact.thickness, m_->contact.skin);
   own.build(x, sliders);
-  forEachPair(own, [&](const Pair& pair) { f(pair, thicknessOf(pair)); });
+  forEachPair(own, [&](const Pair& pair) {
+    f(pair, thicknessOf(pair), mollifierThreshold(pair.kind, gather(x, pair.nodes)));
+  });
 }
 
 void ContactTerm::addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd&, double,
                             EnergyBreakdown& e) const {
   const double dHat = m_->contact.thickness;
   const std::array<Vec3, 4> still{Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
-  forEachPairWithin(x, dHat, [&](const Pair& pair, double own) {
+  forEachPairWithin(x, dHat, [&](const Pair& pair, double own, double epsX) {
     const auto xs = gather(x, pair.nodes);
     if (kernels::boxesApart(pair.kind == ContactPairKind::PointTriangle, xs, own)) return;
     if (!(kernels::pairSquaredDistance(pair.kind, xs) < own * own)) return;
     const double k = pairStiffness(pair.nodes);
     if (!(k > 0.0)) return;
-    const auto r =
-        kernels::contactPair(pair.kind, xs, still, {k, own, 0.0}, mollifierThreshold(pair), false);
+    const auto r = kernels::contactPair(pair.kind, xs, still, {k, own, 0.0}, epsX, false);
     if (r.active) e.strain += r.energy;
   });
 }
@@ -531,7 +535,7 @@ void ContactTerm::addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd&, do
 void ContactTerm::addStiffnessBound(const Eigen::VectorXd& x, double, const std::vector<char>&,
                                     std::vector<double>& S) const {
   const double reach = m_->contact.thickness;
-  forEachPairWithin(x, reach, [&](const Pair& pair, double own) {
+  forEachPairWithin(x, reach, [&](const Pair& pair, double own, double) {
     const auto xs = gather(x, pair.nodes);
     if (kernels::boxesApart(pair.kind == ContactPairKind::PointTriangle, xs, own)) return;
     if (!(kernels::pairSquaredDistance(pair.kind, xs) < own * own)) return;

@@ -118,7 +118,8 @@ class ContactTerm final : public Term {
   void forEachPair(const contact::BroadPhase& bp, F&& f) const;
   double pairStiffness(const std::array<int, 4>& n) const;
   double pairMass(kernels::ContactPairKind kind, const std::array<int, 4>& n) const;
-  double mollifierThreshold(const Pair& p) const;
+  static double mollifierThreshold(kernels::ContactPairKind kind,
+                                   const std::array<kernels::Vec3, 4>& xs);
   bool lagCovered(const std::vector<Lag>& lag) const;
 
   const Model* m_;
@@ -129,6 +130,7 @@ class ContactTerm final : public Term {
     Pair pair;
     double distance;   // where the list was made
     double thickness;  // the pair's own (CT15)
+    double mollifier;  // CT5's threshold on the edges where the list was made (edge-edge pairs)
   };
   // CT15: the pairs closer than dHat at the start, with their own thickness (sorted by key);
   // committed, and as the last step's evaluation would leave it.
