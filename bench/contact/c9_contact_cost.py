@@ -1,10 +1,12 @@
 #!/usr/bin/env python3
-"""Contact's share of an explicit step on the half-scale C-9 with its slider (docs/contact.md,
-"What it costs"): cases/c9_slider.toml for 0.2 s without VTU output, as shipped and with a
-[contact] section appended (fabric and lines, the given thickness and skin), run alternately
---runs times in one sitting; medians of wall and user time. Writes a Markdown table.
+"""Contact's share of an explicit step on a C-9 case (docs/contact.md, "What it costs"):
+cases/<case>.toml (default c9_slider, the half-scale C-9 with its slider) for 0.2 s without VTU
+output, as shipped and with a [contact] section appended (fabric and lines, the given thickness
+and skin), run alternately --runs times in one sitting; medians of wall and user time. Writes a
+Markdown table.
 
     python3 bench/contact/c9_contact_cost.py --chute build/bin/chute --out bench/results/contact_c9_cost.md
+    python3 bench/contact/c9_contact_cost.py --case c9_no_slider --out ...
 """
 import argparse
 import json
@@ -38,15 +40,16 @@ def main():
     ap.add_argument("--thickness", type=float, default=0.01)
     ap.add_argument("--skin", type=float, default=None)
     ap.add_argument("--out", default=str(ROOT / "bench/results/contact_c9_cost.md"))
+    ap.add_argument("--case", default="c9_slider", help="a case of cases/ (its mesh beside it)")
     a = ap.parse_args()
     work = pathlib.Path(tempfile.mkdtemp(prefix="chute_contact_cost_"))
-    shipped = ROOT / "cases/c9_slider.toml"
-    text = shipped.read_text().replace('file = "c9_slider.msh"',
-                                       f'file = "{ROOT / "cases/c9_slider.msh"}"')
+    shipped = ROOT / f"cases/{a.case}.toml"
+    text = shipped.read_text().replace(f'file = "{a.case}.msh"',
+                                       f'file = "{ROOT / "cases" / (a.case + ".msh")}"')
     section = f"\n[contact]\nthickness = {a.thickness}\n"
     if a.skin is not None:
         section += f"skin = {a.skin}\n"
-    with_contact = work / "c9_slider_contact.toml"
+    with_contact = work / f"{a.case}_contact.toml"
     with_contact.write_text(text + section)
     rows = {"without": [], "with": []}
     for r in range(a.runs):
@@ -62,7 +65,7 @@ def main():
     lines = [
         "# Contact's cost on the explicit C-9 (`bench/contact/c9_contact_cost.py`)",
         "",
-        f"`cases/c9_slider.toml`, 0.2 s, no VTU, as shipped and with `[contact]` thickness = "
+        f"`cases/{a.case}.toml`, 0.2 s, no VTU, as shipped and with `[contact]` thickness = "
         f"{a.thickness} ft{'' if a.skin is None else f', skin = {a.skin} ft'} (fabric and lines, "
         f"the other keys at their defaults); {a.runs} runs of each, alternately, in one sitting "
         f"(load average {load:.1f} on the machine's 2 cores at the end).",
