@@ -28,7 +28,14 @@ NewtonReport StaticLoadStepper::solve(StructuralState& s, int nSteps, double ini
   Eigen::VectorXd x = s.x;
   double lambda = 0.0, increment = 1.0 / nSteps;
   const bool geometric = initialFactor < 1.0 && nSteps > 1;
-  const double growth = geometric ? std::pow(1.0 / initialFactor, 1.0 / (nSteps - 1)) : 1.0;
+  // The growth that takes initialFactor to 1 in nSteps; by logarithms when 1 / initialFactor
+  // overflows (a subnormal factor: an infinite growth made the first increment after it
+  // infinite, and halving an infinite increment never ended).
+  const double inverse = 1.0 / initialFactor;
+  const double growth = !geometric ? 1.0
+                        : std::isfinite(inverse)
+                            ? std::pow(inverse, 1.0 / (nSteps - 1))
+                            : std::exp(-std::log(initialFactor) / (nSteps - 1));
   if (geometric) increment = initialFactor;
   const double tol = newton_->settings().tolDisplacement;
   bool halvedInThisStep = false;
@@ -89,7 +96,7 @@ NewtonReport StaticLoadStepper::solve(StructuralState& s, int nSteps, double ini
     sys_->commit(CommitPoint{x, s.t, 0.0, s.t});
     halvedInThisStep = false;
     lambda = target;
-    increment = geometric ? std::max(increment, lambda * (growth - 1.0)) : increment;
+    increment = geometric ? std::min(1.0, std::max(increment, lambda * (growth - 1.0))) : increment;
   }
   total.converged = true;
   s.x = x;

@@ -215,3 +215,41 @@ TEST(HostileSettings, AStaticLoadOfEndlessIncrementsEnds) {
   EXPECT_NE(o.err.find("load increments"), std::string::npos) << o.err;
   EXPECT_LT(s, 60.0);
 }
+
+// A first load factor so small that its inverse overflows (5e-324, in the documented (0, 1]):
+// the geometric growth came out infinite, the increment after the first infinite, and halving it
+// never ended (found by the attack's mutated Hencky case). The run now steps its 30 increments.
+TEST(HostileSettings, ASubnormalFirstLoadFactorStillStepsToTheLoad) {
+  const fs::path out = scratch("subnormal_load");
+  const auto t0 = std::chrono::steady_clock::now();
+  const Outcome o =
+      runChute("run " CHUTE_SOURCE_DIR "/cases/hencky.toml --quiet " +
+               std::string("--set solver.initial_load_factor=5e-324 --out ") + out.string());
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::printf("hencky from load factor 5e-324: status %d in %.1f s: %s\n", o.status, s,
+              o.err.c_str());
+  EXPECT_EQ(o.status, 0) << o.err;
+  EXPECT_LT(s, 60.0);
+  // The same equilibrium as from the case's own first factor (1e-6): the last probe rows agree.
+  const fs::path ref = scratch("subnormal_load_reference");
+  ASSERT_EQ(
+      runChute("run " CHUTE_SOURCE_DIR "/cases/hencky.toml --quiet --out " + ref.string()).status,
+      0);
+  auto lastRow = [](const fs::path& dir) {
+    std::ifstream in(dir / "probes.csv");
+    std::string line, last;
+    while (std::getline(in, line))
+      if (!line.empty()) last = line;
+    std::vector<double> v;
+    std::stringstream ss(last);
+    for (std::string cell; std::getline(ss, cell, ',');) v.push_back(std::stod(cell));
+    return v;
+  };
+  const auto a = lastRow(out), b = lastRow(ref);
+  ASSERT_EQ(a.size(), b.size());
+  double worst = 0.0;
+  for (size_t i = 0; i < a.size(); ++i)
+    worst = std::max(worst, std::abs(a[i] - b[i]) / std::max(1.0, std::abs(b[i])));
+  std::printf("largest difference of the last probe row from the reference run: %.3g\n", worst);
+  EXPECT_LT(worst, 1e-6);
+}
