@@ -241,8 +241,7 @@ TEST(HostileSettings, ASubnormalFirstLoadFactorStillStepsToTheLoad) {
     while (std::getline(in, line))
       if (!line.empty()) last = line;
     std::vector<double> v;
-    std::stringstream ss(last);
-    for (std::string cell; std::getline(ss, cell, ',');) v.push_back(std::stod(cell));
+    for (const auto& cell : splitCsv(last)) v.push_back(std::stod(cell));
     return v;
   };
   const auto a = lastRow(out), b = lastRow(ref);

@@ -58,21 +58,10 @@ class BoundingVolumeHierarchy {
   // visit(k) for every primitive k whose box overlaps `box`.
   template <class Visit>
   void query(const Aabb& box, Visit&& visit) const {
-    if (nodes_.empty()) return;
-    int stack[128];
-    int top = 0;
-    stack[top++] = 0;
-    while (top > 0) {
-      const Node& n = nodes_[stack[--top]];
-      if (!n.box.overlaps(box)) continue;
-      if (n.count > 0) {
-        for (int i = n.first; i < n.first + n.count; ++i)
-          if (leafBoxes_[i].overlaps(box)) visit(order_[i]);
-      } else {
-        stack[top++] = n.left;
-        stack[top++] = n.left + 1;
-      }
-    }
+    forEachLeafOverlapping(box, 0, [&](const Node& n) {
+      for (int i = n.first; i < n.first + n.count; ++i)
+        if (leafBoxes_[i].overlaps(box)) visit(order_[i]);
+    });
   }
 
  private:
