@@ -75,7 +75,7 @@ Row measure(const std::string& name, Model& m, double thickness, double skin) {
   std::vector<const SlidingGroupState*> ptrs;
   for (const auto& s : states) ptrs.push_back(&s);
   std::vector<int> sliders;
-  for (const auto& l : mesh.lines()) sliders.push_back(mesh.sliderOn(l, ptrs));
+  mesh.slidersOn(ptrs, sliders);
   Eigen::VectorXd x(3 * m.numNodes());
   for (int k = 0; k < m.numNodes(); ++k) x.segment<3>(3 * k) = m.X[k] + m.u0[k];
   contact::BroadPhase bp(mesh, thickness, skin);

@@ -46,6 +46,12 @@ ContactMesh::ContactMesh(const Model& m, const ContactDef& def) {
     }
     for (int s : grp.sliders) points.insert(s), nodes.insert(s);
   }
+  lineOfElement_.resize(m.groups.size());
+  for (size_t g = 0; g < m.groups.size(); ++g)
+    lineOfElement_[g].assign(m.groups[g].numElements(), -1);
+  for (size_t i = 0; i < lines_.size(); ++i)
+    if (lines_[i].group >= 0)
+      lineOfElement_[lines_[i].group][lines_[i].element] = static_cast<int>(i);
   edges_.assign(edges.begin(), edges.end());
   points_.assign(points.begin(), points.end());
   nodes.insert(points.begin(), points.end());
@@ -57,12 +63,19 @@ ContactMesh::ContactMesh(const Model& m, const ContactDef& def) {
   }
 }
 
-int ContactMesh::sliderOn(const LineElement& l,
-                          const std::vector<const SlidingGroupState*>& groups) const {
-  if (l.group < 0) return -1;
-  const SlidingGroupState& st = *groups[l.group];
-  const int s = st.sliderOfElement(l.element);
-  return s < 0 ? -1 : st.def().sliders[s];
+void ContactMesh::slidersOn(const std::vector<const SlidingGroupState*>& groups,
+                            std::vector<int>& sliders) const {
+  sliders.assign(lines_.size(), -1);
+  for (size_t g = 0; g < groups.size() && g < lineOfElement_.size(); ++g) {
+    const SlidingGroupState& st = *groups[g];
+    const auto& nodes = st.def().sliders;
+    // From the last slider to the first: the first on an element is the one left there.
+    for (int k = static_cast<int>(nodes.size()) - 1; k >= 0; --k) {
+      const int e = st.activeElement(k);
+      if (e >= 0 && e < static_cast<int>(lineOfElement_[g].size()) && lineOfElement_[g][e] >= 0)
+        sliders[lineOfElement_[g][e]] = nodes[k];
+    }
+  }
 }
 
 }  // namespace chute::contact

@@ -36,9 +36,12 @@ class ContactMesh {
   // Whether a node has a free dof (a pair of fixed primitives needs no force).
   bool free(int node) const { return free_[node] != 0; }
 
-  // The slider node on a line element in `groups`' trial state, or -1 (cables, inactive
-  // elements). groups: one state per sliding group of the model, in order.
-  int sliderOn(const LineElement& l, const std::vector<const SlidingGroupState*>& groups) const;
+  // The slider node on each line element (lines() order) in `groups`' trial state, or -1
+  // (cables, inactive elements); where two sliders share an element, the first one's, as
+  // SlidingGroupState::sliderOfElement gives. groups: one state per sliding group of the model,
+  // in order. A pass over the sliders' active elements, not a search per element.
+  void slidersOn(const std::vector<const SlidingGroupState*>& groups,
+                 std::vector<int>& sliders) const;
 
   // Topology (CT11): shared nodes.
   static bool incident(int point, const std::array<int, 3>& t) {
@@ -53,6 +56,7 @@ class ContactMesh {
   std::vector<std::array<int, 3>> triangles_;
   std::vector<std::array<int, 2>> edges_;
   std::vector<LineElement> lines_;
+  std::vector<std::vector<int>> lineOfElement_;  // per sliding group and chain element (-1: none)
   std::vector<int> nodes_;
   std::vector<char> free_;
 };

@@ -92,13 +92,6 @@ ContactTerm::ContactTerm(const Model& m, std::vector<const SlidingGroupState*> g
   for (int n : mesh_->nodes()) nodeStiffness_[n] = 0.25 * def.stiffnessScale * S[n];
   nodeMass_ = lumpedNodeMass(m);
   moved_.assign(m.numNodes(), 0.0);
-  lineOfElement_.resize(m.groups.size());
-  for (size_t g = 0; g < m.groups.size(); ++g)
-    lineOfElement_[g].assign(m.groups[g].numElements(), -1);
-  for (size_t i = 0; i < mesh_->lines().size(); ++i) {
-    const auto& l = mesh_->lines()[i];
-    if (l.group >= 0) lineOfElement_[l.group][l.element] = static_cast<int>(i);
-  }
   Eigen::VectorXd x0(3 * m.numNodes());
   for (int n = 0; n < m.numNodes(); ++n) x0.segment<3>(3 * n) = m.X[n] + m.u0[n];
   startGapsAt(x0);
@@ -106,20 +99,8 @@ ContactTerm::ContactTerm(const Model& m, std::vector<const SlidingGroupState*> g
 
 ContactTerm::~ContactTerm() = default;
 
-// The same as ContactMesh::sliderOn for every line element, from the sliders' active elements
-// (a pass over the sliders, not a search per element); where two sliders share an element, the
-// first one's, as SlidingGroupState::sliderOfElement gives.
 void ContactTerm::slidersNow(std::vector<int>& s) const {
-  s.assign(mesh_->lines().size(), -1);
-  for (size_t g = 0; g < groups_.size() && g < lineOfElement_.size(); ++g) {
-    const SlidingGroupState& st = *groups_[g];
-    const auto& sliders = st.def().sliders;
-    for (int k = static_cast<int>(sliders.size()) - 1; k >= 0; --k) {
-      const int e = st.activeElement(k);
-      if (e >= 0 && e < static_cast<int>(lineOfElement_[g].size()) && lineOfElement_[g][e] >= 0)
-        s[lineOfElement_[g][e]] = sliders[k];
-    }
-  }
+  mesh_->slidersOn(groups_, s);
 }
 
 // CT10: the near list's skin, a share of the candidate lists'.

@@ -150,8 +150,6 @@ class ContactTerm final : public Term {
   Eigen::VectorXd nearAt_, committedNearAt_;
   std::vector<double> nearFromBuild_;
   std::vector<int> slidersScratch_;
-  // The contact mesh's line element of each sliding group's chain element (-1: none).
-  std::vector<std::vector<int>> lineOfElement_;
   // Near lists made (CT10), and how many there were when the lists were last committed.
   long nearLists_ = 0, committedNearLists_ = -1;
   std::vector<double> nodeStiffness_, nodeMass_;
