@@ -54,10 +54,11 @@ std::string g3(double x) {
 }  // namespace
 
 void checkRunSize(const CaseSpec& spec, TimeIntegrator& integrator, const StructuralState& from,
-                  long stepsSoFar) {
+                  long stepsSoFar, int* limitingNode) {
   if (spec.solver.type == AnalysisType::Static) return;
   const auto est = integrator.estimateStep(from);
   if (!est) return;  // an implicit run: its steps were judged with the case (Solver.cpp)
+  if (limitingNode) *limitingNode = est->limitingNode;
   const SolverSpec& sv = spec.solver;
   const Model& m = spec.model;
   const double left = std::max(0.0, sv.tEnd - from.t);
@@ -155,10 +156,7 @@ void checkRunCanStart(const CaseSpec& spec, int* limitingNode) {
   if (spec.solver.type != AnalysisType::Dynamic) return;
   StructuralSystem sys(spec.model, spec.solver.search);
   const auto integrator = makeIntegrator(sys, spec.solver, spec.model, false);
-  const StructuralState start = sys.initialState();
-  if (limitingNode)
-    if (const auto est = integrator->estimateStep(start)) *limitingNode = est->limitingNode;
-  checkRunSize(spec, *integrator, start, 0);
+  checkRunSize(spec, *integrator, sys.initialState(), 0, limitingNode);
 }
 
 }  // namespace chute

@@ -20,9 +20,10 @@ namespace chute {
 inline constexpr double kMaxRunSteps = 1e9;
 
 // Throws CaseError ("file:line: key: reason") when the run that starts at `from` (its start, or
-// a restart's state after stepsSoFar steps) would go beyond the limits.
+// a restart's state after stepsSoFar steps) would go beyond the limits. limitingNode (if given)
+// receives the node whose stable step is the least, once estimated (explicit runs).
 void checkRunSize(const CaseSpec& spec, TimeIntegrator& integrator, const StructuralState& from,
-                  long stepsSoFar);
+                  long stepsSoFar, int* limitingNode = nullptr);
 
 // What `chute run` judges of a case before its run starts, beyond the reader: an explicit run's
 // steps, rows and frames at its stable step from the case's start (checkRunSize). Throws
