@@ -378,7 +378,7 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
                 options.keepRows);
   if (integrator)
     out.setEquilibrium([&](const StructuralState& s) { return integrator->equilibrium(s); });
-  EnergyMonitor monitor(sys, sv.energyTolerance);
+  EnergyMonitor monitor(sys, sv.energyTolerance, integrator && integrator->equationsAtStepEnds());
 
   try {
     if (!dynamic) {

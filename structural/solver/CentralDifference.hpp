@@ -50,6 +50,7 @@ class CentralDifference final : public TimeIntegrator {
   // EB1: the balance over windows of this many steps (and at every probe row and the last step).
   static constexpr long kBalanceStride = 10;
   long balanceStride() const override { return kBalanceStride; }
+  bool equationsAtStepEnds() const override { return true; }
   const StableStepRecord* stableSteps() const override { return &record_; }
   // The step chooseStep would settle on from s (0.9 x safety x the damped stable step, at most
   // the case's dt), without recording it.

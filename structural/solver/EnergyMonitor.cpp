@@ -7,8 +7,8 @@
 
 namespace chute {
 
-EnergyMonitor::EnergyMonitor(StructuralSystem& sys, double tolerance)
-    : sys_(&sys), tolerance_(tolerance) {
+EnergyMonitor::EnergyMonitor(StructuralSystem& sys, double tolerance, bool trapezoidal)
+    : sys_(&sys), tolerance_(tolerance), trapezoidal_(trapezoidal) {
   const Model& m = sys.model();
   for (int d = 0; d < sys.dofs().numDofs(); ++d) {
     if (sys.dofs().eqOfDof(d) >= 0) continue;
@@ -38,6 +38,9 @@ void EnergyMonitor::start(const StructuralState& s, const EquilibriumPoint& eq) 
   const EnergyBreakdown e = sys_->energy(eq.x, eq.v, s.t);
   energy0_ = energy_ = e.total();
   work_ = grossWork_ = 0.0;
+  lastForce_.resize(0);
+  if (trapezoidal_ && (loads_ || supportsMove_))
+    lastForce_ = forceAt(EvalPoint::state(eq.x, eq.v, eq.a, eq.t));
   scale_ = e.kinetic + std::abs(e.strain);
   largest_ = 0.0;
   stepsOver_ = stepsGrowing_ = 0;
@@ -46,19 +49,39 @@ void EnergyMonitor::start(const StructuralState& s, const EquilibriumPoint& eq) 
   reason_.clear();
 }
 
+Eigen::VectorXd EnergyMonitor::forceAt(const EvalPoint& p) const {
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(sys_->dofs().numDofs());
+  if (loads_) f = -sys_->residualOverAllDofs(p, false);  // f_loads = -residual
+  if (supportsMove_) {
+    const Eigen::VectorXd r = sys_->residualOverAllDofs(p, true);
+    for (int d = 0; d < sys_->dofs().numDofs(); ++d)
+      if (sys_->dofs().eqOfDof(d) < 0) f[d] += r[d];  // R = r at constrained dofs
+  }
+  return f;
+}
+
 bool EnergyMonitor::afterStep(const StructuralState& before, const StructuralState& s,
                               const EquilibriumPoint& eq, double dt) {
   ++steps_;
   const Eigen::VectorXd dx = s.x - before.x;
   // The work of the step (EB1): loads without an energy, and the supports' reactions where the
   // supports move, at the step's equilibrium point.
-  double w = 0.0;
   const EvalPoint p = EvalPoint::state(eq.x, eq.v, eq.a, eq.t).withStep(dt);
+  double w = 0.0;
+  Eigen::VectorXd force;
   EnergyBreakdown e;
   // The work and the energy are independent evaluations: on the assembly's two threads when it
   // has them (each on one thread, in its own order: the same bits as one after the other).
   sys_->runTwo(
       [&] {
+        if (trapezoidal_) {
+          if (!loads_ && !supportsMove_) return;
+          force = forceAt(p);
+          w = 0.5 * (lastForce_.size() == force.size() ? Eigen::VectorXd(lastForce_ + force)
+                                                       : Eigen::VectorXd(2.0 * force))
+                        .dot(dx);
+          return;
+        }
         if (loads_) w -= sys_->residualOverAllDofs(p, false).dot(dx);  // f_loads = -residual
         if (supportsMove_) {
           const Eigen::VectorXd r = sys_->residualOverAllDofs(p, true);
@@ -67,6 +90,7 @@ bool EnergyMonitor::afterStep(const StructuralState& before, const StructuralSta
         }
       },
       [&] { e = sys_->energy(eq.x, eq.v, s.t); });
+  if (trapezoidal_) lastForce_ = std::move(force);
   work_ += w;
   grossWork_ += std::abs(w);
   energy_ = e.total();

@@ -87,6 +87,9 @@ class TimeIntegrator {
   // Steps between two evaluations of the energy balance (EB1): explicit steps are 10-100x
   // shorter than implicit ones and a balance costs as much as a step.
   virtual long balanceStride() const { return 1; }
+  // Whether the equations hold at the steps' ends (an explicit scheme): the energy balance then
+  // takes a window's work from the forces at both its ends (EB1, trapezoidal).
+  virtual bool equationsAtStepEnds() const { return false; }
   // An explicit scheme's record of its stable steps (nullptr: none).
   virtual const StableStepRecord* stableSteps() const { return nullptr; }
   // The step an explicit scheme would take from s (nullopt: an implicit scheme, whose step is the
