@@ -46,6 +46,9 @@ ExplicitRunInfo explicitSummary(const StableStepRecord& rec, const Model& m) {
   e.stepHistory = rec.history;
   e.addedMass = rec.addedMass;
   e.totalAddedMass = rec.totalAddedMass;
+  e.scaledNodes = rec.scaledNodes;
+  e.partMass = rec.partMass;
+  e.nodalSteps = rec.nodalSteps;
   return e;
 }
 
@@ -486,6 +489,8 @@ void writeSummary(const std::string& path, const CaseSpec& spec, const RunResult
     const auto& e = *r.explicitRun;
     json added = json::object();
     for (const auto& [part, mass] : e.addedMass) added[part] = mass;
+    json partMass = json::object();
+    for (const auto& [part, mass] : e.partMass) partMass[part] = mass;
     json history = json::array();
     for (const auto& [time, dt] : e.stepHistory) history.push_back({time, dt});
     j["explicit"] = {{"safety_factor", spec.solver.safetyFactor},
@@ -496,7 +501,14 @@ void writeSummary(const std::string& path, const CaseSpec& spec, const RunResult
                      {"limiting_node", e.limitingNode},
                      {"stable_step_history", history},
                      {"added_mass", added},
-                     {"added_mass_total", e.totalAddedMass}};
+                     {"added_mass_total", e.totalAddedMass},
+                     {"scaled_nodes", e.scaledNodes},
+                     {"scaled_parts_mass", partMass},
+                     {"nodal_stable_steps",
+                      {{"least", e.nodalSteps[0]},
+                       {"quantile_01", e.nodalSteps[1]},
+                       {"quantile_10", e.nodalSteps[2]},
+                       {"median", e.nodalSteps[3]}}}};
   }
   if (r.contact) {
     const auto& c = *r.contact;

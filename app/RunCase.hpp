@@ -1,6 +1,7 @@
 #pragma once
 // Runs a case: time stepping with step rejection, probes, the comparison with the case's
 // reference, summary.json. Used by `chute run` and by the case tests.
+#include <array>
 #include <limits>
 #include <optional>
 #include <ostream>
@@ -42,6 +43,9 @@ struct ExplicitRunInfo {
   std::vector<std::pair<double, double>> stepHistory;     // (t, stable step), on 5 % changes
   std::vector<std::pair<std::string, double>> addedMass;  // mass scaling, per part
   double totalAddedMass = 0.0;
+  int scaledNodes = 0;                                   // nodes mass scaling gave mass to
+  std::vector<std::pair<std::string, double>> partMass;  // of the scaled parts, without it
+  std::array<double, 4> nodalSteps{};  // least, 1 %, 10 %, 50 % of the nodes' own stable steps
 };
 
 // How a run ended (summary.json "status"; docs/exit-codes.md).

@@ -36,6 +36,7 @@ CentralDifference::CentralDifference(StructuralSystem& sys, ExplicitSettings set
     if (sys.dofs().eqOfDof(d) >= 0) freeNode_[d / 3] = 1;
   addedEq_.setZero(sys.numEquations());
   x0_ = sys.initialState().x;
+  recordNodalSteps();
   if (settings_.targetStep > 0.0) {
     // EX8: the least nodal mass for which the node's bound S_i / m_i allows the target step
     // with the safety factor, m_i >= S_i (target / (2 safety))^2, from the start positions.
@@ -50,14 +51,37 @@ CentralDifference::CentralDifference(StructuralSystem& sys, ExplicitSettings set
       const double add = std::max(0.0, S[n] * r * r - mass[n]);
       if (add <= 0.0) continue;
       byPart[part[n]] += add;
+      ++record_.scaledNodes;
       for (int k = 0; k < 3; ++k)
         if (const int e = sys.dofs().eq(n, k); e >= 0) addedEq_[e] = add;
     }
     record_.addedMass.assign(byPart.begin(), byPart.end());
+    std::map<std::string, double> partMass;
+    for (int n = 0; n < m.numNodes(); ++n)
+      if (freeNode_[n] && byPart.count(part[n])) partMass[part[n]] += mass[n];
+    record_.partMass.assign(partMass.begin(), partMass.end());
     for (const auto& [name, added] : record_.addedMass) record_.totalAddedMass += added;
     cachedX_.resize(0);  // the mass evaluated above is without the added mass
   }
   if (sys.numEquations() > 0) lumpedMass(x0_, 0.0);  // refuses massless nodes at the start
+}
+
+void CentralDifference::recordNodalSteps() {
+  if (sys_->numEquations() == 0) return;
+  const Eigen::VectorXd massEq = lumpedMass(x0_, 0.0, false);
+  const auto S = sys_->stiffnessBound(x0_, 0.0);
+  const auto mass = nodalMass(massEq);
+  std::vector<double> steps;
+  for (size_t n = 0; n < mass.size(); ++n)
+    if (freeNode_[n] && mass[n] > 0.0 && S[n] > 0.0)
+      steps.push_back(2.0 * std::sqrt(mass[n] / S[n]));
+  cachedX_.resize(0);
+  if (steps.empty()) return;
+  std::sort(steps.begin(), steps.end());
+  const auto quantile = [&](double q) {
+    return steps[static_cast<size_t>(q * static_cast<double>(steps.size() - 1))];
+  };
+  record_.nodalSteps = {steps.front(), quantile(0.01), quantile(0.1), quantile(0.5)};
 }
 
 Eigen::VectorXd CentralDifference::massOf(const std::vector<Term*>& terms, const Eigen::VectorXd& x,

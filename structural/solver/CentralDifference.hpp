@@ -96,6 +96,7 @@ class CentralDifference final : public TimeIntegrator {
   int fixedMassCuts_ = -1;     // number of cut line sets fixedMass_ was computed with
   Eigen::VectorXd x0_;         // the start positions
   Eigen::VectorXd addedEq_;    // mass scaling, per equation
+  void recordNodalSteps();     // StableStepRecord::nodalSteps, at the start positions
   std::vector<char> freeNode_;
   StableStepRecord record_;
   // The last lumped mass and where it was evaluated (the active elements are those at x).

@@ -4,6 +4,7 @@
 // and drives it the same way whatever it is, for `chute run`, its restart, `chute couple` and
 // the C API alike. The schemes know no kind of term: what they ask of the terms goes through
 // StructuralSystem (assembly, mass, stable-step bounds, events).
+#include <array>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -44,6 +45,14 @@ struct StableStepRecord {
   std::vector<std::pair<double, double>> history;
   std::vector<std::pair<std::string, double>> addedMass;
   double totalAddedMass = 0.0;
+  // EX8: the nodes mass scaling gave mass to, and each part's mass without it (the added mass is
+  // read against it).
+  int scaledNodes = 0;
+  std::vector<std::pair<std::string, double>> partMass;
+  // The free nodes' own stable steps 2 sqrt(m_i / S_i) at the start (EX5, no safety, no damping,
+  // no mass scaling): the least and the 1 %, 10 % and 50 % quantiles. The step is set by the
+  // least; a target_dt up to the 1 % quantile scales at most 1 % of the nodes.
+  std::array<double, 4> nodalSteps{};
 };
 
 // The step an explicit scheme would take from a state, and why (how long a run will take, asked

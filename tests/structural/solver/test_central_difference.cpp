@@ -246,6 +246,25 @@ TEST(CentralDifference, MassScalingReachesTheTargetStepAndReportsTheMass) {
   // Steps at least 0.9 x 0.8 of the target (hysteresis), about 4x the mass for 2x the step.
   EXPECT_GE(r.explicitRun->leastStep, 0.72 * target);
   EXPECT_GT(r.explicitRun->totalAddedMass, 2.0);
+  // Which nodes and how much of their part: the bead alone, against the rope's own mass.
+  const auto& e = *r.explicitRun;
+  std::printf(
+      "scaled nodes %d, rope's own mass %.4f slug; nodal steps least %.3e, 1 %% %.3e, "
+      "10 %% %.3e, median %.3e s\n",
+      e.scaledNodes, e.partMass.empty() ? 0.0 : e.partMass[0].second, e.nodalSteps[0],
+      e.nodalSteps[1], e.nodalSteps[2], e.nodalSteps[3]);
+  EXPECT_GE(e.scaledNodes, 1);
+  ASSERT_EQ(e.partMass.size(), 1u);
+  EXPECT_EQ(e.partMass[0].first, "rope");
+  EXPECT_GT(e.partMass[0].second, 0.0);
+  // The nodes' own steps are those of the start without mass scaling (the same in both runs),
+  // ordered, and the plain run's step is at most the safety factor (0.9) of the least.
+  EXPECT_EQ(e.nodalSteps, plain.explicitRun->nodalSteps);
+  EXPECT_GT(e.nodalSteps[0], 0.0);
+  EXPECT_LE(e.nodalSteps[0], e.nodalSteps[1]);
+  EXPECT_LE(e.nodalSteps[1], e.nodalSteps[2]);
+  EXPECT_LE(e.nodalSteps[2], e.nodalSteps[3]);
+  EXPECT_LE(plain.explicitRun->leastStep, 0.9 * e.nodalSteps[0] * (1 + 1e-12));
 }
 
 TEST(CentralDifference, RestartIsBitForBit) {
