@@ -46,6 +46,7 @@ ExplicitRunInfo explicitSummary(const StableStepRecord& rec, const Model& m) {
   e.stepHistory = rec.history;
   e.addedMass = rec.addedMass;
   e.totalAddedMass = rec.totalAddedMass;
+  e.targetStep = rec.targetStep;
   e.scaledNodes = rec.scaledNodes;
   e.partMass = rec.partMass;
   e.nodalSteps = rec.nodalSteps;
@@ -494,7 +495,8 @@ void writeSummary(const std::string& path, const CaseSpec& spec, const RunResult
     json history = json::array();
     for (const auto& [time, dt] : e.stepHistory) history.push_back({time, dt});
     j["explicit"] = {{"safety_factor", spec.solver.safetyFactor},
-                     {"target_dt", spec.solver.targetDt},
+                     {"target_dt", e.targetStep},
+                     {"mass_scaling_quantile", spec.solver.massScalingQuantile},
                      {"stiffness_damping", spec.solver.stiffnessDamping},
                      {"least_step", e.leastStep},
                      {"largest_step", e.largestStep},

@@ -43,7 +43,8 @@ struct ExplicitRunInfo {
   std::vector<std::pair<double, double>> stepHistory;     // (t, stable step), on 5 % changes
   std::vector<std::pair<std::string, double>> addedMass;  // mass scaling, per part
   double totalAddedMass = 0.0;
-  int scaledNodes = 0;                                   // nodes mass scaling gave mass to
+  double targetStep = 0.0;  // mass scaling's, as given or from mass_scaling_quantile
+  int scaledNodes = 0;      // nodes mass scaling gave mass to
   std::vector<std::pair<std::string, double>> partMass;  // of the scaled parts, without it
   std::array<double, 4> nodalSteps{};  // least, 1 %, 10 %, 50 % of the nodes' own stable steps
 };

@@ -113,7 +113,8 @@ std::vector<std::string> sanityNotes(const CaseSpec& spec) {
   if (spec.solver.type == AnalysisType::Dynamic &&
       spec.solver.integrator != IntegratorKind::CentralDifference &&
       integrator != spec.settings.end() && integrator->second.origin.rfind("--set ", 0) == 0) {
-    for (const char* k : {"solver.stiffness_damping", "solver.safety_factor", "solver.target_dt"}) {
+    for (const char* k : {"solver.stiffness_damping", "solver.safety_factor", "solver.target_dt",
+                          "solver.mass_scaling_quantile"}) {
       const auto it = spec.settings.find(k);
       if (it == spec.settings.end() || it->second.origin.rfind("--set ", 0) == 0) continue;
       notes.push_back(fmt::format(

@@ -89,6 +89,7 @@ struct SolverSpec {
   // central_difference only: fraction of the stable step taken, mass scaling to a target step
   // (0: off), stiffness-proportional damping beta (0: off).
   double safetyFactor = 0.9, targetDt = 0.0, stiffnessDamping = 0.0;
+  double massScalingQuantile = 0.0;  // > 0: target_dt from this quantile of the nodal steps (EX8)
   int loadSteps = 1;
   // Static: load factors grow geometrically from this to 1 over loadSteps (1: equal steps).
   double initialLoadFactor = 1.0;

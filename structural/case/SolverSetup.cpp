@@ -47,7 +47,10 @@ std::unique_ptr<TimeIntegrator> makeIntegrator(StructuralSystem& sys, const Solv
                                               sv.emOrder);
     case IntegratorKind::CentralDifference:
       return std::make_unique<CentralDifference>(
-          sys, ExplicitSettings{sv.safetyFactor, sv.targetDt, sv.stiffnessDamping}, sv.dt);
+          sys,
+          ExplicitSettings{sv.safetyFactor, sv.targetDt, sv.stiffnessDamping,
+                           sv.massScalingQuantile},
+          sv.dt);
   }
   throw std::logic_error("makeIntegrator: unknown integrator");
 }

@@ -36,7 +36,14 @@ CentralDifference::CentralDifference(StructuralSystem& sys, ExplicitSettings set
     if (sys.dofs().eqOfDof(d) >= 0) freeNode_[d / 3] = 1;
   addedEq_.setZero(sys.numEquations());
   x0_ = sys.initialState().x;
-  recordNodalSteps();
+  const std::vector<double> nodalSteps = recordNodalSteps();
+  if (settings_.massScalingQuantile > 0.0 && !nodalSteps.empty()) {
+    // EX8: the nodes whose own step is below the quantile's get the mass that lifts it there.
+    const auto i = static_cast<size_t>(settings_.massScalingQuantile *
+                                       static_cast<double>(nodalSteps.size() - 1));
+    settings_.targetStep = settings_.safety * nodalSteps[i];
+  }
+  record_.targetStep = settings_.targetStep;
   if (settings_.targetStep > 0.0) {
     // EX8: the least nodal mass for which the node's bound S_i / m_i allows the target step
     // with the safety factor, m_i >= S_i (target / (2 safety))^2, from the start positions.
@@ -66,8 +73,8 @@ CentralDifference::CentralDifference(StructuralSystem& sys, ExplicitSettings set
   if (sys.numEquations() > 0) lumpedMass(x0_, 0.0);  // refuses massless nodes at the start
 }
 
-void CentralDifference::recordNodalSteps() {
-  if (sys_->numEquations() == 0) return;
+std::vector<double> CentralDifference::recordNodalSteps() {
+  if (sys_->numEquations() == 0) return {};
   const Eigen::VectorXd massEq = lumpedMass(x0_, 0.0, false);
   const auto S = sys_->stiffnessBound(x0_, 0.0);
   const auto mass = nodalMass(massEq);
@@ -76,12 +83,13 @@ void CentralDifference::recordNodalSteps() {
     if (freeNode_[n] && mass[n] > 0.0 && S[n] > 0.0)
       steps.push_back(2.0 * std::sqrt(mass[n] / S[n]));
   cachedX_.resize(0);
-  if (steps.empty()) return;
+  if (steps.empty()) return steps;
   std::sort(steps.begin(), steps.end());
   const auto quantile = [&](double q) {
     return steps[static_cast<size_t>(q * static_cast<double>(steps.size() - 1))];
   };
   record_.nodalSteps = {steps.front(), quantile(0.01), quantile(0.1), quantile(0.5)};
+  return steps;
 }
 
 Eigen::VectorXd CentralDifference::massOf(const std::vector<Term*>& terms, const Eigen::VectorXd& x,

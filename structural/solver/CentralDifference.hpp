@@ -23,6 +23,9 @@ struct ExplicitSettings {
   double safety = 0.9;            // fraction of the estimated stable step taken (EX5)
   double targetStep = 0.0;        // > 0: mass scaling to this stable step (EX8)
   double stiffnessDamping = 0.0;  // beta of Rayleigh damping C = beta K (EX7); 0: off
+  // > 0: the target is safety x this quantile of the free nodes' own stable steps at the start
+  // (EX8): the nodes below it, that fraction of them, get mass.
+  double massScalingQuantile = 0.0;
 };
 
 // Free dofs without mass: central differences cannot move them (M^-1). Names the nodes.
@@ -96,7 +99,8 @@ class CentralDifference final : public TimeIntegrator {
   int fixedMassCuts_ = -1;     // number of cut line sets fixedMass_ was computed with
   Eigen::VectorXd x0_;         // the start positions
   Eigen::VectorXd addedEq_;    // mass scaling, per equation
-  void recordNodalSteps();     // StableStepRecord::nodalSteps, at the start positions
+  // StableStepRecord::nodalSteps at the start positions; returns the steps, sorted.
+  std::vector<double> recordNodalSteps();
   std::vector<char> freeNode_;
   StableStepRecord record_;
   // The last lumped mass and where it was evaluated (the active elements are those at x).

@@ -47,6 +47,7 @@ struct StableStepRecord {
   double totalAddedMass = 0.0;
   // EX8: the nodes mass scaling gave mass to, and each part's mass without it (the added mass is
   // read against it).
+  double targetStep = 0.0;  // mass scaling's target (given, or from the quantile)
   int scaledNodes = 0;
   std::vector<std::pair<std::string, double>> partMass;
   // The free nodes' own stable steps 2 sqrt(m_i / S_i) at the start (EX5, no safety, no damping,

@@ -75,6 +75,20 @@ TEST(HostileSettings, ExplicitStepsThatWouldNeverEndAreRefused) {
                 "solver.stiffness_damping");
 }
 
+// Selective mass scaling: a quantile outside [0, 0.5], or asked for together with target_dt.
+TEST(HostileSettings, MassScalingQuantileOutOfRangeOrWithTargetDtIsRefused) {
+  expectRefused("mass_scaling_quantile 0.9",
+                "run " + kDrop + " --set solver.mass_scaling_quantile=0.9",
+                "solver.mass_scaling_quantile");
+  expectRefused("mass_scaling_quantile -0.1",
+                "run " + kDrop + " --set solver.mass_scaling_quantile=-0.1",
+                "solver.mass_scaling_quantile");
+  expectRefused(
+      "mass_scaling_quantile with target_dt",
+      "run " + kDrop + " --set solver.mass_scaling_quantile=0.01 --set solver.target_dt=1e-4",
+      "solver.mass_scaling_quantile");
+}
+
 // A line of 100,000 elements: the work per step grows with the elements, not their square (two
 // steps took more than 180 s, 20,000 elements 161 s; now seconds).
 TEST(HostileSettings, ALongLineCostsInProportionToItsElements) {

@@ -80,6 +80,11 @@ void readSolver(CaseSpec& c, TomlTable s) {
     sv.safetyFactor = s.positive("safety_factor", 0.9);
     if (sv.safetyFactor > 1.0) s.fail("safety_factor", "must be in (0, 1]");
     sv.targetDt = s.nonNegative("target_dt", 0.0);
+    sv.massScalingQuantile = s.nonNegative("mass_scaling_quantile", 0.0);
+    if (sv.massScalingQuantile > 0.5) s.fail("mass_scaling_quantile", "must be in [0, 0.5]");
+    if (sv.massScalingQuantile > 0.0 && sv.targetDt > 0.0)
+      s.fail("mass_scaling_quantile",
+             "is given with target_dt: both ask for mass scaling, give one");
     sv.stiffnessDamping = s.nonNegative("stiffness_damping", 0.0);
     m.massDamping = s.nonNegative("mass_damping", 0.0);
     sv.energyTolerance = s.nonNegative("energy_tolerance", sv.energyTolerance);
@@ -101,7 +106,8 @@ void readSolver(CaseSpec& c, TomlTable s) {
               "by dynamic runs (load steps are the static solve's: type = \"static\")");
   } else {
     s.notUsed({"dt", "t_end", "rho_inf", "integrator", "mass_damping", "dt_min", "em_dissipation",
-               "safety_factor", "target_dt", "stiffness_damping", "energy_tolerance"},
+               "safety_factor", "target_dt", "mass_scaling_quantile", "stiffness_damping",
+               "energy_tolerance"},
               "by static runs (type = \"static\")");
     sv.loadSteps = static_cast<int>(s.integer("load_steps", 1, 1, 1000000));
     sv.initialLoadFactor = s.positive("initial_load_factor", 0.0 + 1.0);

@@ -267,6 +267,36 @@ TEST(CentralDifference, MassScalingReachesTheTargetStepAndReportsTheMass) {
   EXPECT_LE(plain.explicitRun->leastStep, 0.9 * e.nodalSteps[0] * (1 + 1e-12));
 }
 
+TEST(CentralDifference, MassScalingToAQuantileGivesMassToThatFractionOfTheNodes) {
+  // The C-9 with a slider, a few steps: its nodes' own stable steps spread over 2x (EX8).
+  const std::vector<std::string> sets{"solver.t_end=0.002"};
+  const auto plain = runExplicit("c9_slider", sets);
+  auto withQuantile = sets;
+  withQuantile.push_back("solver.mass_scaling_quantile=0.1");
+  const auto r = runExplicit("c9_slider", withQuantile);
+  ASSERT_EQ(r.status, RunStatus::Completed);
+  const auto& e = *r.explicitRun;
+  long freeNodes = 0;
+  {
+    const CaseSpec spec = readCase(CHUTE_SOURCE_DIR "/cases/c9_slider.toml", sets);
+    for (const auto& c : spec.model.constraint)
+      if (!(c.fixed[0] && c.fixed[1] && c.fixed[2])) ++freeNodes;
+  }
+  std::printf(
+      "quantile 0.1: target %.4e s (10 %% quantile %.4e s), %d of %ld free nodes scaled, "
+      "+%.3g of the canopy's %.3g; step %.4e -> %.4e s\n",
+      e.targetStep, e.nodalSteps[2], e.scaledNodes, freeNodes, e.totalAddedMass,
+      e.partMass.empty() ? 0.0 : e.partMass[0].second, plain.explicitRun->leastStep, e.leastStep);
+  // The target is the safety factor (0.9) times the 10 % quantile; the nodes below it, at most
+  // a tenth of them, get mass; the step grows.
+  EXPECT_DOUBLE_EQ(e.targetStep, 0.9 * e.nodalSteps[2]);
+  EXPECT_GT(e.scaledNodes, 0);
+  EXPECT_LE(e.scaledNodes, freeNodes / 10 + 1);
+  EXPECT_GT(e.leastStep, 1.1 * plain.explicitRun->leastStep);
+  EXPECT_EQ(plain.explicitRun->scaledNodes, 0);
+  EXPECT_EQ(plain.explicitRun->targetStep, 0.0);
+}
+
 TEST(CentralDifference, RestartIsBitForBit) {
   const auto whole = chute::testing::freshTempDir("chute_test_explicit_", "whole");
   const auto split = chute::testing::freshTempDir("chute_test_explicit_", "split");
