@@ -33,6 +33,29 @@ MembraneTerm::MembraneTerm(const Model& m) : m_(&m), states_(m.membranes.size())
 
 void MembraneTerm::prepareFor(const IntegrationTraits& traits) {
   if (traits.explicitSteps) makeBound();
+  if (traits.explicitSteps && m_->hasGravity()) makeMassShares();
+}
+
+void MembraneTerm::makeMassShares() {
+  // The same kernel and the same sum as assembleElement's weight: the explicit step's residual
+  // is the same bits on either path.
+  massShare_.assign(m_->membranes.size(), {0.0, 0.0, 0.0, 0.0});
+  const bool lumped = m_->massKind == kernels::MassKind::Lumped;
+  for (size_t k = 0; k < m_->membranes.size(); ++k) {
+    const auto& e = m_->membranes[k];
+    const double density = m_->membraneMaterials[e.material].density;
+    if (!(density > 0.0)) continue;
+    auto shares = [&](const auto& ref, auto nodesTag) {
+      constexpr int N = decltype(nodesTag)::value;
+      const Eigen::Matrix<double, N, 1> share =
+          kernels::membraneMass<N>(ref, density, lumped).rowwise().sum();
+      for (int i = 0; i < N; ++i) massShare_[k][i] = share[i];
+    };
+    if (e.numNodes == 3)
+      shares(refs3_[slot_[k]], std::integral_constant<int, 3>{});
+    else
+      shares(refs4_[slot_[k]], std::integral_constant<int, 4>{});
+  }
 }
 
 void MembraneTerm::makeBound() const {
@@ -166,7 +189,15 @@ void MembraneTerm::assembleInternalForce(int k, const kernels::MembraneReference
       kernels::membraneForce<N>(gatherNodes<N>(p.x, e), ref, m_->membraneMaterials[e.material],
                                 m_->membraneSets[e.set].wrinkling, false, false);
   states_[k].state = res.state;
-  out.add<N>(nodeIds<N>(e), res.force, nullptr);
+  if (massShare_.empty()) {
+    out.add<N>(nodeIds<N>(e), res.force, nullptr);
+    return;
+  }
+  // Gravity (assembleElement's weight, from the shares made once): a constant load.
+  Eigen::Matrix<double, 3 * N, 1> r = res.force;
+  for (int i = 0; i < N; ++i)
+    r.template segment<3>(3 * i) -= p.loadFactor * massShare_[k][i] * m_->gravity;
+  out.add<N>(nodeIds<N>(e), r, nullptr);
 }
 
 void MembraneTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
@@ -175,7 +206,7 @@ void MembraneTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
   // The explicit step's evaluation (EX2): no Jacobian, a = 0 and no mass damping, no gravity, so
   // only the internal force f(x) (what assembleElement gives then, without its other branches).
   if (!out.wantMatrix() && !p.xStart && (!p.inertia || p.zeroAcceleration) &&
-      m_->massDamping == 0.0 && !m_->hasGravity()) {
+      m_->massDamping == 0.0 && (!m_->hasGravity() || !massShare_.empty())) {
     for (size_t k = 0; k < m_->membranes.size(); ++k) {
       if (m_->membranes[k].numNodes == 3)
         assembleInternalForce<3>(static_cast<int>(k), refs3_[slot_[k]], p, out);

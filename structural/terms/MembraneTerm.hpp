@@ -2,6 +2,7 @@
 // Internal force, inertia and gravity of every membrane element (docs/formulation.md section 5),
 // with the tension-field model where its set asks for it; keeps each element's last wrinkling
 // state.
+#include <array>
 #include <vector>
 
 #include "assembly/Term.hpp"
@@ -47,10 +48,15 @@ class MembraneTerm final : public Term {
   template <int N>
   void assembleElement(int e, const kernels::MembraneReference<N>& ref, const EvalPoint& p,
                        SystemAssembler& out);
-  // The internal force alone, residual only (the explicit step).
+  // The internal force alone, residual only (the explicit step), and the element's weight when
+  // the model has gravity.
   template <int N>
   void assembleInternalForce(int e, const kernels::MembraneReference<N>& ref, const EvalPoint& p,
                              SystemAssembler& out);
+  // Per element, each node's share of its mass, rho t0 int N_i dA (the weight's, as
+  // assembleElement makes it from the element's mass); made for explicit steps with gravity.
+  std::vector<std::array<double, 4>> massShare_;
+  void makeMassShares();
   const Model* m_;
   std::vector<int> slot_;  // per element: index into refs3_ or refs4_
   std::vector<kernels::MembraneReference<3>> refs3_;
