@@ -195,11 +195,15 @@ class DofMap {
   explicit DofMap(const Model& m);
   int eq(int node, int k) const { return eq_[3 * node + k]; }
   int eqOfDof(int dof) const { return eq_[dof]; }
+  // The first of a node's three consecutive equations when all three of its dofs are free, else
+  // -1: one look-up per node instead of three for the assembly's scatter.
+  int freeNodeEq(int node) const { return freeNodeEq_[node]; }
   int numEquations() const { return numEq_; }
   int numDofs() const { return static_cast<int>(eq_.size()); }
 
  private:
   std::vector<int> eq_;
+  std::vector<int> freeNodeEq_;
   int numEq_ = 0;
 };
 
