@@ -105,6 +105,13 @@ DofMap::DofMap(const Model& m) : eq_(3 * m.numNodes(), -1), freeNodeEq_(m.numNod
       if (!m.constraint[n].fixed[k]) eq_[3 * n + k] = numEq_++;
     if (eq_[3 * n] >= 0 && eq_[3 * n + 1] >= 0 && eq_[3 * n + 2] >= 0) freeNodeEq_[n] = eq_[3 * n];
   }
+  for (int d = 0; d < numDofs(); ++d) {
+    if (eq_[d] < 0) continue;
+    if (!freeRuns_.empty() && freeRuns_.back().dof + freeRuns_.back().count == d)
+      ++freeRuns_.back().count;
+    else
+      freeRuns_.push_back({d, eq_[d], 1});
+  }
 }
 
 }  // namespace chute

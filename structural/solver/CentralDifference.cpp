@@ -247,12 +247,27 @@ NewtonReport CentralDifference::advance(StructuralState& s, double dt) {
   NewtonReport rep;
   const DofMap& dofs = sys_->dofs();
   const int nd = dofs.numDofs();
-  StructuralState& n = next_;  // its buffers are reused from step to step
-  n = s;
+  // n: the state being built, its buffers reused from step to step. Every entry of its x, v and
+  // a is written below (the free dofs here and at the end, the constrained ones by
+  // prescribeMotion), so they are not copied from s first.
+  StructuralState& n = next_;
   n.t = s.t + dt;
-  // EX1: v_{n+1/2} = v_n + dt/2 a_n, x_{n+1} = x_n + dt v_{n+1/2}; prescribed dofs on their path.
-  const Eigen::VectorXd vHalf = s.v + 0.5 * dt * s.a;
-  n.x = s.x + dt * vHalf;  // the constrained dofs' are overwritten next
+  n.control = s.control;
+  if (n.x.size() != nd) n.x.resize(nd), n.v.resize(nd), n.a.resize(nd);
+  if (vHalf_.size() != nd) vHalf_.resize(nd), vStar_.resize(nd);
+  // EX1: v_{n+1/2} = v_n + dt/2 a_n, x_{n+1} = x_n + dt v_{n+1/2}; prescribed dofs on their path
+  // (the constrained dofs' are overwritten next). With it, in the same pass, the velocity the
+  // forces are evaluated with (EX2, below): the forward-Euler prediction v_n + dt a_n.
+  {
+    const double halfStep = 0.5 * dt;
+    const double *x = s.x.data(), *v = s.v.data(), *a = s.a.data();
+    double *vHalf = vHalf_.data(), *vStar = vStar_.data(), *xNext = n.x.data();
+    for (int d = 0; d < nd; ++d) {
+      vHalf[d] = v[d] + halfStep * a[d];
+      xNext[d] = x[d] + dt * vHalf[d];
+      vStar[d] = v[d] + dt * a[d];
+    }
+  }
   sys_->prescribeMotion(n);
   // EX3: hand-over checked every step. A driven slider is handed over where its path passes a
   // node; a free slider whose part to an end node turns round over the step has passed that
@@ -265,14 +280,12 @@ NewtonReport CentralDifference::advance(StructuralState& s, double dt) {
   // EX2 with the velocity-dependent forces (drag, mass damping) at the forward-Euler
   // prediction v_{n+1} ~ v_n + dt a_n (second-order local error), and EX7's stiffness-
   // proportional damping as the internal forces at x + beta v.
-  Eigen::VectorXd vStar = s.v + dt * s.a;
-  for (int d : sys_->constrainedDofs()) vStar[d] = n.v[d];
+  for (int d : sys_->constrainedDofs()) vStar_[d] = n.v[d];
   if (zeroDofs_.size() != nd) zeroDofs_ = Eigen::VectorXd::Zero(nd);
   const bool damped = settings_.stiffnessDamping > 0.0;
-  const Eigen::VectorXd xEval =
-      damped ? Eigen::VectorXd(n.x + settings_.stiffnessDamping * vStar) : Eigen::VectorXd();
+  if (damped) xEval_ = n.x + settings_.stiffnessDamping * vStar_;
   // EX2: the forces at a = 0; the step's length for RG8.
-  const EvalPoint p = EvalPoint::explicitForces(damped ? xEval : n.x, vStar, zeroDofs_, n.t, dt,
+  const EvalPoint p = EvalPoint::explicitForces(damped ? xEval_ : n.x, vStar_, zeroDofs_, n.t, dt,
                                                 damped ? &n.x : nullptr);
   if (cutSets(n.t) == fixedMassCuts_) {
     // The sliding elements' mass M(x) 1 at x_{n+1} (all lumpedMass has to evaluate while no cut
@@ -284,12 +297,18 @@ NewtonReport CentralDifference::advance(StructuralState& s, double dt) {
     sys_->assemble(p, false);
   }
   const Eigen::VectorXd& massEq = lumpedMass(n.x, n.t);  // evaluated alongside: the cached one
-  const Eigen::VectorXd& r = sys_->residual();
-  for (int d = 0; d < nd; ++d) {
-    const int e = dofs.eqOfDof(d);
-    if (e < 0) continue;
-    n.a[d] = -r[e] / massEq[e];
-    n.v[d] = vHalf[d] + 0.5 * dt * n.a[d];
+  // a_{n+1} = -r / m and v_{n+1} = v_{n+1/2} + dt/2 a_{n+1} on the free dofs, run by run of
+  // consecutive equations (the constrained dofs' are prescribed).
+  {
+    const double halfStep = 0.5 * dt;
+    const double *r = sys_->residual().data(), *m = massEq.data(), *vHalf = vHalf_.data();
+    double *a = n.a.data(), *v = n.v.data();
+    for (const auto& run : dofs.freeRuns())
+      for (int i = 0; i < run.count; ++i) {
+        const int d = run.dof + i, e = run.eq + i;
+        a[d] = -r[e] / m[e];
+        v[d] = vHalf[d] + halfStep * a[d];
+      }
   }
   rep.iterations = 0;
   if (!finite(n.x) || !finite(n.v) || !finite(n.a)) {

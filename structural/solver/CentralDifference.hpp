@@ -104,6 +104,7 @@ class CentralDifference final : public TimeIntegrator {
   // (the step's zero acceleration, the sliding mass's M(x) 1) and the state being built.
   Eigen::VectorXd zeroDofs_, onesDofs_;
   StructuralState next_;
+  Eigen::VectorXd vHalf_, vStar_, xEval_;  // advance's v_{n+1/2}, v*, x + beta v*
 };
 
 }  // namespace chute
