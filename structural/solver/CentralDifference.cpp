@@ -287,21 +287,22 @@ NewtonReport CentralDifference::advance(StructuralState& s, double dt) {
   // EX2: the forces at a = 0; the step's length for RG8.
   const EvalPoint p = EvalPoint::explicitForces(damped ? xEval_ : n.x, vStar_, zeroDofs_, n.t, dt,
                                                 damped ? &n.x : nullptr);
+  const Eigen::VectorXd* mass = nullptr;
   if (cutSets(n.t) == fixedMassCuts_) {
     // The sliding elements' mass M(x) 1 at x_{n+1} (all lumpedMass has to evaluate while no cut
     // changes the fixed mass) alongside the assembly, on the thread that finishes its part first:
     // it reads the positions and the sliding states, as the assembly does, and writes only its
-    // own.
-    sys_->assemble(p, false, [&] { lumpedMass(n.x, n.t); });
+    // own. Kept, rather than asked for again: a second call compares all positions to find it.
+    sys_->assemble(p, false, [&] { mass = &lumpedMass(n.x, n.t); });
   } else {
     sys_->assemble(p, false);
   }
-  const Eigen::VectorXd& massEq = lumpedMass(n.x, n.t);  // evaluated alongside: the cached one
+  if (!mass) mass = &lumpedMass(n.x, n.t);
   // a_{n+1} = -r / m and v_{n+1} = v_{n+1/2} + dt/2 a_{n+1} on the free dofs, run by run of
   // consecutive equations (the constrained dofs' are prescribed).
   {
     const double halfStep = 0.5 * dt;
-    const double *r = sys_->residual().data(), *m = massEq.data(), *vHalf = vHalf_.data();
+    const double *r = sys_->residual().data(), *m = mass->data(), *vHalf = vHalf_.data();
     double *a = n.a.data(), *v = n.v.data();
     for (const auto& run : dofs.freeRuns())
       for (int i = 0; i < run.count; ++i) {
