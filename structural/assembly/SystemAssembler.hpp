@@ -85,6 +85,26 @@ class SystemAssembler {
     }
   }
 
+  // The residual r added to each of the element's nodes (residual only): what add() does with
+  // r repeated node by node, the same sums, without forming the repeated vector (a face's
+  // pressure and drag on the explicit path, every face at every step).
+  template <int N>
+  void addToEachNode(const std::array<int, N>& nodes, const Eigen::Vector3d& r) {
+    double* residual = residual_.data();
+    for (int i = 0; i < N; ++i) {
+      if (const int e = dofs_->freeNodeEq(nodes[i]); e >= 0) {
+        residual[e] += r[0];
+        residual[e + 1] += r[1];
+        residual[e + 2] += r[2];
+        continue;
+      }
+      for (int k = 0; k < 3; ++k)
+        if (const int e = dofs_->eq(nodes[i], k); e >= 0) residual[e] += r[k];
+    }
+    if (full_)
+      for (int i = 0; i < N; ++i) full_->segment<3>(3 * nodes[i]) += r;
+  }
+
   // A coupling the pattern lacks (a term that did not declare its cliques): a programming
   // error, reported rather than written to the wrong entry.
   [[noreturn]] static void outsidePattern(int row, int col) {
