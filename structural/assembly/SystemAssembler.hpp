@@ -30,6 +30,11 @@ class SystemAssembler {
   bool hasPattern() const { return patternBuilt_; }
 
   void begin(bool wantMatrix);
+  // A residual-only begin() for terms that write only to the equations eqs (those of their
+  // couplings' nodes, addCouplings): only those entries are cleared, the others are zero from the
+  // first begin and stay so. For an assembler used only by such terms (the explicit step's
+  // moving mass, a few line nodes, at every step): no clearing of the whole residual.
+  void beginOn(const std::vector<int>& eqs);
   // Adds what another assembler with the same pattern gathered since its begin() (the second
   // part of a split assembly) and its work counters, which it clears.
   void accumulate(SystemAssembler& other);

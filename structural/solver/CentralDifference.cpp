@@ -25,11 +25,26 @@ bool finite(const Eigen::VectorXd& x) {
 
 CentralDifference::CentralDifference(StructuralSystem& sys, ExplicitSettings settings,
                                      double maxStep)
-    : sys_(&sys), settings_(settings), maxStep_(maxStep), massAssembler_(sys.dofs()) {
+    : sys_(&sys),
+      settings_(settings),
+      maxStep_(maxStep),
+      massAssembler_(sys.dofs()),
+      movingMassAssembler_(sys.dofs()) {
   sys.prepareFor(IntegrationTraits{true, false});
   massAssembler_.buildPattern({});
+  movingMassAssembler_.buildPattern({});
   for (const auto& t : sys.terms())
     (t->massMovesWithPositions() ? movingMassTerms_ : fixedMassTerms_).push_back(t.get());
+  {
+    std::vector<std::vector<int>> cliques;
+    for (auto* t : movingMassTerms_) t->addCouplings(cliques);
+    std::vector<char> touched(sys.dofs().numDofs() / 3, 0);
+    for (const auto& c : cliques)
+      for (int n : c) touched[n] = 1;
+    for (int n = 0; n < static_cast<int>(touched.size()); ++n)
+      for (int k = 0; k < 3; ++k)
+        if (const int e = sys.dofs().eq(n, k); touched[n] && e >= 0) movingMassEqs_.push_back(e);
+  }
   const Model& m = sys.model();
   freeNode_.assign(m.numNodes(), 0);
   for (int d = 0; d < sys.dofs().numDofs(); ++d)
@@ -101,9 +116,12 @@ const Eigen::VectorXd& CentralDifference::lumpedMass(const Eigen::VectorXd& x, d
       if (zeroDofs_.size() != x.size()) zeroDofs_ = Eigen::VectorXd::Zero(x.size());
       if (onesDofs_.size() != x.size()) onesDofs_ = Eigen::VectorXd::Ones(x.size());
       const EvalPoint p = EvalPoint::inertiaOf(x, zeroDofs_, onesDofs_, t, true);
-      massAssembler_.begin(false);
-      for (auto* term : movingMassTerms_) term->assemble(p, massAssembler_);
-      cachedMass_ += massAssembler_.residual();
+      movingMassAssembler_.beginOn(movingMassEqs_);
+      for (auto* term : movingMassTerms_) term->assemble(p, movingMassAssembler_);
+      // Only the moving mass's equations: the others' residual is 0, and m + 0 is m (the fixed
+      // and added masses are never -0).
+      const Eigen::VectorXd& moving = movingMassAssembler_.residual();
+      for (int e : movingMassEqs_) cachedMass_[e] += moving[e];
     }
     cachedX_ = x;
     cachedT_ = t;

@@ -91,6 +91,10 @@ class CentralDifference final : public TimeIntegrator {
   double maxStep_;
   SystemAssembler massAssembler_;
   std::vector<Term*> fixedMassTerms_, movingMassTerms_;
+  // The moving mass's own assembler, and the equations of its terms' nodes (their couplings'),
+  // the only ones it clears and reads (SystemAssembler::beginOn).
+  SystemAssembler movingMassAssembler_;
+  std::vector<int> movingMassEqs_;
   Eigen::VectorXd fixedMass_;  // of the terms whose mass does not move, at fixedMassCuts_
   int fixedMassCuts_ = -1;     // number of cut line sets fixedMass_ was computed with
   Eigen::VectorXd x0_;         // the start positions
