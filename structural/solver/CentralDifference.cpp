@@ -71,6 +71,7 @@ CentralDifference::CentralDifference(StructuralSystem& sys, ExplicitSettings set
     record_.addedMass.assign(byPart.begin(), byPart.end());
     for (const auto& [name, added] : record_.addedMass) record_.totalAddedMass += added;
     cachedX_.resize(0);  // the mass evaluated above is without the added mass
+    massBaseStale_ = true;
   }
   if (sys.numEquations() > 0) lumpedMass(x0_, 0.0);  // refuses massless nodes at the start
 }
@@ -106,11 +107,23 @@ const Eigen::VectorXd& CentralDifference::lumpedMass(const Eigen::VectorXd& x, d
     fixedMass_ = massOf(fixedMassTerms_, x0_, t);
     fixedMassCuts_ = cuts;
     cachedX_.resize(0);
+    massBaseStale_ = true;
+  }
+  if (massBaseStale_) {
+    // The mass that does not move, and whether it is positive on every equation the moving mass
+    // does not touch: what the moving mass changes is then all that a step evaluates and checks.
+    massBase_ = fixedMass_ + addedEq_;
+    cachedMass_ = massBase_;
+    std::vector<char> moving(massBase_.size(), 0);
+    for (int e : movingMassEqs_) moving[e] = 1;
+    basePositive_ = true;
+    for (long e = 0; e < massBase_.size(); ++e)
+      if (!moving[e] && !(massBase_[e] > 0.0)) basePositive_ = false;
+    massBaseStale_ = false;
   }
   // A sliding element's lumped mass follows the slider's split (F10): evaluated at x (the
   // step's end positions are the next step's start: evaluated once for both).
   if (!(cachedT_ == t && cachedX_.size() == x.size() && cachedX_ == x)) {
-    cachedMass_ = fixedMass_ + addedEq_;
     if (!movingMassTerms_.empty()) {
       // M(x) 1 directly: the terms whose mass moves evaluate only their inertia when asked.
       if (zeroDofs_.size() != x.size()) zeroDofs_ = Eigen::VectorXd::Zero(x.size());
@@ -119,13 +132,17 @@ const Eigen::VectorXd& CentralDifference::lumpedMass(const Eigen::VectorXd& x, d
       movingMassAssembler_.beginOn(movingMassEqs_);
       for (auto* term : movingMassTerms_) term->assemble(p, movingMassAssembler_);
       // Only the moving mass's equations: the others' residual is 0, and m + 0 is m (the fixed
-      // and added masses are never -0).
+      // and added masses are never -0); the others keep massBase_.
       const Eigen::VectorXd& moving = movingMassAssembler_.residual();
-      for (int e : movingMassEqs_) cachedMass_[e] += moving[e];
+      for (int e : movingMassEqs_) cachedMass_[e] = massBase_[e] + moving[e];
     }
     cachedX_ = x;
     cachedT_ = t;
-    if (check) refuseMassless(cachedMass_);
+    // Every mass positive: the base's were checked when it was formed; refuseMassless (which
+    // names the nodes) only when one is not.
+    bool positive = basePositive_;
+    for (int e : movingMassEqs_) positive = positive && cachedMass_[e] > 0.0;
+    if (check && !positive) refuseMassless(cachedMass_);
   }
   return cachedMass_;
 }

@@ -95,6 +95,10 @@ class CentralDifference final : public TimeIntegrator {
   // the only ones it clears and reads (SystemAssembler::beginOn).
   SystemAssembler movingMassAssembler_;
   std::vector<int> movingMassEqs_;
+  // fixedMass_ + addedEq_, formed when either changes, and whether it is positive on every
+  // equation outside movingMassEqs_.
+  Eigen::VectorXd massBase_;
+  bool massBaseStale_ = true, basePositive_ = false;
   Eigen::VectorXd fixedMass_;  // of the terms whose mass does not move, at fixedMassCuts_
   int fixedMassCuts_ = -1;     // number of cut line sets fixedMass_ was computed with
   Eigen::VectorXd x0_;         // the start positions
