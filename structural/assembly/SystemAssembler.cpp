@@ -42,6 +42,12 @@ void SystemAssembler::begin(bool wantMatrix) {
   if (wantMatrix) std::fill(matrix_.valuePtr(), matrix_.valuePtr() + matrix_.nonZeros(), 0.0);
 }
 
+void SystemAssembler::beginOn(const std::vector<int>& eqs) {
+  wantMatrix_ = false;
+  if (residual_.size() != dofs_->numEquations()) residual_.setZero(dofs_->numEquations());
+  for (int e : eqs) residual_[e] = 0.0;
+}
+
 void SystemAssembler::accumulate(SystemAssembler& other) {
   residual_ += other.residual_;
   if (wantMatrix_ && other.wantMatrix_) {

@@ -30,6 +30,11 @@ class SystemAssembler {
   bool hasPattern() const { return patternBuilt_; }
 
   void begin(bool wantMatrix);
+  // A residual-only begin() for terms that write only to the equations eqs (those of their
+  // couplings' nodes, addCouplings): only those entries are cleared, the others are zero from the
+  // first begin and stay so. For an assembler used only by such terms (the explicit step's
+  // moving mass, a few line nodes, at every step): no clearing of the whole residual.
+  void beginOn(const std::vector<int>& eqs);
   // Adds what another assembler with the same pattern gathered since its begin() (the second
   // part of a split assembly) and its work counters, which it clears.
   void accumulate(SystemAssembler& other);
@@ -37,15 +42,27 @@ class SystemAssembler {
   template <int N>
   void add(const std::array<int, N>& nodes, const Eigen::Matrix<double, 3 * N, 1>& r,
            const Eigen::Matrix<double, 3 * N, 3 * N>* J) {
-    std::array<int, 3 * N> eq;
-    for (int i = 0; i < N; ++i)
-      for (int k = 0; k < 3; ++k) eq[3 * i + k] = dofs_->eq(nodes[i], k);
+    // The residual node by node, entry by entry in the element's order (the same sums as entry
+    // by entry): a node whose three dofs are free, nearly every node, has three consecutive
+    // equations, found with one look-up and no test per entry; the explicit path scatters every
+    // element this way at every step.
     double* residual = residual_.data();  // loaded once, not at every entry
-    for (int i = 0; i < 3 * N; ++i)
-      if (eq[i] >= 0) residual[eq[i]] += r[i];
+    for (int i = 0; i < N; ++i) {
+      if (const int e = dofs_->freeNodeEq(nodes[i]); e >= 0) {
+        residual[e] += r[3 * i];
+        residual[e + 1] += r[3 * i + 1];
+        residual[e + 2] += r[3 * i + 2];
+        continue;
+      }
+      for (int k = 0; k < 3; ++k)
+        if (const int e = dofs_->eq(nodes[i], k); e >= 0) residual[e] += r[3 * i + k];
+    }
     if (full_)
       for (int i = 0; i < N; ++i) full_->segment<3>(3 * nodes[i]) += r.template segment<3>(3 * i);
     if (!J || !wantMatrix_) return;
+    std::array<int, 3 * N> eq;
+    for (int i = 0; i < N; ++i)
+      for (int k = 0; k < 3; ++k) eq[3 * i + k] = dofs_->eq(nodes[i], k);
     // Node block by node block: a node's free dofs have consecutive equation numbers and the
     // pattern holds every dof pair of a clique, so within a column the rows of node a are
     // consecutive entries. One search per (node a, column) instead of one per entry.
@@ -71,6 +88,26 @@ class SystemAssembler {
           if (eq[3 * a + k] >= 0) *v++ += (*J)(3 * a + k, j);
       }
     }
+  }
+
+  // The residual r added to each of the element's nodes (residual only): what add() does with
+  // r repeated node by node, the same sums, without forming the repeated vector (a face's
+  // pressure and drag on the explicit path, every face at every step).
+  template <int N>
+  void addToEachNode(const std::array<int, N>& nodes, const Eigen::Vector3d& r) {
+    double* residual = residual_.data();
+    for (int i = 0; i < N; ++i) {
+      if (const int e = dofs_->freeNodeEq(nodes[i]); e >= 0) {
+        residual[e] += r[0];
+        residual[e + 1] += r[1];
+        residual[e + 2] += r[2];
+        continue;
+      }
+      for (int k = 0; k < 3; ++k)
+        if (const int e = dofs_->eq(nodes[i], k); e >= 0) residual[e] += r[k];
+    }
+    if (full_)
+      for (int i = 0; i < N; ++i) full_->segment<3>(3 * nodes[i]) += r;
   }
 
   // A coupling the pattern lacks (a term that did not declare its cliques): a programming

@@ -11,6 +11,39 @@ namespace chute::kernels {
 // F1-F3: nodes (a, b).
 PolylineResult<2> cableForce(const Vec3& xa, const Vec3& xb, double L, const LineMaterial& mat,
                              bool withTangent);
+// Residual-only cableForce: its force, the same operations as uniformStrainPolyline<2>'s
+// residual (D = (0 - g, 0 + g) from a zero vector, l = 0 + l_part is exact), so bit for bit,
+// without its result's 6 x 6 stiffness, the call to partLength and the copies of the result
+// through cableForce (the explicit path evaluates it every step on every line element). Inline:
+// called across files, the nodes' positions went through memory to the call.
+inline Eigen::Matrix<double, 6, 1> cableForceOnly(const Vec3& xa, const Vec3& xb, double L,
+                                                  const LineMaterial& mat) {
+  const double apex = kApexFraction * L;
+  const Vec3 d = xb - xa;
+  const double n = d.norm();
+  double length;
+  Vec3 g;
+  if (n >= apex) {  // partLength: the exact length, or RG1's quadratic at the apex
+    length = n;
+    g = d / n;
+  } else {
+    length = (n * n + apex * apex) / (2.0 * apex);
+    g = d / apex;
+  }
+  const double L2 = L * L;
+  const double strain = (length * length - L2) / (2.0 * L2);  // F1
+  double Eeff = mat.E;
+  if (strain < 0.0 && mat.tensionOnly) Eeff = mat.E * mat.compressionStiffnessRatio;
+  if (strain == 0.0 && mat.tensionOnly) Eeff = 0.0;  // exactly zero strain: slack
+  const double EAoverL = Eeff * mat.area / L;
+  const double N = EAoverL * strain * length;  // F2
+  Eigen::Matrix<double, 6, 1> f;
+  for (int k = 0; k < 3; ++k) {
+    f[k] = N * (0.0 - g[k]);
+    f[3 + k] = N * (0.0 + g[k]);
+  }
+  return f;
+}
 // F4: constant mass matrix.
 Mat6 cableMass(double L, const LineMaterial& mat, MassKind kind);
 // F4's inertia M a without forming M: lumped, (m / 2) a_i; consistent, (m / 3) a_i + (m / 6) a_j

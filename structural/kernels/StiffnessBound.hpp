@@ -69,13 +69,16 @@ inline MembraneBoundReference membraneBoundReference(const std::array<Eigen::Vec
 
 // The bound per node of a membrane element at current positions x (EX6m): total-Lagrangian St.
 // Venant-Kirchhoff stiffness grows with the square of the largest edge stretch; compressed
-// (folded, wrinkled) fabric is bounded by its reference stiffness.
-inline double membraneNodeBound(const MembraneBoundReference& ref,
-                                const std::array<Eigen::Vector3d, 4>& x, int numNodes) {
+// (folded, wrinkled) fabric is bounded by its reference stiffness. The number of nodes a template
+// argument: the edge loop unrolled, without a division per edge for its end node (every element
+// at every estimate of the explicit step).
+template <int NumNodes>
+double membraneNodeBound(const MembraneBoundReference& ref,
+                         const std::array<Eigen::Vector3d, NumNodes>& x) {
   double stretch = 1.0;
-  for (int i = 0; i < numNodes; ++i) {
+  for (int i = 0; i < NumNodes; ++i) {
     const double l0 = ref.l0[i];
-    if (l0 > 0.0) stretch = std::max(stretch, (x[(i + 1) % numNodes] - x[i]).norm() / l0);
+    if (l0 > 0.0) stretch = std::max(stretch, (x[(i + 1) % NumNodes] - x[i]).norm() / l0);
   }
   return ref.perNode * stretch * stretch;
 }

@@ -99,10 +99,19 @@ bool Model::hasCutAt(double t) const {
                      [t](const LineSet& s) { return s.cutAt == t; });
 }
 
-DofMap::DofMap(const Model& m) : eq_(3 * m.numNodes(), -1) {
-  for (int n = 0; n < m.numNodes(); ++n)
+DofMap::DofMap(const Model& m) : eq_(3 * m.numNodes(), -1), freeNodeEq_(m.numNodes(), -1) {
+  for (int n = 0; n < m.numNodes(); ++n) {
     for (int k = 0; k < 3; ++k)
       if (!m.constraint[n].fixed[k]) eq_[3 * n + k] = numEq_++;
+    if (eq_[3 * n] >= 0 && eq_[3 * n + 1] >= 0 && eq_[3 * n + 2] >= 0) freeNodeEq_[n] = eq_[3 * n];
+  }
+  for (int d = 0; d < numDofs(); ++d) {
+    if (eq_[d] < 0) continue;
+    if (!freeRuns_.empty() && freeRuns_.back().dof + freeRuns_.back().count == d)
+      ++freeRuns_.back().count;
+    else
+      freeRuns_.push_back({d, eq_[d], 1});
+  }
 }
 
 }  // namespace chute

@@ -195,11 +195,22 @@ class DofMap {
   explicit DofMap(const Model& m);
   int eq(int node, int k) const { return eq_[3 * node + k]; }
   int eqOfDof(int dof) const { return eq_[dof]; }
+  // The first of a node's three consecutive equations when all three of its dofs are free, else
+  // -1: one look-up per node instead of three for the assembly's scatter.
+  int freeNodeEq(int node) const { return freeNodeEq_[node]; }
+  // The free dofs as runs of consecutive dofs with consecutive equations, in order: loops over
+  // the free dofs without a test per dof (the explicit step's update of every dof).
+  struct FreeRun {
+    int dof, eq, count;
+  };
+  const std::vector<FreeRun>& freeRuns() const { return freeRuns_; }
   int numEquations() const { return numEq_; }
   int numDofs() const { return static_cast<int>(eq_.size()); }
 
  private:
   std::vector<int> eq_;
+  std::vector<int> freeNodeEq_;
+  std::vector<FreeRun> freeRuns_;
   int numEq_ = 0;
 };
 

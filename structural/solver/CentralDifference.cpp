@@ -25,11 +25,26 @@ bool finite(const Eigen::VectorXd& x) {
 
 CentralDifference::CentralDifference(StructuralSystem& sys, ExplicitSettings settings,
                                      double maxStep)
-    : sys_(&sys), settings_(settings), maxStep_(maxStep), massAssembler_(sys.dofs()) {
+    : sys_(&sys),
+      settings_(settings),
+      maxStep_(maxStep),
+      massAssembler_(sys.dofs()),
+      movingMassAssembler_(sys.dofs()) {
   sys.prepareFor(IntegrationTraits{true, false});
   massAssembler_.buildPattern({});
+  movingMassAssembler_.buildPattern({});
   for (const auto& t : sys.terms())
     (t->massMovesWithPositions() ? movingMassTerms_ : fixedMassTerms_).push_back(t.get());
+  {
+    std::vector<std::vector<int>> cliques;
+    for (auto* t : movingMassTerms_) t->addCouplings(cliques);
+    std::vector<char> touched(sys.dofs().numDofs() / 3, 0);
+    for (const auto& c : cliques)
+      for (int n : c) touched[n] = 1;
+    for (int n = 0; n < static_cast<int>(touched.size()); ++n)
+      for (int k = 0; k < 3; ++k)
+        if (const int e = sys.dofs().eq(n, k); touched[n] && e >= 0) movingMassEqs_.push_back(e);
+  }
   const Model& m = sys.model();
   freeNode_.assign(m.numNodes(), 0);
   for (int d = 0; d < sys.dofs().numDofs(); ++d)
@@ -69,6 +84,7 @@ CentralDifference::CentralDifference(StructuralSystem& sys, ExplicitSettings set
     record_.partMass.assign(partMass.begin(), partMass.end());
     for (const auto& [name, added] : record_.addedMass) record_.totalAddedMass += added;
     cachedX_.resize(0);  // the mass evaluated above is without the added mass
+    massBaseStale_ = true;
   }
   if (sys.numEquations() > 0) lumpedMass(x0_, 0.0);  // refuses massless nodes at the start
 }
@@ -123,23 +139,42 @@ const Eigen::VectorXd& CentralDifference::lumpedMass(const Eigen::VectorXd& x, d
     fixedMass_ = massOf(fixedMassTerms_, x0_, t);
     fixedMassCuts_ = cuts;
     cachedX_.resize(0);
+    massBaseStale_ = true;
+  }
+  if (massBaseStale_) {
+    // The mass that does not move, and whether it is positive on every equation the moving mass
+    // does not touch: what the moving mass changes is then all that a step evaluates and checks.
+    massBase_ = fixedMass_ + addedEq_;
+    cachedMass_ = massBase_;
+    std::vector<char> moving(massBase_.size(), 0);
+    for (int e : movingMassEqs_) moving[e] = 1;
+    basePositive_ = true;
+    for (long e = 0; e < massBase_.size(); ++e)
+      if (!moving[e] && !(massBase_[e] > 0.0)) basePositive_ = false;
+    massBaseStale_ = false;
   }
   // A sliding element's lumped mass follows the slider's split (F10): evaluated at x (the
   // step's end positions are the next step's start: evaluated once for both).
   if (!(cachedT_ == t && cachedX_.size() == x.size() && cachedX_ == x)) {
-    cachedMass_ = fixedMass_ + addedEq_;
     if (!movingMassTerms_.empty()) {
       // M(x) 1 directly: the terms whose mass moves evaluate only their inertia when asked.
       if (zeroDofs_.size() != x.size()) zeroDofs_ = Eigen::VectorXd::Zero(x.size());
       if (onesDofs_.size() != x.size()) onesDofs_ = Eigen::VectorXd::Ones(x.size());
       const EvalPoint p = EvalPoint::inertiaOf(x, zeroDofs_, onesDofs_, t, true);
-      massAssembler_.begin(false);
-      for (auto* term : movingMassTerms_) term->assemble(p, massAssembler_);
-      cachedMass_ += massAssembler_.residual();
+      movingMassAssembler_.beginOn(movingMassEqs_);
+      for (auto* term : movingMassTerms_) term->assemble(p, movingMassAssembler_);
+      // Only the moving mass's equations: the others' residual is 0, and m + 0 is m (the fixed
+      // and added masses are never -0); the others keep massBase_.
+      const Eigen::VectorXd& moving = movingMassAssembler_.residual();
+      for (int e : movingMassEqs_) cachedMass_[e] = massBase_[e] + moving[e];
     }
     cachedX_ = x;
     cachedT_ = t;
-    if (check) refuseMassless(cachedMass_);
+    // Every mass positive: the base's were checked when it was formed; refuseMassless (which
+    // names the nodes) only when one is not.
+    bool positive = basePositive_;
+    for (int e : movingMassEqs_) positive = positive && cachedMass_[e] > 0.0;
+    if (check && !positive) refuseMassless(cachedMass_);
   }
   return cachedMass_;
 }
@@ -279,12 +314,27 @@ NewtonReport CentralDifference::advance(StructuralState& s, double dt) {
   NewtonReport rep;
   const DofMap& dofs = sys_->dofs();
   const int nd = dofs.numDofs();
-  StructuralState& n = next_;  // its buffers are reused from step to step
-  n = s;
+  // n: the state being built, its buffers reused from step to step. Every entry of its x, v and
+  // a is written below (the free dofs here and at the end, the constrained ones by
+  // prescribeMotion), so they are not copied from s first.
+  StructuralState& n = next_;
   n.t = s.t + dt;
-  // EX1: v_{n+1/2} = v_n + dt/2 a_n, x_{n+1} = x_n + dt v_{n+1/2}; prescribed dofs on their path.
-  const Eigen::VectorXd vHalf = s.v + 0.5 * dt * s.a;
-  n.x = s.x + dt * vHalf;  // the constrained dofs' are overwritten next
+  n.control = s.control;
+  if (n.x.size() != nd) n.x.resize(nd), n.v.resize(nd), n.a.resize(nd);
+  if (vHalf_.size() != nd) vHalf_.resize(nd), vStar_.resize(nd);
+  // EX1: v_{n+1/2} = v_n + dt/2 a_n, x_{n+1} = x_n + dt v_{n+1/2}; prescribed dofs on their path
+  // (the constrained dofs' are overwritten next). With it, in the same pass, the velocity the
+  // forces are evaluated with (EX2, below): the forward-Euler prediction v_n + dt a_n.
+  {
+    const double halfStep = 0.5 * dt;
+    const double *x = s.x.data(), *v = s.v.data(), *a = s.a.data();
+    double *vHalf = vHalf_.data(), *vStar = vStar_.data(), *xNext = n.x.data();
+    for (int d = 0; d < nd; ++d) {
+      vHalf[d] = v[d] + halfStep * a[d];
+      xNext[d] = x[d] + dt * vHalf[d];
+      vStar[d] = v[d] + dt * a[d];
+    }
+  }
   sys_->prescribeMotion(n);
   // EX3: hand-over checked every step. A driven slider is handed over where its path passes a
   // node; a free slider whose part to an end node turns round over the step has passed that
@@ -297,31 +347,36 @@ NewtonReport CentralDifference::advance(StructuralState& s, double dt) {
   // EX2 with the velocity-dependent forces (drag, mass damping) at the forward-Euler
   // prediction v_{n+1} ~ v_n + dt a_n (second-order local error), and EX7's stiffness-
   // proportional damping as the internal forces at x + beta v.
-  Eigen::VectorXd vStar = s.v + dt * s.a;
-  for (int d : sys_->constrainedDofs()) vStar[d] = n.v[d];
+  for (int d : sys_->constrainedDofs()) vStar_[d] = n.v[d];
   if (zeroDofs_.size() != nd) zeroDofs_ = Eigen::VectorXd::Zero(nd);
   const bool damped = settings_.stiffnessDamping > 0.0;
-  const Eigen::VectorXd xEval =
-      damped ? Eigen::VectorXd(n.x + settings_.stiffnessDamping * vStar) : Eigen::VectorXd();
+  if (damped) xEval_ = n.x + settings_.stiffnessDamping * vStar_;
   // EX2: the forces at a = 0; the step's length for RG8.
-  const EvalPoint p = EvalPoint::explicitForces(damped ? xEval : n.x, vStar, zeroDofs_, n.t, dt,
+  const EvalPoint p = EvalPoint::explicitForces(damped ? xEval_ : n.x, vStar_, zeroDofs_, n.t, dt,
                                                 damped ? &n.x : nullptr);
+  const Eigen::VectorXd* mass = nullptr;
   if (cutSets(n.t) == fixedMassCuts_) {
     // The sliding elements' mass M(x) 1 at x_{n+1} (all lumpedMass has to evaluate while no cut
     // changes the fixed mass) alongside the assembly, on the thread that finishes its part first:
     // it reads the positions and the sliding states, as the assembly does, and writes only its
-    // own.
-    sys_->assemble(p, false, [&] { lumpedMass(n.x, n.t); });
+    // own. Kept, rather than asked for again: a second call compares all positions to find it.
+    sys_->assemble(p, false, [&] { mass = &lumpedMass(n.x, n.t); });
   } else {
     sys_->assemble(p, false);
   }
-  const Eigen::VectorXd& massEq = lumpedMass(n.x, n.t);  // evaluated alongside: the cached one
-  const Eigen::VectorXd& r = sys_->residual();
-  for (int d = 0; d < nd; ++d) {
-    const int e = dofs.eqOfDof(d);
-    if (e < 0) continue;
-    n.a[d] = -r[e] / massEq[e];
-    n.v[d] = vHalf[d] + 0.5 * dt * n.a[d];
+  if (!mass) mass = &lumpedMass(n.x, n.t);
+  // a_{n+1} = -r / m and v_{n+1} = v_{n+1/2} + dt/2 a_{n+1} on the free dofs, run by run of
+  // consecutive equations (the constrained dofs' are prescribed).
+  {
+    const double halfStep = 0.5 * dt;
+    const double *r = sys_->residual().data(), *m = mass->data(), *vHalf = vHalf_.data();
+    double *a = n.a.data(), *v = n.v.data();
+    for (const auto& run : dofs.freeRuns())
+      for (int i = 0; i < run.count; ++i) {
+        const int d = run.dof + i, e = run.eq + i;
+        a[d] = -r[e] / m[e];
+        v[d] = vHalf[d] + halfStep * a[d];
+      }
   }
   rep.iterations = 0;
   if (!finite(n.x) || !finite(n.v) || !finite(n.a)) {

@@ -95,6 +95,14 @@ class CentralDifference final : public TimeIntegrator {
   double maxStep_;
   SystemAssembler massAssembler_;
   std::vector<Term*> fixedMassTerms_, movingMassTerms_;
+  // The moving mass's own assembler, and the equations of its terms' nodes (their couplings'),
+  // the only ones it clears and reads (SystemAssembler::beginOn).
+  SystemAssembler movingMassAssembler_;
+  std::vector<int> movingMassEqs_;
+  // fixedMass_ + addedEq_, formed when either changes, and whether it is positive on every
+  // equation outside movingMassEqs_.
+  Eigen::VectorXd massBase_;
+  bool massBaseStale_ = true, basePositive_ = false;
   Eigen::VectorXd fixedMass_;  // of the terms whose mass does not move, at fixedMassCuts_
   int fixedMassCuts_ = -1;     // number of cut line sets fixedMass_ was computed with
   Eigen::VectorXd x0_;         // the start positions
@@ -110,6 +118,7 @@ class CentralDifference final : public TimeIntegrator {
   // (the step's zero acceleration, the sliding mass's M(x) 1) and the state being built.
   Eigen::VectorXd zeroDofs_, onesDofs_;
   StructuralState next_;
+  Eigen::VectorXd vHalf_, vStar_, xEval_;  // advance's v_{n+1/2}, v*, x + beta v*
 };
 
 }  // namespace chute

@@ -28,10 +28,8 @@ void addNodeResiduals(const MembraneElement& e, const FaceDragLoadDef& load, dou
     x[i] = p.x.segment<3>(3 * ids[i]);
     v[i] = p.v.segment<3>(3 * ids[i]);
   }
-  const Vec3 r = kernels::faceDragNodeResidual<N>(x, v, load.wind, coef, load.steadySubtracted);
-  Eigen::Matrix<double, 3 * N, 1> rs;
-  for (int i = 0; i < N; ++i) rs.template segment<3>(3 * i) = r;
-  out.add<N>(ids, rs, nullptr);
+  out.addToEachNode<N>(
+      ids, kernels::faceDragNodeResidual<N>(x, v, load.wind, coef, load.steadySubtracted));
 }
 }  // namespace
 

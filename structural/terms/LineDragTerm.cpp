@@ -35,12 +35,9 @@ void LineDragTerm::addSegment(int a, int b, const Vec3& wind, double c, const Ev
   const bool wantJ = out.wantMatrix();
   ++out.work().drag;
   if (!wantJ) {  // residual only: the same residual on both nodes (LD1)
-    const Vec3 r =
-        kernels::lineDragNodeResidual(p.x.segment<3>(3 * a), p.x.segment<3>(3 * b),
-                                      p.v.segment<3>(3 * a), p.v.segment<3>(3 * b), wind, c);
-    Eigen::Matrix<double, 6, 1> rs;
-    rs << r, r;
-    out.add<2>({a, b}, rs, nullptr);
+    out.addToEachNode<2>({a, b}, kernels::lineDragNodeResidual(
+                                     p.x.segment<3>(3 * a), p.x.segment<3>(3 * b),
+                                     p.v.segment<3>(3 * a), p.v.segment<3>(3 * b), wind, c));
     return;
   }
   const auto d = kernels::lineDrag(p.x.segment<3>(3 * a), p.x.segment<3>(3 * b),

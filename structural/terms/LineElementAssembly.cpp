@@ -25,7 +25,7 @@ void assembleCable(const Model& m, int a, int b, double L, int material, const E
     // The explicit step's evaluation (EX2): the internal force alone, what the general path
     // below gives then (no Jacobian, M a = 0, no damping, no gravity).
     if (mat.density > 0.0) ++out.work().lineMass;
-    out.add<2>({a, b}, kernels::cableForce(pos(p.x, a), pos(p.x, b), L, mat, false).force, nullptr);
+    out.add<2>({a, b}, kernels::cableForceOnly(pos(p.x, a), pos(p.x, b), L, mat), nullptr);
     return;
   }
   Vec6 r;

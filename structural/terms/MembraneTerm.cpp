@@ -79,10 +79,9 @@ void MembraneTerm::addStiffnessBound(const Eigen::VectorXd& x, double /*t*/,
   for (size_t k = 0; k < m_->membranes.size(); ++k) {
     const auto& e = m_->membranes[k];
     if (!(bound_[k].perNode > 0.0)) continue;
-    std::array<Vec3, 4> xe;
-    xe.fill(Vec3::Zero());
-    for (int i = 0; i < e.numNodes; ++i) xe[i] = x.segment<3>(3 * e.nodes[i]);
-    const double perNode = kernels::membraneNodeBound(bound_[k], xe, e.numNodes);  // EX6m
+    const double perNode =  // EX6m
+        e.numNodes == 3 ? kernels::membraneNodeBound<3>(bound_[k], gatherNodes<3>(x, e))
+                        : kernels::membraneNodeBound<4>(bound_[k], gatherNodes<4>(x, e));
     for (int i = 0; i < e.numNodes; ++i) S[e.nodes[i]] += perNode;
   }
 }

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <cstring>
 #include <random>
 
 #include "kernels/CableKernel.hpp"
@@ -124,9 +125,11 @@ TEST(CableKernel, ResidualOnlyIsTheFullEvaluationBitForBit) {
   std::normal_distribution<double> n(0, 1);
   for (int trial = 0; trial < 300; ++trial) {
     const double L = 0.5 + std::abs(n(rng));
-    const Vec3 xa(n(rng), n(rng), n(rng));
+    Vec3 xa(n(rng), n(rng), n(rng));
     const double stretch = trial % 3 == 0 ? 0.9 : (trial % 3 == 1 ? 1.05 : 1e-12);  // apex too
-    const Vec3 xb = xa + stretch * L * randomUnit(rng);
+    Vec3 xb = xa + stretch * L * randomUnit(rng);
+    if (trial == 1) xb = xa;                               // no length
+    if (trial == 2) xa.setZero(), xb = Vec3(L, 0.0, 0.0);  // exactly zero strain: slack
     for (bool tension : {true, false}) {
       const auto mat = rope(tension);
       const auto full = cableForce(xa, xb, L, mat, true);
@@ -137,6 +140,9 @@ TEST(CableKernel, ResidualOnlyIsTheFullEvaluationBitForBit) {
       EXPECT_EQ(res.energy, full.energy);
       EXPECT_EQ(res.dLength, full.dLength);
       EXPECT_EQ(res.force, full.force) << trial;
+      // cableForceOnly, the explicit path's: the same bits, signs of zeros included.
+      const Vec6 only = cableForceOnly(xa, xb, L, mat);
+      EXPECT_EQ(std::memcmp(only.data(), full.force.data(), sizeof(double) * 6), 0) << trial;
     }
     Vec6 a;
     for (int k = 0; k < 6; ++k) a[k] = n(rng);
