@@ -51,60 +51,62 @@ CentralDifference::CentralDifference(StructuralSystem& sys, ExplicitSettings set
     if (sys.dofs().eqOfDof(d) >= 0) freeNode_[d / 3] = 1;
   addedEq_.setZero(sys.numEquations());
   x0_ = sys.initialState().x;
-  const std::vector<double> nodalSteps = recordNodalSteps();
-  if (settings_.massScalingQuantile > 0.0 && !nodalSteps.empty()) {
-    // EX8: the nodes whose own step is below the quantile's get the mass that lifts it there.
-    const auto i = static_cast<size_t>(settings_.massScalingQuantile *
-                                       static_cast<double>(nodalSteps.size() - 1));
-    settings_.targetStep = settings_.safety * nodalSteps[i];
-  }
-  record_.targetStep = settings_.targetStep;
-  if (settings_.targetStep > 0.0) {
-    // EX8: the least nodal mass for which the node's bound S_i / m_i allows the target step
-    // with the safety factor, m_i >= S_i (target / (2 safety))^2, from the start positions.
-    const Eigen::VectorXd massEq = lumpedMass(x0_, 0.0, false);  // before the added mass
+  // The nodes' own stable steps and mass scaling (EX8) both read the mass and the stiffness
+  // bounds at the start positions, before any mass is added.
+  if (sys.numEquations() > 0) {
+    const Eigen::VectorXd massEq = lumpedMass(x0_, 0.0, false);  // without the added mass
     const auto S = sys.stiffnessBound(x0_, 0.0);
     const auto mass = nodalMass(massEq);
-    const double r = settings_.targetStep / (2.0 * settings_.safety);
-    const auto part = nodePartNames(m);
-    std::map<std::string, double> byPart;
-    for (int n = 0; n < m.numNodes(); ++n) {
-      if (!freeNode_[n]) continue;
-      const double add = std::max(0.0, S[n] * r * r - mass[n]);
-      if (add <= 0.0) continue;
-      byPart[part[n]] += add;
-      ++record_.scaledNodes;
-      for (int k = 0; k < 3; ++k)
-        if (const int e = sys.dofs().eq(n, k); e >= 0) addedEq_[e] = add;
-    }
-    record_.addedMass.assign(byPart.begin(), byPart.end());
-    std::map<std::string, double> partMass;
-    for (int n = 0; n < m.numNodes(); ++n)
-      if (freeNode_[n] && byPart.count(part[n])) partMass[part[n]] += mass[n];
-    record_.partMass.assign(partMass.begin(), partMass.end());
-    for (const auto& [name, added] : record_.addedMass) record_.totalAddedMass += added;
+    const std::vector<double> nodalSteps = recordNodalSteps(S, mass);
+    if (settings_.massScalingQuantile > 0.0 && !nodalSteps.empty())
+      // The nodes whose own step is below the quantile's get the mass that lifts it there.
+      settings_.targetStep = settings_.safety * quantile(nodalSteps, settings_.massScalingQuantile);
+    if (settings_.targetStep > 0.0) scaleMass(S, mass);
     cachedX_.resize(0);  // the mass evaluated above is without the added mass
-    massBaseStale_ = true;
   }
+  record_.targetStep = settings_.targetStep;
   if (sys.numEquations() > 0) lumpedMass(x0_, 0.0);  // refuses massless nodes at the start
 }
 
-std::vector<double> CentralDifference::recordNodalSteps() {
-  if (sys_->numEquations() == 0) return {};
-  const Eigen::VectorXd massEq = lumpedMass(x0_, 0.0, false);
-  const auto S = sys_->stiffnessBound(x0_, 0.0);
-  const auto mass = nodalMass(massEq);
+void CentralDifference::scaleMass(const std::vector<double>& S, const std::vector<double>& mass) {
+  // EX8: the least nodal mass for which the node's bound S_i / m_i allows the target step with
+  // the safety factor, m_i >= S_i (target / (2 safety))^2.
+  const Model& m = sys_->model();
+  const double r = settings_.targetStep / (2.0 * settings_.safety);
+  const auto part = nodePartNames(m);
+  std::map<std::string, double> byPart;
+  for (int n = 0; n < m.numNodes(); ++n) {
+    if (!freeNode_[n]) continue;
+    const double add = std::max(0.0, S[n] * r * r - mass[n]);
+    if (add <= 0.0) continue;
+    byPart[part[n]] += add;
+    ++record_.scaledNodes;
+    for (int k = 0; k < 3; ++k)
+      if (const int e = sys_->dofs().eq(n, k); e >= 0) addedEq_[e] = add;
+  }
+  record_.addedMass.assign(byPart.begin(), byPart.end());
+  std::map<std::string, double> partMass;
+  for (int n = 0; n < m.numNodes(); ++n)
+    if (freeNode_[n] && byPart.count(part[n])) partMass[part[n]] += mass[n];
+  record_.partMass.assign(partMass.begin(), partMass.end());
+  for (const auto& [name, added] : record_.addedMass) record_.totalAddedMass += added;
+  massBaseStale_ = true;
+}
+
+double CentralDifference::quantile(const std::vector<double>& sorted, double q) {
+  return sorted[static_cast<size_t>(q * static_cast<double>(sorted.size() - 1))];
+}
+
+std::vector<double> CentralDifference::recordNodalSteps(const std::vector<double>& S,
+                                                        const std::vector<double>& mass) {
   std::vector<double> steps;
   for (size_t n = 0; n < mass.size(); ++n)
     if (freeNode_[n] && mass[n] > 0.0 && S[n] > 0.0)
       steps.push_back(2.0 * std::sqrt(mass[n] / S[n]));
-  cachedX_.resize(0);
   if (steps.empty()) return steps;
   std::sort(steps.begin(), steps.end());
-  const auto quantile = [&](double q) {
-    return steps[static_cast<size_t>(q * static_cast<double>(steps.size() - 1))];
-  };
-  record_.nodalSteps = {steps.front(), quantile(0.01), quantile(0.1), quantile(0.5)};
+  record_.nodalSteps = {steps.front(), quantile(steps, 0.01), quantile(steps, 0.1),
+                        quantile(steps, 0.5)};
   return steps;
 }
 

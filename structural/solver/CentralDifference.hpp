@@ -107,8 +107,12 @@ class CentralDifference final : public TimeIntegrator {
   int fixedMassCuts_ = -1;     // number of cut line sets fixedMass_ was computed with
   Eigen::VectorXd x0_;         // the start positions
   Eigen::VectorXd addedEq_;    // mass scaling, per equation
-  // StableStepRecord::nodalSteps at the start positions; returns the steps, sorted.
-  std::vector<double> recordNodalSteps();
+  // From the stiffness bounds S and nodal masses at the start: StableStepRecord::nodalSteps
+  // (returns the free nodes' own steps, sorted), and EX8's added mass for settings_.targetStep.
+  std::vector<double> recordNodalSteps(const std::vector<double>& S,
+                                       const std::vector<double>& mass);
+  void scaleMass(const std::vector<double>& S, const std::vector<double>& mass);
+  static double quantile(const std::vector<double>& sorted, double q);
   std::vector<char> freeNode_;
   StableStepRecord record_;
   // The last lumped mass and where it was evaluated (the active elements are those at x).
