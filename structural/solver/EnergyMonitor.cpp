@@ -50,8 +50,8 @@ void EnergyMonitor::start(const StructuralState& s, const EquilibriumPoint& eq) 
 }
 
 Eigen::VectorXd EnergyMonitor::forceAt(const EvalPoint& p) const {
-  Eigen::VectorXd f = Eigen::VectorXd::Zero(sys_->dofs().numDofs());
-  if (loads_) f = -sys_->residualOverAllDofs(p, false);  // f_loads = -residual
+  Eigen::VectorXd f = loads_ ? Eigen::VectorXd(-sys_->residualOverAllDofs(p, false))  // -residual
+                             : Eigen::VectorXd::Zero(sys_->dofs().numDofs());
   if (supportsMove_) {
     const Eigen::VectorXd r = sys_->residualOverAllDofs(p, true);
     for (int d = 0; d < sys_->dofs().numDofs(); ++d)
@@ -74,20 +74,12 @@ bool EnergyMonitor::afterStep(const StructuralState& before, const StructuralSta
   // has them (each on one thread, in its own order: the same bits as one after the other).
   sys_->runTwo(
       [&] {
-        if (trapezoidal_) {
-          if (!loads_ && !supportsMove_) return;
-          force = forceAt(p);
-          w = 0.5 * (lastForce_.size() == force.size() ? Eigen::VectorXd(lastForce_ + force)
-                                                       : Eigen::VectorXd(2.0 * force))
-                        .dot(dx);
-          return;
-        }
-        if (loads_) w -= sys_->residualOverAllDofs(p, false).dot(dx);  // f_loads = -residual
-        if (supportsMove_) {
-          const Eigen::VectorXd r = sys_->residualOverAllDofs(p, true);
-          for (int d = 0; d < sys_->dofs().numDofs(); ++d)
-            if (sys_->dofs().eqOfDof(d) < 0) w += r[d] * dx[d];  // R = r at constrained dofs
-        }
+        if (!loads_ && !supportsMove_) return;
+        force = forceAt(p);
+        if (trapezoidal_ && lastForce_.size() == force.size())
+          w = 0.5 * (lastForce_ + force).dot(dx);
+        else
+          w = force.dot(dx);
       },
       [&] { e = sys_->energy(eq.x, eq.v, s.t); });
   if (trapezoidal_) lastForce_ = std::move(force);
