@@ -29,16 +29,15 @@ MembraneTerm::MembraneTerm(const Model& m) : m_(&m), states_(m.membranes.size())
           pre));
     }
   }
+  if (m.hasGravity()) makeMassShares();
 }
 
 void MembraneTerm::prepareFor(const IntegrationTraits& traits) {
   if (traits.explicitSteps) makeBound();
-  if (traits.explicitSteps && m_->hasGravity()) makeMassShares();
 }
 
 void MembraneTerm::makeMassShares() {
-  // The same kernel and the same sum as assembleElement's weight: the explicit step's residual
-  // is the same bits on either path.
+  // Each node's share of the element's mass matrix, row by row: the weight of every path.
   massShare_.assign(m_->membranes.size(), {0.0, 0.0, 0.0, 0.0});
   const bool lumped = m_->massKind == kernels::MassKind::Lumped;
   for (size_t k = 0; k < m_->membranes.size(); ++k) {
@@ -147,7 +146,7 @@ void MembraneTerm::assembleElement(int k, const kernels::MembraneReference<N>& r
     J += p.cx * kernels::kMembraneSlackTangent * mat.E * expand<N>(G);
   }
   // A residual-only evaluation at zero acceleration without mass damping (the explicit step,
-  // EX2) has M a = 0: skipped, and without gravity so is the mass.
+  // EX2) has M a = 0: skipped, and so is the mass (the weight comes from the shares).
   const bool gathered = p.inertia && !p.zeroAcceleration;
   Eigen::Matrix<double, 3 * N, 1> a;
   if (gathered)
@@ -156,26 +155,19 @@ void MembraneTerm::assembleElement(int k, const kernels::MembraneReference<N>& r
     a.setZero();
   const bool withInertia = mat.density > 0.0 && p.inertia &&
                            (wantJ || m_->massDamping > 0.0 || (gathered && !a.isZero(0.0)));
-  if (withInertia || (mat.density > 0.0 && m_->hasGravity())) {
-    const auto Ms =
-        kernels::membraneMass<N>(ref, mat.density, m_->massKind == kernels::MassKind::Lumped);
-    if (withInertia) {
-      const auto M = expand<N>(Ms);
-      r += M * a;
-      if (wantJ) J += p.ca * M;
-      if (m_->massDamping > 0.0) {  // C v with C = alpha M (pseudo-dynamics, physical damping)
-        Eigen::Matrix<double, 3 * N, 1> vel;
-        for (int i = 0; i < N; ++i) vel.template segment<3>(3 * i) = p.v.segment<3>(3 * e.nodes[i]);
-        r += m_->massDamping * M * vel;
-        if (wantJ) J += p.cv * m_->massDamping * M;
-      }
-    }
-    if (m_->hasGravity()) {
-      const Eigen::Matrix<double, N, 1> share = Ms.rowwise().sum();  // rho t0 int N_i dA
-      for (int i = 0; i < N; ++i)
-        r.template segment<3>(3 * i) -= p.loadFactor * share[i] * m_->gravity;
+  if (withInertia) {
+    const auto M = expand<N>(
+        kernels::membraneMass<N>(ref, mat.density, m_->massKind == kernels::MassKind::Lumped));
+    r += M * a;
+    if (wantJ) J += p.ca * M;
+    if (m_->massDamping > 0.0) {  // C v with C = alpha M (pseudo-dynamics, physical damping)
+      Eigen::Matrix<double, 3 * N, 1> vel;
+      for (int i = 0; i < N; ++i) vel.template segment<3>(3 * i) = p.v.segment<3>(3 * e.nodes[i]);
+      r += m_->massDamping * M * vel;
+      if (wantJ) J += p.cv * m_->massDamping * M;
     }
   }
+  addWeight<N>(k, p.loadFactor, r);
   out.add<N>(nodeIds<N>(e), r, wantJ ? &J : nullptr);
 }
 
@@ -192,20 +184,19 @@ void MembraneTerm::assembleInternalForce(int k, const kernels::MembraneReference
     out.add<N>(nodeIds<N>(e), res.force, nullptr);
     return;
   }
-  // Gravity (assembleElement's weight, from the shares made once): a constant load.
   Eigen::Matrix<double, 3 * N, 1> r = res.force;
-  for (int i = 0; i < N; ++i)
-    r.template segment<3>(3 * i) -= p.loadFactor * massShare_[k][i] * m_->gravity;
+  addWeight<N>(k, p.loadFactor, r);
   out.add<N>(nodeIds<N>(e), r, nullptr);
 }
 
 void MembraneTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
   lastX_ = p.x;
   principalsStale_ = true;
-  // The explicit step's evaluation (EX2): no Jacobian, a = 0 and no mass damping, no gravity, so
-  // only the internal force f(x) (what assembleElement gives then, without its other branches).
+  // The explicit step's evaluation (EX2): no Jacobian, a = 0 and no mass damping, so only the
+  // internal force f(x) and the weight (what assembleElement gives then, without its other
+  // branches).
   if (!out.wantMatrix() && !p.xStart && (!p.inertia || p.zeroAcceleration) &&
-      m_->massDamping == 0.0 && (!m_->hasGravity() || !massShare_.empty())) {
+      m_->massDamping == 0.0) {
     for (size_t k = 0; k < m_->membranes.size(); ++k) {
       if (m_->membranes[k].numNodes == 3)
         assembleInternalForce<3>(static_cast<int>(k), refs3_[slot_[k]], p, out);

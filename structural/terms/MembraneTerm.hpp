@@ -53,10 +53,20 @@ class MembraneTerm final : public Term {
   template <int N>
   void assembleInternalForce(int e, const kernels::MembraneReference<N>& ref, const EvalPoint& p,
                              SystemAssembler& out);
-  // Per element, each node's share of its mass, rho t0 int N_i dA (the weight's, as
-  // assembleElement makes it from the element's mass); made for explicit steps with gravity.
+  // Per element, each node's share of its mass, rho t0 int N_i dA: the weight, made once when the
+  // model has gravity (empty without).
   std::vector<std::array<double, 4>> massShare_;
   void makeMassShares();
+  // r -= load factor x element k's weight on its nodes (nothing without gravity or mass).
+  // Inlined: outlined, r went through memory on every element of every explicit step (2.8 % of
+  // the step on the generated C-9 against 1.2 % inline).
+  template <int N>
+  [[gnu::always_inline]] void addWeight(int k, double loadFactor,
+                                        Eigen::Matrix<double, 3 * N, 1>& r) const {
+    if (massShare_.empty()) return;  // no gravity (a massless element's shares are 0)
+    for (int i = 0; i < N; ++i)
+      r.template segment<3>(3 * i) -= loadFactor * massShare_[k][i] * m_->gravity;
+  }
   const Model* m_;
   std::vector<int> slot_;  // per element: index into refs3_ or refs4_
   std::vector<kernels::MembraneReference<3>> refs3_;
