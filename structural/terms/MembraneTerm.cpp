@@ -57,6 +57,19 @@ void MembraneTerm::makeMassShares() {
   }
 }
 
+void MembraneTerm::makeExplicitTriangles() {
+  explicitTriangles_.resize(refs3_.size());
+  for (size_t k = 0; k < m_->membranes.size(); ++k) {
+    const auto& e = m_->membranes[k];
+    if (e.numNodes != 3) continue;
+    ExplicitTriangle& t = explicitTriangles_[slot_[k]];
+    t.nodes = nodeIds<3>(e);
+    t.force = kernels::membraneTriangleRecord(refs3_[slot_[k]], m_->membraneMaterials[e.material],
+                                              m_->membraneSets[e.set].wrinkling);
+    for (int i = 0; i < 3; ++i) t.share[i] = massShare_.empty() ? 0.0 : massShare_[k][i];
+  }
+}
+
 void MembraneTerm::makeBound() const {
   if (!bound_.empty()) return;
   bound_.reserve(m_->membranes.size());
@@ -197,12 +210,25 @@ void MembraneTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
   // branches).
   if (!out.wantMatrix() && !p.xStart && (!p.inertia || p.zeroAcceleration) &&
       m_->massDamping == 0.0) {
+    if (explicitTriangles_.size() != refs3_.size()) makeExplicitTriangles();
+    const double* x = p.x.data();
+    const bool weighed = !massShare_.empty();
+    const Vec3 g = m_->gravity;
     for (size_t k = 0; k < m_->membranes.size(); ++k) {
-      if (m_->membranes[k].numNodes == 3)
-        assembleInternalForce<3>(static_cast<int>(k), refs3_[slot_[k]], p, out);
-      else
+      if (m_->membranes[k].numNodes != 3) {
         assembleInternalForce<4>(static_cast<int>(k), refs4_[slot_[k]], p, out);
+        continue;
+      }
+      // assembleInternalForce<3>'s force and weight, the same bits (M3, M4).
+      const ExplicitTriangle& t = explicitTriangles_[slot_[k]];
+      Eigen::Matrix<double, 9, 1> r;
+      states_[k].state = kernels::membraneTriangleForce(x + 3 * t.nodes[0], x + 3 * t.nodes[1],
+                                                        x + 3 * t.nodes[2], t.force, r.data());
+      if (weighed)
+        for (int i = 0; i < 3; ++i) r.segment<3>(3 * i) -= p.loadFactor * t.share[i] * g;
+      out.add<3>(t.nodes, r, nullptr);
     }
+    out.work().membrane += static_cast<long>(refs3_.size());
     return;
   }
   for (size_t k = 0; k < m_->membranes.size(); ++k) {

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "assembly/Term.hpp"
+#include "kernels/MembraneTriangleForce.hpp"
 #include "kernels/StiffnessBound.hpp"
 #include "model/Model.hpp"
 
@@ -53,6 +54,15 @@ class MembraneTerm final : public Term {
   template <int N>
   void assembleInternalForce(int e, const kernels::MembraneReference<N>& ref, const EvalPoint& p,
                              SystemAssembler& out);
+  // The explicit step's triangles, in refs3_'s order: what their force and weight need, side by
+  // side (kernels/MembraneTriangleForce.hpp), made at the first residual-only evaluation.
+  struct ExplicitTriangle {
+    std::array<int, 3> nodes;
+    kernels::MembraneTriangleRecord force;
+    std::array<double, 3> share;  // massShare_'s (0 without gravity)
+  };
+  std::vector<ExplicitTriangle> explicitTriangles_;
+  void makeExplicitTriangles();
   // Per element, each node's share of its mass, rho t0 int N_i dA: the weight, made once when the
   // model has gravity (empty without).
   std::vector<std::array<double, 4>> massShare_;
