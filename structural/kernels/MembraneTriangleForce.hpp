@@ -47,25 +47,55 @@ inline double select(bool pick, double a, double b) {
 }
 }  // namespace detail
 
+// The relaxed law at the triangle's strain (M1-M2, WR1-WR3), in planeStressSVK's operations.
+struct TriangleStrainState {
+  double F[3][2];
+  double e0, e1, e2;  // (E11, E22, 2 E12)
+  double u, w, R, l1;
+  bool taut, slack;
+};
+inline TriangleStrainState triangleStrainState(const double* x0, const double* x1, const double* x2,
+                                               const MembraneTriangleRecord& t) {
+  TriangleStrainState s;
+  // M1: F = sum_i x_i dN_i^T and C = F^T F, in greenStrain's order.
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 2; ++c)
+      s.F[r][c] = (x0[r] * t.dN[0][c] + x1[r] * t.dN[1][c]) + x2[r] * t.dN[2][c];
+  const auto& F = s.F;
+  const double c00 = (F[0][0] * F[0][0] + F[1][0] * F[1][0]) + F[2][0] * F[2][0];
+  const double c11 = (F[0][1] * F[0][1] + F[1][1] * F[1][1]) + F[2][1] * F[2][1];
+  const double c01 = (F[0][0] * F[0][1] + F[1][0] * F[1][1]) + F[2][0] * F[2][1];
+  s.e0 = 0.5 * (c00 - 1.0), s.e1 = 0.5 * (c11 - 1.0), s.e2 = c01;
+  // The principal strains l1 >= l2.
+  const double a = s.e0, d = s.e1;
+  s.w = 0.5 * s.e2, s.u = 0.5 * (a - d);
+  s.R = std::sqrt(s.u * s.u + s.w * s.w);
+  s.l1 = 0.5 * (a + d) + s.R;
+  const double l2 = 0.5 * (a + d) - s.R;
+  s.taut = !t.wrinkling || l2 + t.nu * s.l1 > 0.0;
+  s.slack = !s.taut && s.l1 <= 0.0;
+  return s;
+}
+
+// The triangle's strain energy (membraneEnergy<3>'s bits) at positions x0, x1, x2.
+inline double membraneTriangleEnergy(const double* x0, const double* x1, const double* x2,
+                                     const MembraneTriangleRecord& t) {
+  const TriangleStrainState s = triangleStrainState(x0, x1, x2, t);
+  const double t0 = t.d00 * s.e0 + t.d01 * s.e1, t1 = t.d01 * s.e0 + t.d00 * s.e1,
+               t2 = t.d22 * s.e2;
+  const double taut = 0.5 * ((s.e0 * t0 + s.e1 * t1) + s.e2 * t2);
+  const double wrinkled = 0.5 * t.E * s.l1 * s.l1;
+  return t.weight * detail::select(s.taut, taut, detail::select(s.slack, 0.0, wrinkled));
+}
+
 // The nodal forces f (node by node, xyz) of the triangle at positions x0, x1, x2; returns its
 // wrinkling state.
 inline WrinkleState membraneTriangleForce(const double* x0, const double* x1, const double* x2,
                                           const MembraneTriangleRecord& t, double* f) {
-  // M1: F = sum_i x_i dN_i^T and C = F^T F, in greenStrain's order.
-  double F[3][2];
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 2; ++c)
-      F[r][c] = (x0[r] * t.dN[0][c] + x1[r] * t.dN[1][c]) + x2[r] * t.dN[2][c];
-  const double c00 = (F[0][0] * F[0][0] + F[1][0] * F[1][0]) + F[2][0] * F[2][0];
-  const double c11 = (F[0][1] * F[0][1] + F[1][1] * F[1][1]) + F[2][1] * F[2][1];
-  const double c01 = (F[0][0] * F[0][1] + F[1][0] * F[1][1]) + F[2][0] * F[2][1];
-  const double e0 = 0.5 * (c00 - 1.0), e1 = 0.5 * (c11 - 1.0), e2 = c01;  // (E11, E22, 2 E12)
-  // M2, WR1-WR3: the relaxed law in the principal strains l1 >= l2 (planeStressSVK's order).
-  const double a = e0, d = e1, w = 0.5 * e2, u = 0.5 * (a - d);
-  const double R = std::sqrt(u * u + w * w);
-  const double l1 = 0.5 * (a + d) + R, l2 = 0.5 * (a + d) - R;
-  const bool taut = !t.wrinkling || l2 + t.nu * l1 > 0.0;
-  const bool slack = !taut && l1 <= 0.0;
+  const TriangleStrainState st = triangleStrainState(x0, x1, x2, t);
+  const auto& F = st.F;
+  const double e0 = st.e0, e1 = st.e1, e2 = st.e2, u = st.u, w = st.w, R = st.R, l1 = st.l1;
+  const bool taut = st.taut, slack = st.slack;
   // Taut: S = D e (D's zeros add nothing to a product's sum).
   const double t0 = t.d00 * e0 + t.d01 * e1, t1 = t.d01 * e0 + t.d00 * e1, t2 = t.d22 * e2;
   // Wrinkled: S = E l1 d l1/de.

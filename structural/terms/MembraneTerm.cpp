@@ -30,6 +30,7 @@ MembraneTerm::MembraneTerm(const Model& m) : m_(&m), states_(m.membranes.size())
     }
   }
   if (m.hasGravity()) makeMassShares();
+  makeExplicitTriangles();
 }
 
 void MembraneTerm::prepareFor(const IntegrationTraits& traits) {
@@ -66,7 +67,16 @@ void MembraneTerm::makeExplicitTriangles() {
     t.nodes = nodeIds<3>(e);
     t.force = kernels::membraneTriangleRecord(refs3_[slot_[k]], m_->membraneMaterials[e.material],
                                               m_->membraneSets[e.set].wrinkling);
-    for (int i = 0; i < 3; ++i) t.share[i] = massShare_.empty() ? 0.0 : massShare_[k][i];
+    // Each node's share of the element's mass (makeMassShares'), with or without gravity.
+    const auto& mat = m_->membraneMaterials[e.material];
+    const Eigen::Vector3d share =
+        mat.density > 0.0
+            ? Eigen::Vector3d(kernels::membraneMass<3>(refs3_[slot_[k]], mat.density,
+                                                       m_->massKind == kernels::MassKind::Lumped)
+                                  .rowwise()
+                                  .sum())
+            : Eigen::Vector3d::Zero();
+    for (int i = 0; i < 3; ++i) t.share[i] = share[i];
   }
 }
 
@@ -210,7 +220,6 @@ void MembraneTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
   // branches).
   if (!out.wantMatrix() && !p.xStart && (!p.inertia || p.zeroAcceleration) &&
       m_->massDamping == 0.0) {
-    if (explicitTriangles_.size() != refs3_.size()) makeExplicitTriangles();
     const double* x = p.x.data();
     const bool weighed = !massShare_.empty();
     const Vec3 g = m_->gravity;
@@ -284,12 +293,32 @@ void MembraneTerm::addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
     for (int i = 0; i < N; ++i)
       en.gravity -= share[i] * m_->gravity.dot(x.segment<3>(3 * e.nodes[i]));
   };
+  const bool lumped = m_->massKind == kernels::MassKind::Lumped;
   for (size_t k = 0; k < m_->membranes.size(); ++k) {
     const auto& e = m_->membranes[k];
-    if (e.numNodes == 3)
-      one(refs3_[slot_[k]], e, std::integral_constant<int, 3>{});
-    else
+    if (e.numNodes == 4) {
       one(refs4_[slot_[k]], e, std::integral_constant<int, 4>{});
+      continue;
+    }
+    if (!lumped) {
+      one(refs3_[slot_[k]], e, std::integral_constant<int, 3>{});
+      continue;
+    }
+    // one() for a triangle of lumped mass, the same bits: the energy from the explicit record, the
+    // lumped mass's diagonal its row sums, the shares (M4).
+    const ExplicitTriangle& t = explicitTriangles_[slot_[k]];
+    const double* xd = x.data();
+    en.strain += kernels::membraneTriangleEnergy(xd + 3 * t.nodes[0], xd + 3 * t.nodes[1],
+                                                 xd + 3 * t.nodes[2], t.force);
+    if (m_->membraneMaterials[e.material].density <= 0.0) continue;
+    Eigen::Matrix<double, 9, 1> vv, Mv;
+    for (int i = 0; i < 3; ++i) {
+      vv.segment<3>(3 * i) = v.segment<3>(3 * t.nodes[i]);
+      Mv.segment<3>(3 * i) = t.share[i] * vv.segment<3>(3 * i);
+    }
+    en.kinetic += 0.5 * vv.dot(Mv);
+    for (int i = 0; i < 3; ++i)
+      en.gravity -= t.share[i] * m_->gravity.dot(x.segment<3>(3 * t.nodes[i]));
   }
 }
 

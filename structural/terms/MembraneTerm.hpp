@@ -55,13 +55,13 @@ class MembraneTerm final : public Term {
   void assembleInternalForce(int e, const kernels::MembraneReference<N>& ref, const EvalPoint& p,
                              SystemAssembler& out);
   // The explicit step's triangles, in refs3_'s order: what their force and weight need, side by
-  // side (kernels/MembraneTriangleForce.hpp), made at the first residual-only evaluation.
+  // side (kernels/MembraneTriangleForce.hpp); the lumped triangles' energies read them too.
   struct ExplicitTriangle {
     std::array<int, 3> nodes;
     kernels::MembraneTriangleRecord force;
     std::array<double, 3> share;  // massShare_'s (0 without gravity)
   };
-  std::vector<ExplicitTriangle> explicitTriangles_;
+  std::vector<ExplicitTriangle> explicitTriangles_;  // made with the term
   void makeExplicitTriangles();
   // Per element, each node's share of its mass, rho t0 int N_i dA: the weight, made once when the
   // model has gravity (empty without).

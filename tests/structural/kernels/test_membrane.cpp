@@ -256,8 +256,8 @@ TEST(MembraneKernel, ResidualIsBitForBitThatOfTheMatrixExpressions) {
 }
 
 // The explicit step's triangle (MembraneTriangleForce.hpp) gives membraneForce<3>'s residual and
-// state bit for bit, in every state, with and without wrinkling, on skewed and stretched
-// triangles of random shape and orientation.
+// state and membraneEnergy<3>'s energy bit for bit, in every state, with and without wrinkling, on
+// skewed and stretched triangles of random shape and orientation.
 TEST(MembraneKernel, ExplicitTriangleForceIsMembraneForceBitForBit) {
   std::mt19937 rng(41);
   std::uniform_real_distribution<double> jitter(-0.4, 0.4);
@@ -277,6 +277,11 @@ TEST(MembraneKernel, ExplicitTriangleForceIsMembraneForceBitForBit) {
               membraneTriangleForce(x[0].data(), x[1].data(), x[2].data(), rec, f);
           ASSERT_EQ(s, res.state);
           ++counts[static_cast<int>(s)];
+          const double W = membraneTriangleEnergy(x[0].data(), x[1].data(), x[2].data(), rec);
+          ASSERT_EQ(
+              std::bit_cast<std::uint64_t>(W + 0.0),
+              std::bit_cast<std::uint64_t>(membraneEnergy<3>(x, ref, kFabric, wrinkling) + 0.0))
+              << W;
           for (int i = 0; i < 9; ++i) {
             ASSERT_EQ(std::bit_cast<std::uint64_t>(f[i] + 0.0),
                       std::bit_cast<std::uint64_t>(res.force[i] + 0.0))
