@@ -7,7 +7,8 @@
 //
 // chute's step is timed whole (every term of the case, the update, the energy balance, the stable
 // step) by running the case twice to two end times and taking the difference, so set-up cancels.
-// Both are CPU times of this process (getrusage), medians of `--repeat` measurements.
+// Both are CPU times of this thread (chute's run with CHUTE_THREADS=1), medians of `--repeat`
+// measurements.
 //
 //   build/bin/bench_lean_canopy_step CASE.toml [--steps 400] [--repeat 5]
 // prints one JSON object: triangles, ns per triangle for the lean loop and for chute's step,
@@ -15,6 +16,7 @@
 #include <fmt/core.h>
 #include <fmt/format.h>
 #include <sys/resource.h>
+#include <time.h>
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
@@ -29,10 +31,13 @@ using namespace chute;
 
 namespace {
 
+// This thread's CPU time: the process's would count the BLAS library's worker, which spins for
+// about 0.1 s after start-up (it inflated the first lean measurement of each run 1.5-2x).
+// CHUTE_THREADS=1 keeps chute's step on this thread.
 double cpuSeconds() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return u.ru_utime.tv_sec + u.ru_stime.tv_sec + 1e-6 * (u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return t.tv_sec + 1e-9 * t.tv_nsec;
 }
 
 double median(std::vector<double> v) {
