@@ -167,16 +167,21 @@ const Eigen::VectorXd& CentralDifference::lumpedMass(const Eigen::VectorXd& x, d
       for (auto* term : movingMassTerms_) term->assemble(p, movingMassAssembler_);
       // Only the moving mass's equations: the others' residual is 0, and m + 0 is m (the fixed
       // and added masses are never -0); the others keep massBase_.
+      // Every mass positive: the base's were checked when it was formed, the moving mass's
+      // equations are checked here as they are formed; refuseMassless (which names the nodes)
+      // only when one is not.
       const Eigen::VectorXd& moving = movingMassAssembler_.residual();
-      for (int e : movingMassEqs_) cachedMass_[e] = massBase_[e] + moving[e];
+      bool positive = true;
+      for (int e : movingMassEqs_) {
+        const double m = massBase_[e] + moving[e];
+        cachedMass_[e] = m;
+        positive &= m > 0.0;
+      }
+      movingPositive_ = positive;
     }
     cachedX_ = x;
     cachedT_ = t;
-    // Every mass positive: the base's were checked when it was formed; refuseMassless (which
-    // names the nodes) only when one is not.
-    bool positive = basePositive_;
-    for (int e : movingMassEqs_) positive = positive && cachedMass_[e] > 0.0;
-    if (check && !positive) refuseMassless(cachedMass_);
+    if (check && !(basePositive_ && movingPositive_)) refuseMassless(cachedMass_);
   }
   return cachedMass_;
 }

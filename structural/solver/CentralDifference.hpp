@@ -103,10 +103,11 @@ class CentralDifference final : public TimeIntegrator {
   // equation outside movingMassEqs_.
   Eigen::VectorXd massBase_;
   bool massBaseStale_ = true, basePositive_ = false;
-  Eigen::VectorXd fixedMass_;  // of the terms whose mass does not move, at fixedMassCuts_
-  int fixedMassCuts_ = -1;     // number of cut line sets fixedMass_ was computed with
-  Eigen::VectorXd x0_;         // the start positions
-  Eigen::VectorXd addedEq_;    // mass scaling, per equation
+  bool movingPositive_ = true;  // every moving-mass equation's mass positive at the cached x
+  Eigen::VectorXd fixedMass_;   // of the terms whose mass does not move, at fixedMassCuts_
+  int fixedMassCuts_ = -1;      // number of cut line sets fixedMass_ was computed with
+  Eigen::VectorXd x0_;          // the start positions
+  Eigen::VectorXd addedEq_;     // mass scaling, per equation
   // From the stiffness bounds S and nodal masses at the start: StableStepRecord::nodalSteps
   // (returns the free nodes' own steps, sorted), and EX8's added mass for settings_.targetStep.
   std::vector<double> recordNodalSteps(const std::vector<double>& S,
