@@ -21,6 +21,21 @@ bool finite(const Eigen::VectorXd& x) {
   return (x.array() * 0.0).sum() == 0.0;
 }
 
+// EX1's first half and EX2's velocity over all dofs: v_{n+1/2} = v_n + dt/2 a_n, x_{n+1} = x_n +
+// dt v_{n+1/2}, v* = v_n + dt a_n. The six buffers are distinct (the state's, the next state's,
+// the step's own): restrict on the parameters lets the compiler take two dofs at a time, which it
+// did not for the same loop inline (one dof at a time: 40 % of the step's own work, perf).
+void predict(int nd, double dt, const double* __restrict x, const double* __restrict v,
+             const double* __restrict a, double* __restrict vHalf, double* __restrict xNext,
+             double* __restrict vStar) {
+  const double halfStep = 0.5 * dt;
+  for (int d = 0; d < nd; ++d) {
+    vHalf[d] = v[d] + halfStep * a[d];
+    xNext[d] = x[d] + dt * vHalf[d];
+    vStar[d] = v[d] + dt * a[d];
+  }
+}
+
 }  // namespace
 
 CentralDifference::CentralDifference(StructuralSystem& sys, ExplicitSettings settings,
@@ -332,16 +347,7 @@ NewtonReport CentralDifference::advance(StructuralState& s, double dt) {
   // EX1: v_{n+1/2} = v_n + dt/2 a_n, x_{n+1} = x_n + dt v_{n+1/2}; prescribed dofs on their path
   // (the constrained dofs' are overwritten next). With it, in the same pass, the velocity the
   // forces are evaluated with (EX2, below): the forward-Euler prediction v_n + dt a_n.
-  {
-    const double halfStep = 0.5 * dt;
-    const double *x = s.x.data(), *v = s.v.data(), *a = s.a.data();
-    double *vHalf = vHalf_.data(), *vStar = vStar_.data(), *xNext = n.x.data();
-    for (int d = 0; d < nd; ++d) {
-      vHalf[d] = v[d] + halfStep * a[d];
-      xNext[d] = x[d] + dt * vHalf[d];
-      vStar[d] = v[d] + dt * a[d];
-    }
-  }
+  predict(nd, dt, s.x.data(), s.v.data(), s.a.data(), vHalf_.data(), n.x.data(), vStar_.data());
   sys_->prescribeMotion(n);
   // EX3: hand-over checked every step. A driven slider is handed over where its path passes a
   // node; a free slider whose part to an end node turns round over the step has passed that
