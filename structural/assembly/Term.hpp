@@ -221,6 +221,11 @@ class Term {
   virtual void addStiffnessBound(const Eigen::VectorXd& /*x*/, double /*t*/,
                                  const std::vector<char>& /*free*/,
                                  std::vector<double>& /*S*/) const {}
+  // Whether addStiffnessBound is a function of (x, t) alone, not of state the step's commit
+  // changes (a slider's place, the contact pairs): then the explicit step may evaluate it at its
+  // end positions alongside its assembly, for the next step's estimate. A term that adds nothing
+  // reads nothing; a term whose bound reads such state says false.
+  virtual bool stiffnessBoundOfPositions() const { return true; }
   // A bound on the squared frequency of modes that couple many nodes at once, which the nodal
   // bounds above cannot see (a gas spring over a whole canopy: docs/flight.md FL12), given the
   // lumped nodal masses; 0: none.

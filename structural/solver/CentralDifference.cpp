@@ -267,7 +267,12 @@ void CentralDifference::computeAcceleration(StructuralState& s) {
 double CentralDifference::chooseStep(double lastStep, const Eigen::VectorXd& x, double t) {
   const double maxStep = maxStep_;
   const Eigen::VectorXd& massEq = lumpedMass(x, t);
-  const auto S = sys_->stiffnessBound(x, t);
+  std::vector<double> S;
+  if (boundAheadT_ == t && boundAheadX_.size() == x.size() && boundAheadX_ == x)
+    S = std::move(boundAhead_);  // made alongside the last step's assembly at this (x, t)
+  else
+    S = sys_->stiffnessBound(x, t);
+  boundAheadT_ = -1.0;
   const auto mass = nodalMass(massEq);
   auto est = chute::stableStep(S, mass, freeNode_);
   // Modes over many nodes that the nodal bounds do not see (EX5).
@@ -308,6 +313,10 @@ std::optional<StepEstimate> CentralDifference::estimateStep(const StructuralStat
 StepResult CentralDifference::step(StructuralState& s, double stop, StepCounters& counters) {
   if (counters.steps % kStableStepEvery == 0 || sys_->model().hasCutAt(s.t))
     s.control.dt = chooseStep(s.control.dt, s.x, s.t);
+  // The next step estimates (if this one is accepted and counted): its bound from this step's
+  // end, alongside this step's assembly.
+  boundAheadWanted_ =
+      (counters.steps + 1) % kStableStepEvery == 0 && sys_->stiffnessBoundOfPositions();
   StepResult result;
   const double h = std::min(s.control.dt, stop - s.t);
   result.reachesStop = h == stop - s.t;
@@ -373,7 +382,14 @@ NewtonReport CentralDifference::advance(StructuralState& s, double dt) {
     // changes the fixed mass) alongside the assembly, on the thread that finishes its part first:
     // it reads the positions and the sliding states, as the assembly does, and writes only its
     // own. Kept, rather than asked for again: a second call compares all positions to find it.
-    sys_->assemble(p, false, [&] { mass = &lumpedMass(n.x, n.t); });
+    sys_->assemble(p, false, [&] {
+      mass = &lumpedMass(n.x, n.t);
+      if (boundAheadWanted_) {
+        boundAhead_ = sys_->stiffnessBound(n.x, n.t);
+        boundAheadX_ = n.x;
+        boundAheadT_ = n.t;
+      }
+    });
   } else {
     sys_->assemble(p, false);
   }

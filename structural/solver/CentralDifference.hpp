@@ -124,6 +124,14 @@ class CentralDifference final : public TimeIntegrator {
   Eigen::VectorXd zeroDofs_, onesDofs_;
   StructuralState next_;
   Eigen::VectorXd vHalf_, vStar_, xEval_;  // advance's v_{n+1/2}, v*, x + beta v*
+  // The stiffness bound at a step's end positions, made alongside its assembly when the next
+  // step estimates its step and every term's bound is a function of the positions and time
+  // (StructuralSystem::stiffnessBoundOfPositions): the same function at the same (x, t), so the
+  // same bits, off the step's serial part on two threads. Used by chooseStep at that (x, t).
+  bool boundAheadWanted_ = false;
+  std::vector<double> boundAhead_;
+  Eigen::VectorXd boundAheadX_;
+  double boundAheadT_ = -1.0;
 };
 
 }  // namespace chute

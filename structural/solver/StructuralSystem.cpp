@@ -21,6 +21,7 @@ StructuralSystem::StructuralSystem(const Model& model, TermOptions options,
       watchesExplicitMotion_ = watchesExplicitMotion_ || e->watchesExplicitMotion();
     }
     if (t->dynamicCouplings()) dynamicCouplings_.push_back(t.get());
+    boundOfPositions_ = boundOfPositions_ && t->stiffnessBoundOfPositions();
   }
 
   for (const auto& t : terms_) searches_ = searches_ || t->searchesPerUpdate() > 0;

@@ -43,6 +43,8 @@ class StructuralSystem {
   // Per node, the row sum S_i of the stiffness at x, t that bounds the explicit step's highest
   // frequency, omega^2 <= max S_i / m_i (EX5): the terms' bounds added up in term order.
   std::vector<double> stiffnessBound(const Eigen::VectorXd& x, double t) const;
+  // Whether every term's bound is a function of (x, t) alone (Term::stiffnessBoundOfPositions).
+  bool stiffnessBoundOfPositions() const { return boundOfPositions_; }
   // The largest of the terms' bounds on the squared frequencies of modes over many nodes
   // (Term::frequencySquaredBound), given the lumped nodal masses.
   double frequencySquaredBound(const Eigen::VectorXd& x, double t,
@@ -138,6 +140,7 @@ class StructuralSystem {
   const std::vector<std::unique_ptr<Term>>& terms_;  // list_'s
   std::vector<EventSource*> events_;
   bool watchesExplicitMotion_ = false;
+  bool boundOfPositions_ = true;
   bool searches_ = false;  // some term has configuration-dependent state (Term::updateState)
   std::vector<Term*> dynamicCouplings_;  // terms whose couplings move (contact)
   bool patternStale_ = false;            // their couplings changed since the pattern was built

@@ -55,6 +55,7 @@ class ContactTerm final : public Term {
   // nodes' bound at the default scale: the safety factor covers it.
   void addStiffnessBound(const Eigen::VectorXd& x, double t, const std::vector<char>& free,
                          std::vector<double>& S) const override;
+  bool stiffnessBoundOfPositions() const override { return false; }  // reads the contact pairs
 
   // What the run met (summary.json "contact").
   struct Record {

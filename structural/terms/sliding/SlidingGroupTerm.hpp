@@ -60,6 +60,7 @@ class SlidingGroupTerm final : public Term, public EventSource {
   bool massMovesWithPositions() const override { return true; }
   void addStiffnessBound(const Eigen::VectorXd& x, double t, const std::vector<char>& free,
                          std::vector<double>& S) const override;
+  bool stiffnessBoundOfPositions() const override { return false; }  // reads the sliders' places
   // Per element, 0.55 of a membrane triangle (a per-step profile of the explicit C-9).
   double assemblyCost() const override { return 0.55 * state_.def().numElements(); }
   // Sliders with friction: the converged split at x is found (docs/friction.md) and committed.
