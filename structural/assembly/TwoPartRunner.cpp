@@ -30,6 +30,11 @@ bool spinUntil(Ready ready) {
 // mode not in use is timed again.
 constexpr int kWindow = 16;
 constexpr int kProbeEvery = 32;
+// One thread is kept only when its window was this much faster than two threads' last: on a
+// loaded machine it is 30-40 % faster (docs/performance.md), on an idle one two threads are, and
+// a single window that noise made slow had put 32 windows (a third of a generated C-9 run) on
+// one thread.
+constexpr double kSerialMargin = 1.15;
 
 bool twoThreadsAllowed() {
   const char* env = std::getenv("CHUTE_THREADS");
@@ -85,7 +90,7 @@ bool TwoPartRunner::choose() {
     windowsSinceProbe_ = 0;
     mode_ = other;  // (re)measure the other mode
   } else {
-    mode_ = mean_[1] <= mean_[0];
+    mode_ = mean_[1] <= kSerialMargin * mean_[0];
   }
   return mode_;
 }
