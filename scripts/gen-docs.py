@@ -177,15 +177,26 @@ the second core up to 0.3 ms of polling per assembly); OpenMP was tried first an
 program start, doubled the CPU time of implicit runs. Two other evaluations of the explicit path
 that do not touch each other's data share the threads the same way: the lumped mass of the
 sliding elements at the step's new positions runs alongside the assembly, on the thread that
-finishes its part first (`StructuralSystem::assemble(p, wantMatrix, alongside)`), and the energy
-balance's load residual and energy run one on each thread (`StructuralSystem::runTwo`); each is
-done by one thread in its own order, so neither changes a bit.
+finishes its part first (`StructuralSystem::assemble(p, wantMatrix, alongside)`), and so does,
+before a step that estimates its stable step, the stiffness bound at those positions when every
+term's bound is a function of positions and time alone (`Term::stiffnessBoundOfPositions`; not
+with sliding groups or contact, whose bounds read their state); the energy balance's load
+residual and energy run one on each thread (`StructuralSystem::runTwo`). Each is done by one
+thread in its own order, so none changes a bit (`GeneratedFlight.OneThreadAndTwoFlyTheSameBits`:
+a folded generated flight, rows and steps bit for bit). On the generated 12k and 24k C-9 two
+threads run 1.5-1.6x faster than one (whole process; target 1.7x): the airflow's passes and the
+membranes fill the two parts about equally, and what is left on the first thread alone is the
+step's own work between assemblies (the update, the commit, the energy balance's larger half).
 
 Two threads pay only while the machine has a core free for the second. On a loaded machine the
 first thread waits for a worker that waits for a core: with the CPU taken by a build or by two
 busy loops, the explicit C-9 (0.5 s) took 4.4-5.5 s on two threads against 3.3-3.8 s on one.
-So the runner times windows of 16 assemblies in each mode and keeps the faster, timing the
-other again every 32 windows (`summary.json`: `system.assemblies_on_two_threads` and
+So the runner times windows of 16 assemblies in each mode and keeps two threads unless one was
+more than 15 % faster (window medians), timing the other again every 32 windows, and after a
+switch to one thread after 2, 4, 8, ... windows: at start-up the BLAS library's worker spins on
+the second core for about 0.1 s, two threads timed then lost to one, and keeping the faster
+outright for 32 windows put a third of a generated C-9 run (0.06 s, 12k triangles) on one
+thread (1.54-1.74 s against 1.34-1.39 s now, six runs each) (`summary.json`: `system.assemblies_on_two_threads` and
 `system.assemblies_split_on_one_thread`); since the parts' results do not depend on the mode,
 this changes no bit. Measured in one sitting, 3 runs each: with the machine free 2.22-2.53 s
 (two threads always: 2.25-2.35, one thread: 2.59-3.34); with two busy loops 3.70-5.20 s (two

@@ -1,5 +1,6 @@
 #include "assembly/TwoPartRunner.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
@@ -26,14 +27,10 @@ bool spinUntil(Ready ready) {
   }
 }
 
-// Mode choice (TwoPartRunner::choose): calls per timed window, and every how many windows the
-// mode not in use is timed again.
-constexpr int kWindow = 16;
+// Mode choice (TwoPartRunner::choose): every how many windows the mode not in use is timed
+// again, and how much faster one thread's window must be for it to be kept: two threads unless
+// one is clearly faster (on a loaded machine it was 25-40 %, docs/performance.md).
 constexpr int kProbeEvery = 32;
-// One thread is kept only when its window was this much faster than two threads' last: on a
-// loaded machine it is 30-40 % faster (docs/performance.md), on an idle one two threads are, and
-// a single window that noise made slow had put 32 windows (a third of a generated C-9 run) on
-// one thread.
 constexpr double kSerialMargin = 1.15;
 
 bool twoThreadsAllowed() {
@@ -82,23 +79,36 @@ void TwoPartRunner::work() {
 
 bool TwoPartRunner::choose() {
   if (windowCalls_ < kWindow) return mode_;
-  mean_[mode_ ? 1 : 0] = windowSeconds_ / windowCalls_;
+  std::nth_element(windowTimes_.begin(), windowTimes_.begin() + kWindow / 2, windowTimes_.end());
+  median_[mode_ ? 1 : 0] = windowTimes_[kWindow / 2];
   windowCalls_ = 0;
-  windowSeconds_ = 0.0;
   const bool other = !mode_;
-  if (mean_[other ? 1 : 0] < 0.0 || ++windowsSinceProbe_ >= kProbeEvery) {
+  if (median_[other ? 1 : 0] < 0.0 || ++windowsSinceProbe_ >= probeEvery_) {
     windowsSinceProbe_ = 0;
+    probed_ = true;
     mode_ = other;  // (re)measure the other mode
-  } else {
-    mode_ = mean_[1] <= kSerialMargin * mean_[0];
+    return mode_;
   }
+  const bool two = median_[1] <= kSerialMargin * median_[0];
+  // One thread newly chosen: two threads are timed again after 2 windows, then 4, 8, ... up to
+  // kProbeEvery while one thread keeps winning. A passing disturbance costs a few windows (the
+  // BLAS library's worker spins on the second core for about 0.1 s after start-up: two threads
+  // timed then lost to one, which then ran 32 windows, a third of a generated C-9 run); a loaded
+  // machine settles at kProbeEvery.
+  if (two)
+    probeEvery_ = kProbeEvery;
+  else if (mode_ && probed_)
+    probeEvery_ = std::min(2 * probeEvery_, kProbeEvery);
+  else if (mode_ || probed_)
+    probeEvery_ = 2;
+  probed_ = false;
+  mode_ = two;
   return mode_;
 }
 
 void TwoPartRunner::record(bool concurrentCall, double seconds) {
   ++runs_[concurrentCall ? 1 : 0];
-  ++windowCalls_;
-  windowSeconds_ += seconds;
+  windowTimes_[windowCalls_++] = seconds;
 }
 
 void TwoPartRunner::run(const std::function<void()>& first, const std::function<void()>& second) {

@@ -5,6 +5,7 @@
 // a job every few hundred microseconds; a longer spin would burn the core while the implicit
 // path factorises. Not OpenMP: libgomp fixes its spin at program start from the environment
 // (GOMP_SPINCOUNT), and its default spin doubled the CPU time of implicit runs.
+#include <array>
 #include <atomic>
 #include <condition_variable>
 #include <exception>
@@ -52,11 +53,17 @@ class TwoPartRunner {
   std::exception_ptr failure_;
   std::atomic<unsigned> posted_{0}, finished_{0};
   std::atomic<bool> quit_{false};
-  // Mode choice: the mode of the current window, its calls and time, the last mean of each.
+  // Mode choice: the mode of the current window, its calls' times, the last median of each.
+  // The median, not the mean: a call that waited for the worker's wake-up or lost its core for a
+  // moment made a window of two threads look slower than one (a third of an idle machine's
+  // generated C-9 run went to one thread).
+  static constexpr int kWindow = 16;  // calls per timed window
   bool mode_ = true;
   int windowCalls_ = 0, windowsSinceProbe_ = 0;
-  double windowSeconds_ = 0.0;
-  double mean_[2] = {-1.0, -1.0};  // serial, concurrent; < 0: not measured yet
+  int probeEvery_ = 32;  // windows between timings of the mode not in use (choose(); at most 32)
+  bool probed_ = false;  // the window just timed was such a timing
+  std::array<double, kWindow> windowTimes_{};
+  double median_[2] = {-1.0, -1.0};  // serial, concurrent; < 0: not measured yet
   long runs_[2] = {0, 0};
 };
 
