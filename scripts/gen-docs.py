@@ -70,6 +70,7 @@ MD_PAGES = [
     ("explicit_crossover.md", "Implicit against explicit over the canopy mesh (`bench/explicit_crossover.py`)"),
     ("energy_momentum_c9.md", "The C-9 slider case with the energy-momentum integrator"),
     ("lean_canopy_step.md", "The lean loop and chute's step: the table (`bench/speed/run.py`)"),
+    ("explicit_step_before_after.md", "The explicit step before and after, one sitting"),
 ]
 
 
@@ -190,20 +191,23 @@ step's own work between assemblies (the update, the commit, the energy balance's
 
 Two threads pay only while the machine has a core free for the second. On a loaded machine the
 first thread waits for a worker that waits for a core: with the CPU taken by a build or by two
-busy loops, the explicit C-9 (0.5 s) took 4.4-5.5 s on two threads against 3.3-3.8 s on one.
-So the runner times windows of 16 assemblies in each mode and keeps two threads unless one was
-more than 15 % faster (window medians), timing the other again every 32 windows, and after a
-switch to one thread after 2, 4, 8, ... windows: at start-up the BLAS library's worker spins on
-the second core for about 0.1 s, two threads timed then lost to one, and keeping the faster
-outright for 32 windows put a third of a generated C-9 run (0.06 s, 12k triangles) on one
-thread (1.54-1.74 s against 1.34-1.39 s now, six runs each) (`summary.json`: `system.assemblies_on_two_threads` and
-`system.assemblies_split_on_one_thread`); since the parts' results do not depend on the mode,
-this changes no bit. Measured in one sitting, 3 runs each: with the machine free 2.22-2.53 s
-(two threads always: 2.25-2.35, one thread: 2.59-3.34); with two busy loops 3.70-5.20 s (two
-threads always 4.44-5.49, one thread 3.34-3.79). Yielding the core while polling was tried
-instead and made loaded runs far slower (7-9 s: a yielded thread waits for a whole time slice).
-Measured on the C-9 slider case, 1 s,
-medians of paired runs (bench/results/two_threads.md).
+busy loops, the explicit C-9 (0.5 s) took 4.4-5.5 s on two threads against 3.3-3.8 s on one
+(before the explicit step's work was cut). So the runner times windows of 16 assemblies in each
+mode (`summary.json`: `system.assemblies_on_two_threads` and
+`system.assemblies_split_on_one_thread`) and keeps two threads unless one was more than 15 %
+faster (window medians), timing the other again every 32 windows, and after a switch to one
+thread after 2, 4, 8, ... windows; since the parts' results do not depend on the mode, this
+changes no bit. At start-up the BLAS library's worker spins on the second core for about 0.1 s:
+two threads timed then lost to one, and keeping the faster outright for 32 windows put a third
+of a generated C-9 run (0.06 s, 12k triangles) on one thread (1.54-1.74 s in the run against
+1.34-1.39 s now, six runs each). Under two busy loops that run takes 3.09-3.25 s with the runner
+and 3.06-3.28 s on one thread. The worker belongs to the BLAS the sparse solvers link (OpenBLAS
+on Debian) and is made before `main`, so chute cannot stop it; `OPENBLAS_NUM_THREADS=1` in the
+environment does (the C-9 slider case, 1 s: wall 0.96x, five pairs; c9_payload_reorientation,
+implicit, 0.99x in three). Yielding the core while polling was tried instead of the runner's
+choice and made loaded runs far slower (7-9 s: a yielded thread waits for a whole time slice).
+The first measurements of the two parts: the C-9 slider case, 1 s, medians of paired runs
+(bench/results/two_threads.md); today's: bench/results/explicit_step_before_after.md.
 """
 
 LEAN_LOOP = """
@@ -214,8 +218,10 @@ airflow, gravity): a lean, fused pass over the canopy's triangles (membrane with
 wrinkling, pressure, face drag: gather, compute, scatter) and chute's whole explicit step (every
 term, lines included, the update, the energy balance, the stable step), CPU per triangle, one
 thread. [bench/results/lean_canopy_step.md](../bench/results/lean_canopy_step.md) (below): chute's
-step is 2.4-3.0 times the lean loop at 3.4k-24.5k triangles; the target is 2.0. What brought it
-from 3.75-4.2: the residual scattered node by node, the update in one pass, cached cable forces
+step is 2.5-3.0 times the lean loop at 3.4k-24.5k triangles (2.53 at 12k, 2.51 at 24k; 104-121 ns
+per triangle and step against 126-142 at the start of the day, same bench); the target is 2.0.
+The lean loop's own time moves by up to 15 % from run to run on this shared machine (40-47 ns),
+the ratio with it. What brought it from 3.75-4.2: the residual scattered node by node, the update in one pass, cached cable forces
 and masses, the membranes' weight from shares made once (every generated parachute has gravity,
 and its membranes took the full element path for the weight alone, 9.2 % of the step), and the
 explicit triangle (`kernels/MembraneTriangleForce.hpp`: a record laid out for the pass, the law's
