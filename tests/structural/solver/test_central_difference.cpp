@@ -9,6 +9,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include "app/RunCase.hpp"
@@ -65,6 +66,37 @@ TEST(StableStep, ChainOfBarsIsLengthOverWaveSpeed) {
   const double expected = L / std::sqrt(E / rho);
   std::printf("chain: estimate %.6e s, L / c = %.6e s\n", est.dt, expected);
   EXPECT_NEAR(est.dt, expected, 1e-12 * expected);
+}
+
+// A step whose state is not finite fails (the run stops unstable with its last good state), and
+// the terms are reverted: an infinite velocity, a NaN acceleration, an infinite position, each at
+// a free node; the same step from the finite state succeeds.
+TEST(CentralDifference, ANonFiniteStateFailsTheStep) {
+  Model m;
+  const double L = 0.5, E = 4.0e6, rho = 0.6, A = 3e-4;
+  for (int i = 0; i <= 4; ++i) m.addNode(Vec3(L * i, 0, 0));
+  m.materials.push_back({E, A, rho, true, 0.0});
+  m.lineSets.push_back({"chain"});
+  for (int i = 0; i < 4; ++i) m.cables.push_back({i, i + 1, L, 0, 0});
+  m.constraint[0].fixed = {true, true, true};
+  StructuralSystem sys(m, SliderSearch::MaterialCoordinate);
+  CentralDifference cd(sys, ExplicitSettings{0.9, 0.0, 0.0}, 1e-6);
+  const StructuralState start = sys.initialState();
+  auto stepFrom = [&](StructuralState s) {
+    const NewtonReport r = cd.advance(s, 1e-7);
+    std::printf("%s\n", r.converged ? "converged" : r.failure.c_str());
+    return r;
+  };
+  EXPECT_TRUE(stepFrom(start).converged);
+  StructuralState s = start;
+  s.v[3 * 2 + 1] = std::numeric_limits<double>::infinity();  // free node 2
+  EXPECT_FALSE(stepFrom(s).converged);
+  s = start;
+  s.a[3 * 3 + 2] = std::numeric_limits<double>::quiet_NaN();  // free node 3
+  EXPECT_FALSE(stepFrom(s).converged);
+  s = start;
+  s.x[3 * 4] = std::numeric_limits<double>::infinity();  // free node 4's position
+  EXPECT_FALSE(stepFrom(s).converged);
 }
 
 // A membrane triangle with its own lumped mass: h / c_d with c_d = sqrt(E / (rho (1 - nu^2))),
