@@ -228,6 +228,10 @@ struct DynamicRun {
     // an implicit step of that length gets.
     const long stride = integrator.balanceStride();
     long stepsSinceBalance = 0;
+    // The step that ends a window keeps the loads it applied (EnergyMonitor::takesStepLoads); a
+    // balance at a probe row or the last step between windows evaluates them.
+    const bool stepLoads = monitor.takesStepLoads();
+    sys.captureStepLoads(stepLoads && stride <= 1);
     const double tEnd = spec.solver.tEnd;
     Progress progress(options.progress, state.t, tEnd, integrator.takesNominalStep());
     const auto result = stepper.advanceTo(
@@ -246,6 +250,7 @@ struct DynamicRun {
               return false;
             }
           }
+          sys.captureStepLoads(stepLoads && stepsSinceBalance + 1 >= stride);
           out.afterStep(s, n.steps, last);
           if (options.checkpointEvery > 0 && n.steps % options.checkpointEvery == 0 && !last)
             checkpoint(s);

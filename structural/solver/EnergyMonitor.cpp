@@ -70,18 +70,28 @@ bool EnergyMonitor::afterStep(const StructuralState& before, const StructuralSta
   double w = 0.0;
   Eigen::VectorXd force;
   EnergyBreakdown e;
-  // The work and the energy are independent evaluations: on the assembly's two threads when it
-  // has them (each on one thread, in its own order: the same bits as one after the other).
-  sys_->runTwo(
-      [&] {
-        if (!loads_ && !supportsMove_) return;
-        force = forceAt(p);
-        if (trapezoidal_ && lastForce_.size() == force.size())
-          w = 0.5 * (lastForce_ + force).dot(dx);
-        else
-          w = force.dot(dx);
-      },
-      [&] { e = sys_->energy(eq.x, eq.v, s.t); });
+  auto work = [&] {
+    if (!loads_ && !supportsMove_) return;
+    if (trapezoidal_ && lastForce_.size() == force.size())
+      w = 0.5 * (lastForce_ + force).dot(dx);
+    else
+      w = force.dot(dx);
+  };
+  // EB1: the loads the step ending here applied, where it kept them (an explicit step), and the
+  // energy on the assembly's two threads; else the loads evaluated here, on one thread while the
+  // energy is on the other (each in its own order: the same bits as one after the other).
+  if (const Eigen::VectorXd* applied = supportsMove_ ? nullptr : sys_->stepLoadsAt(eq.t)) {
+    force = -*applied;
+    work();
+    e = sys_->energyOnTwoThreads(eq.x, eq.v, s.t);
+  } else {
+    sys_->runTwo(
+        [&] {
+          if (loads_ || supportsMove_) force = forceAt(p);
+          work();
+        },
+        [&] { e = sys_->energy(eq.x, eq.v, s.t); });
+  }
   if (trapezoidal_) lastForce_ = std::move(force);
   work_ += w;
   grossWork_ += std::abs(w);

@@ -144,9 +144,29 @@ void StructuralSystem::assemble(const EvalPoint& at, bool wantMatrix,
     patternStale_ = false;
   }
   assembler_.begin(wantMatrix);
+  // captureStepLoads: the terms doing external work also add their residual over all dofs, each
+  // part into its own vector (the parts may run on two threads).
+  const bool capture = captureLoads_ && !wantMatrix && p.explicitStep > 0.0;
+  capturedLoadsT_ = std::numeric_limits<double>::quiet_NaN();
+  auto assemblePart = [&](const auto& part, SystemAssembler& out, Eigen::VectorXd& loads) {
+    if (capture) loads.setZero(3 * model_->numNodes());
+    for (const auto& t : part) {
+      const bool loadTerm = capture && t->doesExternalWork();
+      if (loadTerm) out.captureAllDofs(&loads);
+      t->assemble(p, out);
+      if (loadTerm) out.captureAllDofs(nullptr);
+    }
+  };
+  auto keepLoads = [&] {
+    if (!capture) return;
+    capturedLoads_ = partLoads_[0];
+    if (!secondPart_.empty()) capturedLoads_ += partLoads_[1];
+    capturedLoadsT_ = p.t;
+  };
   if (secondPart_.empty()) {
-    for (const auto& t : terms_) t->assemble(p, assembler_);
+    assemblePart(terms_, assembler_, partLoads_[0]);
     if (alongside) alongside();
+    keepLoads();
     return;
   }
   if (wantMatrix && !secondAssembler_.hasPattern()) secondAssembler_.sharePatternOf(assembler_);
@@ -158,14 +178,15 @@ void StructuralSystem::assemble(const EvalPoint& at, bool wantMatrix,
   };
   runner_->run(
       [&] {
-        for (auto* t : firstPart_) t->assemble(p, assembler_);
+        assemblePart(firstPart_, assembler_, partLoads_[0]);
         then();
       },
       [&] {
-        for (auto* t : secondPart_) t->assemble(p, secondAssembler_);
+        assemblePart(secondPart_, secondAssembler_, partLoads_[1]);
         then();
       });
   assembler_.accumulate(secondAssembler_);
+  keepLoads();
 }
 
 void StructuralSystem::runTwo(const std::function<void()>& first,
@@ -270,6 +291,22 @@ EnergyBreakdown StructuralSystem::energy(const Eigen::VectorXd& x, const Eigen::
   EnergyBreakdown e;
   for (const auto& term : terms_) term->addEnergy(x, v, t, e);
   return e;
+}
+
+EnergyBreakdown StructuralSystem::energyOnTwoThreads(const Eigen::VectorXd& x,
+                                                     const Eigen::VectorXd& v, double t) {
+  if (secondPart_.empty()) return energy(x, v, t);
+  ++energyEvaluations_;
+  EnergyBreakdown a, b;
+  runTwo(
+      [&] {
+        for (auto* term : firstPart_) term->addEnergy(x, v, t, a);
+      },
+      [&] {
+        for (auto* term : secondPart_) term->addEnergy(x, v, t, b);
+      });
+  a.kinetic += b.kinetic, a.strain += b.strain, a.gravity += b.gravity, a.supplied += b.supplied;
+  return a;
 }
 
 void StructuralSystem::commit(const CommitPoint& c) {

@@ -2,6 +2,7 @@
 // The discrete system of one scene: its dof map, the terms the scene needs (and only those),
 // the sparsity pattern built once, and timing of assembly and search.
 #include <functional>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -58,6 +59,16 @@ class StructuralSystem {
   // touches (the explicit step's lumped mass of the sliding elements, EX2), so that the same bits
   // come out on whichever thread it runs.
   void assemble(const EvalPoint& p, bool wantMatrix, const std::function<void()>& alongside);
+  // While on, every residual-only assembly of an explicit step (EvalPoint::explicitStep > 0) also
+  // sums the residual of the terms that do external work over all dofs, kept with the step's end
+  // time: the loads the step applied, which the energy balance's work takes at its window's end
+  // (EB1) instead of evaluating them again.
+  void captureStepLoads(bool on) { captureLoads_ = on; }
+  // The residual of the loads the explicit step ending at t applied (over all dofs), or nullptr
+  // when the last assembly was not such a step's or ended elsewhere.
+  const Eigen::VectorXd* stepLoadsAt(double t) const {
+    return capturedLoadsT_ == t ? &capturedLoads_ : nullptr;
+  }
   // Whether assemble() splits the terms into two parts (docs/performance.md, "Two threads").
   bool assemblesInTwoParts() const { return !secondPart_.empty(); }
   // Assemblies whose two parts ran on two threads, and one after the other (0, 0 without a
@@ -99,6 +110,10 @@ class StructuralSystem {
   Eigen::VectorXd residualOverAllDofs(const EvalPoint& p, bool allTerms);
 
   EnergyBreakdown energy(const Eigen::VectorXd& x, const Eigen::VectorXd& v, double t) const;
+  // The same energies, the assembly's two parts' terms on its two threads (when it has them),
+  // added part by part: for the energy balance, whose windows' loads now cost nothing (the same
+  // value to round-off, not the same bits as energy()).
+  EnergyBreakdown energyOnTwoThreads(const Eigen::VectorXd& x, const Eigen::VectorXd& v, double t);
   EnergyBreakdown energy(const StructuralState& s) const { return energy(s.x, s.v, s.t); }
 
   // History (Term::commit / revert / save / load) of every term.
@@ -141,6 +156,10 @@ class StructuralSystem {
   std::vector<EventSource*> events_;
   bool watchesExplicitMotion_ = false;
   bool boundOfPositions_ = true;
+  // captureStepLoads: the loads' residual of each part, their sum and its time (NaN: none).
+  bool captureLoads_ = false;
+  Eigen::VectorXd partLoads_[2], capturedLoads_;
+  double capturedLoadsT_ = std::numeric_limits<double>::quiet_NaN();
   bool searches_ = false;  // some term has configuration-dependent state (Term::updateState)
   std::vector<Term*> dynamicCouplings_;  // terms whose couplings move (contact)
   bool patternStale_ = false;            // their couplings changed since the pattern was built
