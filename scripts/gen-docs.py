@@ -186,7 +186,7 @@ with sliding groups or contact, whose bounds read their state); the energy balan
 residual and energy run one on each thread (`StructuralSystem::runTwo`). Each is done by one
 thread in its own order, so none changes a bit (`GeneratedFlight.OneThreadAndTwoFlyTheSameBits`:
 a folded generated flight, rows and steps bit for bit). On the generated 12k and 24k C-9 two
-threads run 1.5-1.6x faster than one (whole process; target 1.7x): the airflow's passes and the
+threads run 1.47-1.56x faster than one (whole process, two sittings; target 1.7x): the airflow's passes and the
 membranes fill the two parts about equally, and what is left on the first thread alone is the
 step's own work between assemblies (the update, the commit, the energy balance's larger half).
 
