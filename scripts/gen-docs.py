@@ -219,7 +219,7 @@ airflow, gravity): a lean, fused pass over the canopy's triangles (membrane with
 wrinkling, pressure, face drag: gather, compute, scatter) and chute's whole explicit step (every
 term, lines included, the update, the energy balance, the stable step), CPU per triangle, one
 thread. [bench/results/lean_canopy_step.md](../bench/results/lean_canopy_step.md) (below): chute's
-step is 2.5-3.0 times the lean loop at 3.4k-24.5k triangles (2.53 at 12k, 2.51 at 24k; 104-121 ns
+step is 2.4-2.7 times the lean loop at 3.4k-24.5k triangles (2.50 at 12k, 2.41 at 24k; 99-110 ns
 per triangle and step against 126-142 at the start of the day, same bench); the target is 2.0.
 The lean loop's own time moves by up to 15 % from run to run on this shared machine (40-47 ns),
 the ratio with it. What brought it from 3.75-4.2: the residual scattered node by node, the update in one pass, cached cable forces
