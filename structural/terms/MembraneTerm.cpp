@@ -29,7 +29,9 @@ MembraneTerm::MembraneTerm(const Model& m) : m_(&m), states_(m.membranes.size())
           pre));
     }
   }
-  if (m.hasGravity()) makeMassShares();
+  // The weight of every path, made once when the model has gravity (empty without).
+  if (m.hasGravity())
+    for (size_t k = 0; k < m.membranes.size(); ++k) massShare_.push_back(massSharesOf(k));
   makeExplicitTriangles();
 }
 
@@ -37,25 +39,24 @@ void MembraneTerm::prepareFor(const IntegrationTraits& traits) {
   if (traits.explicitSteps) makeBound();
 }
 
-void MembraneTerm::makeMassShares() {
-  // Each node's share of the element's mass matrix, row by row: the weight of every path.
-  massShare_.assign(m_->membranes.size(), {0.0, 0.0, 0.0, 0.0});
+std::array<double, 4> MembraneTerm::massSharesOf(size_t k) const {
+  // rho t0 int N_i dA: the element's mass matrix, row by row (lumped or consistent alike).
+  std::array<double, 4> out{0.0, 0.0, 0.0, 0.0};
+  const auto& e = m_->membranes[k];
+  const double density = m_->membraneMaterials[e.material].density;
+  if (!(density > 0.0)) return out;
   const bool lumped = m_->massKind == kernels::MassKind::Lumped;
-  for (size_t k = 0; k < m_->membranes.size(); ++k) {
-    const auto& e = m_->membranes[k];
-    const double density = m_->membraneMaterials[e.material].density;
-    if (!(density > 0.0)) continue;
-    auto shares = [&](const auto& ref, auto nodesTag) {
-      constexpr int N = decltype(nodesTag)::value;
-      const Eigen::Matrix<double, N, 1> share =
-          kernels::membraneMass<N>(ref, density, lumped).rowwise().sum();
-      for (int i = 0; i < N; ++i) massShare_[k][i] = share[i];
-    };
-    if (e.numNodes == 3)
-      shares(refs3_[slot_[k]], std::integral_constant<int, 3>{});
-    else
-      shares(refs4_[slot_[k]], std::integral_constant<int, 4>{});
-  }
+  auto shares = [&](const auto& ref, auto nodesTag) {
+    constexpr int N = decltype(nodesTag)::value;
+    const Eigen::Matrix<double, N, 1> share =
+        kernels::membraneMass<N>(ref, density, lumped).rowwise().sum();
+    for (int i = 0; i < N; ++i) out[i] = share[i];
+  };
+  if (e.numNodes == 3)
+    shares(refs3_[slot_[k]], std::integral_constant<int, 3>{});
+  else
+    shares(refs4_[slot_[k]], std::integral_constant<int, 4>{});
+  return out;
 }
 
 void MembraneTerm::makeExplicitTriangles() {
@@ -67,15 +68,7 @@ void MembraneTerm::makeExplicitTriangles() {
     t.nodes = nodeIds<3>(e);
     t.force = kernels::membraneTriangleRecord(refs3_[slot_[k]], m_->membraneMaterials[e.material],
                                               m_->membraneSets[e.set].wrinkling);
-    // Each node's share of the element's mass (makeMassShares'), with or without gravity.
-    const auto& mat = m_->membraneMaterials[e.material];
-    const Eigen::Vector3d share =
-        mat.density > 0.0
-            ? Eigen::Vector3d(kernels::membraneMass<3>(refs3_[slot_[k]], mat.density,
-                                                       m_->massKind == kernels::MassKind::Lumped)
-                                  .rowwise()
-                                  .sum())
-            : Eigen::Vector3d::Zero();
+    const std::array<double, 4> share = massSharesOf(k);  // with or without gravity
     for (int i = 0; i < 3; ++i) t.share[i] = share[i];
   }
 }
@@ -190,7 +183,7 @@ void MembraneTerm::assembleElement(int k, const kernels::MembraneReference<N>& r
       if (wantJ) J += p.cv * m_->massDamping * M;
     }
   }
-  addWeight<N>(k, p.loadFactor, r);
+  if (!massShare_.empty()) addWeight<N>(massShare_[k].data(), p.loadFactor, r);
   out.add<N>(nodeIds<N>(e), r, wantJ ? &J : nullptr);
 }
 
@@ -208,7 +201,7 @@ void MembraneTerm::assembleInternalForce(int k, const kernels::MembraneReference
     return;
   }
   Eigen::Matrix<double, 3 * N, 1> r = res.force;
-  addWeight<N>(k, p.loadFactor, r);
+  addWeight<N>(massShare_[k].data(), p.loadFactor, r);
   out.add<N>(nodeIds<N>(e), r, nullptr);
 }
 
@@ -222,7 +215,6 @@ void MembraneTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
       m_->massDamping == 0.0) {
     const double* x = p.x.data();
     const bool weighed = !massShare_.empty();
-    const Vec3 g = m_->gravity;
     for (size_t k = 0; k < m_->membranes.size(); ++k) {
       if (m_->membranes[k].numNodes != 3) {
         assembleInternalForce<4>(static_cast<int>(k), refs4_[slot_[k]], p, out);
@@ -233,8 +225,7 @@ void MembraneTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
       Eigen::Matrix<double, 9, 1> r;
       states_[k].state = kernels::membraneTriangleForce(x + 3 * t.nodes[0], x + 3 * t.nodes[1],
                                                         x + 3 * t.nodes[2], t.force, r.data());
-      if (weighed)
-        for (int i = 0; i < 3; ++i) r.segment<3>(3 * i) -= p.loadFactor * t.share[i] * g;
+      if (weighed) addWeight<3>(t.share.data(), p.loadFactor, r);
       out.add<3>(t.nodes, r, nullptr);
     }
     out.work().membrane += static_cast<long>(refs3_.size());
