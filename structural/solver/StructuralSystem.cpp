@@ -159,8 +159,7 @@ void StructuralSystem::assemble(const EvalPoint& at, bool wantMatrix,
   };
   auto keepLoads = [&] {
     if (!capture) return;
-    capturedLoads_ = partLoads_[0];
-    if (!secondPart_.empty()) capturedLoads_ += partLoads_[1];
+    if (!secondPart_.empty()) partLoads_[0] += partLoads_[1];
     capturedLoadsT_ = p.t;
   };
   if (secondPart_.empty()) {

@@ -67,7 +67,7 @@ class StructuralSystem {
   // The residual of the loads the explicit step ending at t applied (over all dofs), or nullptr
   // when the last assembly was not such a step's or ended elsewhere.
   const Eigen::VectorXd* stepLoadsAt(double t) const {
-    return capturedLoadsT_ == t ? &capturedLoads_ : nullptr;
+    return capturedLoadsT_ == t ? &partLoads_[0] : nullptr;
   }
   // Whether assemble() splits the terms into two parts (docs/performance.md, "Two threads").
   bool assemblesInTwoParts() const { return !secondPart_.empty(); }
@@ -156,9 +156,10 @@ class StructuralSystem {
   std::vector<EventSource*> events_;
   bool watchesExplicitMotion_ = false;
   bool boundOfPositions_ = true;
-  // captureStepLoads: the loads' residual of each part, their sum and its time (NaN: none).
+  // captureStepLoads: the loads' residual of each part (the first's then their sum) and the time
+  // of that sum (NaN: none).
   bool captureLoads_ = false;
-  Eigen::VectorXd partLoads_[2], capturedLoads_;
+  Eigen::VectorXd partLoads_[2];
   double capturedLoadsT_ = std::numeric_limits<double>::quiet_NaN();
   bool searches_ = false;  // some term has configuration-dependent state (Term::updateState)
   std::vector<Term*> dynamicCouplings_;  // terms whose couplings move (contact)
