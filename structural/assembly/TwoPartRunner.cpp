@@ -27,10 +27,9 @@ bool spinUntil(Ready ready) {
   }
 }
 
-// Mode choice (TwoPartRunner::choose): every how many windows the mode not in use is timed
-// again, and how much faster one thread's window must be for it to be kept: two threads unless
-// one is clearly faster (on a loaded machine it was 25-40 %, docs/performance.md).
-constexpr int kProbeEvery = 32;
+// Mode choice (TwoPartRunner::choose): how much faster one thread's window must be for it to be
+// kept: two threads unless one is clearly faster (on a loaded machine it was 25-40 %,
+// docs/performance.md).
 constexpr double kSerialMargin = 1.15;
 
 bool twoThreadsAllowed() {

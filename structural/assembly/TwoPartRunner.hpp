@@ -57,11 +57,12 @@ class TwoPartRunner {
   // The median, not the mean: a call that waited for the worker's wake-up or lost its core for a
   // moment made a window of two threads look slower than one (a third of an idle machine's
   // generated C-9 run went to one thread).
-  static constexpr int kWindow = 16;  // calls per timed window
+  static constexpr int kWindow = 16;      // calls per timed window
+  static constexpr int kProbeEvery = 32;  // windows between timings of the mode not in use, at most
   bool mode_ = true;
   int windowCalls_ = 0, windowsSinceProbe_ = 0;
-  int probeEvery_ = 32;  // windows between timings of the mode not in use (choose(); at most 32)
-  bool probed_ = false;  // the window just timed was such a timing
+  int probeEvery_ = kProbeEvery;  // now (choose(): fewer after a switch to one thread)
+  bool probed_ = false;           // the window just timed was such a timing
   std::array<double, kWindow> windowTimes_{};
   double median_[2] = {-1.0, -1.0};  // serial, concurrent; < 0: not measured yet
   long runs_[2] = {0, 0};

@@ -190,10 +190,9 @@ const Eigen::VectorXd& CentralDifference::lumpedMass(const Eigen::VectorXd& x, d
       movingMassAssembler_.beginOn(movingMassEqs_);
       for (auto* term : movingMassTerms_) term->assemble(p, movingMassAssembler_);
       // Only the moving mass's equations: the others' residual is 0, and m + 0 is m (the fixed
-      // and added masses are never -0); the others keep massBase_.
-      // Every mass positive: the base's were checked when it was formed, the moving mass's
-      // equations are checked here as they are formed; refuseMassless (which names the nodes)
-      // only when one is not.
+      // and added masses are never -0); the others keep massBase_. Each is checked for a positive
+      // mass as it is formed (the base's others when it was formed); refuseMassless, which names
+      // the nodes, only when one is not.
       const Eigen::VectorXd& moving = movingMassAssembler_.residual();
       bool positive = true;
       for (int e : movingMassEqs_) {
