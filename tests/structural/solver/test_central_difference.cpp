@@ -46,17 +46,24 @@ std::string readFile(const fs::path& p) {
   return s.str();
 }
 
+// A straight chain of `bars` equal nylon-cord bars of length kBar along x (free unless fixed).
+constexpr double kBar = 0.5, kBarE = 4.0e6, kBarRho = 0.6, kBarArea = 3e-4;
+Model chainOfBars(int bars) {
+  Model m;
+  for (int i = 0; i <= bars; ++i) m.addNode(Vec3(kBar * i, 0, 0));
+  m.materials.push_back({kBarE, kBarArea, kBarRho, true, 0.0});
+  m.lineSets.push_back({"chain"});
+  for (int i = 0; i < bars; ++i) m.cables.push_back({i, i + 1, kBar, 0, 0});
+  return m;
+}
+
 }  // namespace
 
 // EX5-EX6: a free chain of equal bars with lumped mass has its highest frequency 2 c / L
 // (c = sqrt(E / rho)); the nodal bound gives exactly the step L / c.
 TEST(StableStep, ChainOfBarsIsLengthOverWaveSpeed) {
-  Model m;
-  const double L = 0.5, E = 4.0e6, rho = 0.6, A = 3e-4;
-  for (int i = 0; i <= 10; ++i) m.addNode(Vec3(L * i, 0, 0));
-  m.materials.push_back({E, A, rho, true, 0.0});
-  m.lineSets.push_back({"chain"});
-  for (int i = 0; i < 10; ++i) m.cables.push_back({i, i + 1, L, 0, 0});
+  const Model m = chainOfBars(10);
+  const double L = kBar, E = kBarE, rho = kBarRho, A = kBarArea;
   Eigen::VectorXd x(3 * m.numNodes());
   for (int i = 0; i < m.numNodes(); ++i) x.segment<3>(3 * i) = m.X[i];
   const auto S = StructuralSystem(m, SliderSearch::MaterialCoordinate).stiffnessBound(x, 0.0);
@@ -72,12 +79,7 @@ TEST(StableStep, ChainOfBarsIsLengthOverWaveSpeed) {
 // the terms are reverted: an infinite velocity, a NaN acceleration, an infinite position, each at
 // a free node; the same step from the finite state succeeds.
 TEST(CentralDifference, ANonFiniteStateFailsTheStep) {
-  Model m;
-  const double L = 0.5, E = 4.0e6, rho = 0.6, A = 3e-4;
-  for (int i = 0; i <= 4; ++i) m.addNode(Vec3(L * i, 0, 0));
-  m.materials.push_back({E, A, rho, true, 0.0});
-  m.lineSets.push_back({"chain"});
-  for (int i = 0; i < 4; ++i) m.cables.push_back({i, i + 1, L, 0, 0});
+  Model m = chainOfBars(4);
   m.constraint[0].fixed = {true, true, true};
   StructuralSystem sys(m, SliderSearch::MaterialCoordinate);
   CentralDifference cd(sys, ExplicitSettings{0.9, 0.0, 0.0}, 1e-6);
