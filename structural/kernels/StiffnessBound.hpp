@@ -1,8 +1,9 @@
 #pragma once
 // Per-node bounds of the stiffness that set the stable step of explicit central differences
 // (docs/formulation.md EX5-EX6): the Gershgorin row sum S_i of each element's stiffness, so that
-// omega_max^2 <= max_i S_i / m_i. Pure functions of an element's geometry and material; the
-// terms add them up over their elements (Term::addStiffnessBound).
+// omega_max^2 <= max_i S_i / m_i (lines; the membranes' S_i is an estimate, EX6m, below). Pure
+// functions of an element's geometry and material; the terms add them up over their elements
+// (Term::addStiffnessBound).
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <algorithm>

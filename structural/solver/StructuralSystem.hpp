@@ -42,7 +42,8 @@ class StructuralSystem {
   // Tells every term which kind of integrator steps the system (Term::prepareFor), once.
   void prepareFor(const IntegrationTraits& traits);
   // Per node, the row sum S_i of the stiffness at x, t that bounds the explicit step's highest
-  // frequency, omega^2 <= max S_i / m_i (EX5): the terms' bounds added up in term order.
+  // frequency, omega^2 <= max S_i / m_i (EX5; the membranes' part an estimate, EX6m): the terms'
+  // bounds added up in term order.
   std::vector<double> stiffnessBound(const Eigen::VectorXd& x, double t) const;
   // Whether every term's bound is a function of (x, t) alone (Term::stiffnessBoundOfPositions).
   bool stiffnessBoundOfPositions() const { return boundOfPositions_; }
