@@ -236,8 +236,9 @@ class Term {
   // The cost of one residual assembly, in units of a membrane triangle's (the two-part split of
   // the assembly, docs/performance.md "Two threads"); 0: negligible or unknown.
   virtual double assemblyCost() const { return 0.0; }
-  // Whether assemble() reads only the model and this term's own state (not another term's), so
-  // that it may run on the assembly's second thread.
+  // Whether assemble() reads only the model and state that no assembly writes (its own, or
+  // another term's that is set between assemblies, as the sliding groups' active elements), and
+  // writes only its own, so that it may run on the assembly's second thread.
   virtual bool assemblesApart() const { return false; }
 
   // ---- history (model/History.hpp) ----

@@ -18,11 +18,14 @@ FaceDrag<NumNodes> faceDrag(const std::array<Vec3, NumNodes>& x,
   }
   const detail::FaceFlow f = detail::faceFlow<NumNodes>(x, v, wind, coefficient, steadySubtracted);
   if (f.none) return out;
-  const Vec3 &a = f.a, &n = f.n, &rel = f.rel;
-  const double area = f.area, u = f.u, u0 = f.u0, s = f.s, g = f.g;
+  const Vec3 &a = f.a, &rel = f.rel;
+  const double s = f.s, g = f.g;
   const double share = coefficient / NumNodes;  // per node
   for (int i = 0; i < NumNodes; ++i) out.residual.template segment<3>(3 * i) = share * g * a;
   if (!withTangent) return out;
+  const double area = std::sqrt(f.aa);
+  const Vec3 n = a / area;
+  const double u = rel.dot(n), u0 = -wind.dot(n);
   // Velocity: du/dv_j = n^T / N, d(|u| u)/du = 2 |u|.
   const Mat3 dv = share * 2.0 * std::abs(u) / NumNodes * a * n.transpose();
   // Position: dn/dx = (I - n n^T) / |a| da/dx; dg/dx = (2|u| rel + 2 s |u0| w)^T dn/dx.

@@ -34,33 +34,34 @@ FaceDrag<NumNodes> faceDrag(const std::array<Eigen::Vector3d, NumNodes>& x,
                             bool steadySubtracted, bool withTangent);
 
 namespace detail {
-// What residual and tangents share (FD1): the area vector a = |a| n, the face's velocity relative
-// to the wind rel, u = rel . n, u0 = -w . n and g = |u| u - s |u0| u0. none: a degenerate face or
-// no drag, which carries nothing.
+// What residual and tangents share (FD1): the area vector a = |a| n and |a|^2, the face's
+// velocity relative to the wind rel, and g = |u| u - s |u0| u0 with u = rel . n, u0 = -w . n.
+// none: a degenerate face or no drag, which carries nothing.
 struct FaceFlow {
   bool none = true;
-  Eigen::Vector3d a, n, rel;
-  double area = 0.0, u = 0.0, u0 = 0.0, s = 0.0, g = 0.0;
+  Eigen::Vector3d a, rel;
+  double aa = 0.0, s = 0.0, g = 0.0;
 };
 
+// g from the unnormalised area vector: u |a| = rel . a and u0 |a| = -w . a, so g = (|rel . a|
+// rel . a - s |w . a| (-w . a)) / |a|^2: no square root and one division on the residual's path
+// (the unit normal took a root and a division the rest waited on). The tangent makes |a|, n, u
+// and u0 from these.
 template <int NumNodes>
 FaceFlow faceFlow(const std::array<Eigen::Vector3d, NumNodes>& x,
                   const std::array<Eigen::Vector3d, NumNodes>& v, const Eigen::Vector3d& wind,
                   double coefficient, bool steadySubtracted) {
   FaceFlow f;
   f.a = areaVector<NumNodes>(x);
-  f.area = f.a.norm();
-  if (f.area == 0.0 || coefficient == 0.0) return f;
+  f.aa = f.a.squaredNorm();
+  if (f.aa == 0.0 || coefficient == 0.0) return f;
   f.none = false;
-  f.n = f.a / f.area;
   Eigen::Vector3d vFace = Eigen::Vector3d::Zero();
   for (const auto& vi : v) vFace += vi;
-  vFace /= NumNodes;
-  f.rel = vFace - wind;
-  f.u = f.rel.dot(f.n);
+  f.rel = (1.0 / NumNodes) * vFace - wind;
   f.s = steadySubtracted ? 1.0 : 0.0;
-  f.u0 = -wind.dot(f.n);
-  f.g = std::abs(f.u) * f.u - f.s * std::abs(f.u0) * f.u0;  // |u| u - s |u0| u0
+  const double ua = f.rel.dot(f.a), u0a = -wind.dot(f.a);
+  f.g = (std::abs(ua) * ua - f.s * std::abs(u0a) * u0a) / f.aa;  // |u| u - s |u0| u0
   return f;
 }
 }  // namespace detail

@@ -13,11 +13,12 @@ LineDrag lineDrag(const Vec3& xa, const Vec3& xb, const Vec3& va, const Vec3& vb
   }
   const detail::LineFlow f = detail::lineFlow(xa, xb, va, vb, wind, coefficient);
   if (f.none) return out;
-  const Vec3 &e = f.e, &v = f.v, &u = f.u;
-  const Mat3& P = f.P;
-  const double l = f.l, s = f.s;
   out.residual << f.r, f.r;
-  if (!withTangent || s == 0.0) return out;
+  if (!withTangent || f.uu == 0.0) return out;
+  const Vec3 &v = f.v, &u = f.u;
+  const double l = std::sqrt(f.dd), s = std::sqrt(f.uu);
+  const Vec3 e = f.d / l;
+  const Mat3 P = Mat3::Identity() - e * e.transpose();
   const Mat3 dQdu = s * Mat3::Identity() + u * u.transpose() / s;  // d(|u| u)/du
   const Mat3 dv = 0.5 * coefficient * l * dQdu * P * 0.5;          // per node velocity
   const Mat3 dxb =

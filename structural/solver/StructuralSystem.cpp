@@ -39,10 +39,11 @@ StructuralSystem::StructuralSystem(const Model& model, TermOptions options,
   splitAssembly();
 }
 
-// Terms that read only the model and their own state (Term::assemblesApart) may be assembled on
-// the second thread; the others stay on the first. Costs are the terms' own estimates
-// (Term::assemblyCost, per element relative to a membrane triangle). Largest first, each to the
-// lighter part; the order of terms within a part is the term list's. The explicit step's own work
+// Terms that read only the model and state no assembly writes (Term::assemblesApart) may be
+// assembled on the second thread; the others stay on the first. Costs are the terms' own
+// estimates (Term::assemblyCost, per element relative to a membrane triangle). Largest first,
+// each to the lighter part, a tie to the second; the order of terms within a part is the term
+// list's. The explicit step's own work
 // between assemblies also runs on the first thread; giving that thread less assembly to make up
 // for it was measured slower on the C-9 (the second thread then waits).
 void StructuralSystem::splitAssembly() {
@@ -59,7 +60,7 @@ void StructuralSystem::splitAssembly() {
   double second = 0.0;
   std::vector<const Term*> toSecond;
   for (const auto& [cost, t] : movable) {
-    if (second < first) {
+    if (second <= first) {
       second += cost;
       toSecond.push_back(t);
     } else {

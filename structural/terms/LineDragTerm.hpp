@@ -20,8 +20,10 @@ class LineDragTerm final : public Term {
   void addEnergy(const Eigen::VectorXd&, const Eigen::VectorXd&, double,
                  EnergyBreakdown&) const override {}
   bool symmetricJacobian() const override { return false; }
-  // Reads the sliding groups' states: assembled with them, on the first thread.
   double assemblyCost() const override;
+  // Reads the model and the sliding groups' active elements, which the search sets before an
+  // assembly and no assembly writes: it may run on either thread, beside the groups themselves.
+  bool assemblesApart() const override { return true; }
 
  private:
   void addSegment(int a, int b, const kernels::Vec3& wind, double c, const EvalPoint& p,
