@@ -163,13 +163,14 @@ Assembly runs in two parts at once (`StructuralSystem::splitAssembly`,
 `assembly/TwoPartRunner`): membranes, pressure, face drag, cables, line drag (which reads the
 sliding groups' active elements, set between assemblies) and a coupled flow's surface loads may
 go to a second thread; sliding groups and point masses stay on the first. The split is made once
-per scene from costs per element measured on the C-9 slider case (one thread, residual only: a
-membrane triangle 1, quad 3, pressure face 0.25, face-drag face 0.4, line element 0.5, line-drag
-segment 0.45, a sliding element 0.5 and 5 more per slider; largest first, each to the lighter
-part, a tie to the second), never from timings or the thread count. Over 0.5 s of that case on
-one thread the two parts take 0.382 s and 0.384 s; the costs used before (line drag at 0.4 where
-its kernel, since made shorter, cost 0.85; sliding groups and line drag held on the first) gave
-the first 0.49 s of 0.87 s. The second part's residual and matrix are added to the
+per scene from costs per element measured on the C-9 slider case (one thread, residual only, in
+units of the explicit membrane triangle: pressure face 0.42, face-drag face 0.72, line element 0.7,
+line-drag segment 0.7, sliding element 0.9 and 8 more per slider, quad 5; the airflow's face 1.3,
+measured on the generated C-9 in free flight; largest first, each to the lighter part, a tie to
+the second), never from timings, the thread count or the instruction set. Over 0.5 s of the C-9
+slider case on one thread the two parts take 0.31 s and 0.32 s; the costs used before (line drag
+at 0.4 where its kernel, since made shorter, cost 0.85; sliding groups and line drag held on the
+first) gave the first 0.49 s of 0.87 s. The second part's residual and matrix are added to the
 first's in a fixed order: a run gives the same bits on one thread or two
 (`TwoPartAssembly.OneThreadAndTwoGiveTheSameBits`). `CHUTE_THREADS=1` runs both parts one after
 the other on one thread. Against the single-pass sum before it, results differ by round-off only:

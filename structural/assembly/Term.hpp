@@ -233,8 +233,11 @@ class Term {
                                        const std::vector<double>& /*nodalMass*/) const {
     return 0.0;
   }
-  // The cost of one residual assembly, in units of a membrane triangle's (the two-part split of
-  // the assembly, docs/performance.md "Two threads"); 0: negligible or unknown.
+  // The cost of one residual assembly, in units of an explicit step's membrane triangle (the
+  // two-part split of the assembly, docs/performance.md "Two threads"): each term's per-element
+  // figure is its time per element over the triangle's in one profile of the explicit C-9 slider
+  // case (one thread, the triangles' AVX2 copy), or of the generated C-9 in free flight for the
+  // airflow's loads. 0: negligible or unknown.
   virtual double assemblyCost() const { return 0.0; }
   // Whether assemble() reads only the model and state that no assembly writes (its own, or
   // another term's that is set between assemblies, as the sliding groups' active elements), and

@@ -32,7 +32,7 @@ class CanopyFlowTerm final : public Term {
   // FL12: the captured air is a gas spring over the whole canopy, K = (gamma p / V) a a^T.
   double frequencySquaredBound(const Eigen::VectorXd& x, double t,
                                const std::vector<double>& nodalMass) const override;
-  double assemblyCost() const override { return 1.2 * static_cast<double>(faces_.size()); }
+  double assemblyCost() const override { return 1.3 * static_cast<double>(faces_.size()); }
 
   bool hasHistory() const override { return true; }
   void commit(const CommitPoint& c) override;

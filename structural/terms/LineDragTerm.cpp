@@ -46,17 +46,16 @@ void LineDragTerm::addSegment(int a, int b, const Vec3& wind, double c, const Ev
   out.add<2>({a, b}, d.residual, &J);
 }
 
-// Per segment, 0.45 of a membrane triangle (a per-step profile of the explicit C-9 slider case,
-// one thread, residual only).
+// Per segment, 0.7 of an explicit membrane triangle (Term::assemblyCost).
 double LineDragTerm::assemblyCost() const {
   double cost = 0.0;
   for (const auto& d : m_->drags) {
     if (d.lineSet < 0) {
-      cost += 0.45 * static_cast<double>(d.edges.size());
+      cost += 0.7 * static_cast<double>(d.edges.size());
       continue;
     }
-    for (const auto& c : m_->cables) cost += c.set == d.lineSet ? 0.45 : 0.0;
-    for (const auto& g : m_->groups) cost += g.set == d.lineSet ? 0.45 * g.numElements() : 0.0;
+    for (const auto& c : m_->cables) cost += c.set == d.lineSet ? 0.7 : 0.0;
+    for (const auto& g : m_->groups) cost += g.set == d.lineSet ? 0.7 * g.numElements() : 0.0;
   }
   return cost;
 }

@@ -1,5 +1,6 @@
 #include "terms/MembraneTerm.hpp"
 
+#include <algorithm>
 #include <type_traits>
 
 #include "kernels/MembraneDiscreteGradient.hpp"
@@ -63,13 +64,51 @@ void MembraneTerm::makeExplicitTriangles() {
   explicitTriangles_.resize(refs3_.size());
   for (size_t k = 0; k < m_->membranes.size(); ++k) {
     const auto& e = m_->membranes[k];
-    if (e.numNodes != 3) continue;
+    if (e.numNodes != 3) {
+      quads_.push_back(static_cast<int>(k));
+      continue;
+    }
     ExplicitTriangle& t = explicitTriangles_[slot_[k]];
     t.nodes = nodeIds<3>(e);
+    t.element = static_cast<int>(k);
     t.force = kernels::membraneTriangleRecord(refs3_[slot_[k]], m_->membraneMaterials[e.material],
                                               m_->membraneSets[e.set].wrinkling);
     const std::array<double, 4> share = massSharesOf(k);  // with or without gravity
     for (int i = 0; i < 3; ++i) t.share[i] = share[i];
+  }
+  constexpr size_t kLanes = kernels::kTriangleLanes;
+  triangleLanes_.resize((explicitTriangles_.size() + kLanes - 1) / kLanes);
+  for (size_t b = 0; b < triangleLanes_.size(); ++b)
+    for (size_t l = 0; l < kLanes; ++l) {
+      const ExplicitTriangle& t =
+          explicitTriangles_[std::min(b * kLanes + l, explicitTriangles_.size() - 1)];
+      kernels::setLane(triangleLanes_[b], static_cast<int>(l), t.force, t.nodes);
+    }
+}
+
+// The explicit step's triangles, four at a time (kernels/MembraneTriangleBatch.hpp): their
+// forces and states (each lane membraneTriangleForce's bits), their weights
+// added and scattered in the triangles' order; what assembleInternalForce<3> gives (M3, M4).
+void MembraneTerm::assembleExplicitTriangles(const EvalPoint& p, SystemAssembler& out) {
+  constexpr int kLanes = kernels::kTriangleLanes;
+  const double* x = p.x.data();
+  const bool weighed = !massShare_.empty();
+  const size_t count = explicitTriangles_.size();
+  for (size_t b = 0; b < triangleLanes_.size(); ++b) {
+    const size_t first = b * kLanes;
+    const int lanes = static_cast<int>(std::min<size_t>(kLanes, count - first));
+    kernels::TriangleLaneVectors fs;
+    kernels::WrinkleState states[kLanes];
+    kernels::membraneTriangleForces(x, triangleLanes_[b], fs, states);
+    for (int l = 0; l < lanes; ++l) {
+      const ExplicitTriangle& t = explicitTriangles_[first + l];
+      Eigen::Matrix<double, 9, 1> r;
+      for (int i = 0; i < 3; ++i)
+        for (int c = 0; c < 3; ++c) r[3 * i + c] = fs.v[i][c][l];
+      states_[t.element].state = states[l];
+      if (weighed) addWeight<3>(t.share.data(), p.loadFactor, r);
+      out.add<3>(t.nodes, r, nullptr);
+    }
   }
 }
 
@@ -101,11 +140,12 @@ void MembraneTerm::addStiffnessBound(const Eigen::VectorXd& x, double /*t*/,
   }
 }
 
-// A triangle is the unit; a quad costs 3 (a per-step profile of the explicit C-9).
+// A triangle is the unit; a quad, which the explicit step takes one at a time, costs 5
+// (Term::assemblyCost).
 double MembraneTerm::assemblyCost() const {
   double tri = 0.0, quad = 0.0;
   for (const auto& e : m_->membranes) (e.numNodes == 3 ? tri : quad) += 1.0;
-  return tri + 3.0 * quad;
+  return tri + 5.0 * quad;
 }
 
 void MembraneTerm::addCouplings(std::vector<std::vector<int>>& cliques) const {
@@ -213,21 +253,8 @@ void MembraneTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
   // branches).
   if (!out.wantMatrix() && !p.xStart && (!p.inertia || p.zeroAcceleration) &&
       m_->massDamping == 0.0) {
-    const double* x = p.x.data();
-    const bool weighed = !massShare_.empty();
-    for (size_t k = 0; k < m_->membranes.size(); ++k) {
-      if (m_->membranes[k].numNodes != 3) {
-        assembleInternalForce<4>(static_cast<int>(k), refs4_[slot_[k]], p, out);
-        continue;
-      }
-      // assembleInternalForce<3>'s force and weight, the same bits (M3, M4).
-      const ExplicitTriangle& t = explicitTriangles_[slot_[k]];
-      Eigen::Matrix<double, 9, 1> r;
-      states_[k].state = kernels::membraneTriangleForce(x + 3 * t.nodes[0], x + 3 * t.nodes[1],
-                                                        x + 3 * t.nodes[2], t.force, r.data());
-      if (weighed) addWeight<3>(t.share.data(), p.loadFactor, r);
-      out.add<3>(t.nodes, r, nullptr);
-    }
+    assembleExplicitTriangles(p, out);
+    for (int k : quads_) assembleInternalForce<4>(k, refs4_[slot_[k]], p, out);
     out.work().membrane += static_cast<long>(refs3_.size());
     return;
   }

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "assembly/Term.hpp"
+#include "kernels/MembraneTriangleBatch.hpp"
 #include "kernels/MembraneTriangleForce.hpp"
 #include "kernels/StiffnessBound.hpp"
 #include "model/Model.hpp"
@@ -58,11 +59,18 @@ class MembraneTerm final : public Term {
   // side (kernels/MembraneTriangleForce.hpp); the lumped triangles' energies read them too.
   struct ExplicitTriangle {
     std::array<int, 3> nodes;
+    int element;  // its index in the model's membranes
     kernels::MembraneTriangleRecord force;
     std::array<double, 3> share;  // massSharesOf's, with or without gravity
   };
   std::vector<ExplicitTriangle> explicitTriangles_;  // made with the term
+  // The same records four at a time for the explicit step (kernels/MembraneTriangleBatch.hpp):
+  // batch b holds triangles 4 b .. 4 b + 3, the last batch's missing lanes its last triangle
+  // again. And the quads, which the explicit step takes after the triangles.
+  std::vector<kernels::MembraneTriangleLanes> triangleLanes_;
+  std::vector<int> quads_;
   void makeExplicitTriangles();
+  void assembleExplicitTriangles(const EvalPoint& p, SystemAssembler& out);
   // Per element, each node's share of its mass, rho t0 int N_i dA: the weight, made once when the
   // model has gravity (empty without).
   std::vector<std::array<double, 4>> massShare_;

@@ -9,8 +9,10 @@
 #include <cstdio>
 #include <random>
 #include <utility>
+#include <vector>
 
 #include "kernels/MembraneKernel.hpp"
+#include "kernels/MembraneTriangleBatch.hpp"
 #include "kernels/MembraneTriangleForce.hpp"
 #include "support/FiniteDifference.hpp"
 #include "support/MembraneGeometry.hpp"
@@ -295,4 +297,62 @@ TEST(MembraneKernel, ExplicitTriangleForceIsMembraneForceBitForBit) {
               compared, counts[0], counts[1], counts[2]);
   EXPECT_GT(counts[1], 100);
   EXPECT_GT(counts[2], 100);
+}
+
+// The explicit step's triangles four at a time (MembraneTriangleBatch.hpp): each lane gives
+// membraneTriangleForce's forces and state bit for bit, lanes of different shapes, states and
+// wrinkling settings side by side, on the baseline copy and on the AVX2 copy where the processor
+// has it.
+TEST(MembraneKernel, FourTrianglesAtATimeAreTheExplicitTriangleBitForBit) {
+  std::mt19937 rng(43);
+  std::uniform_real_distribution<double> jitter(-0.4, 0.4);
+  std::uniform_int_distribution<int> pickState(0, static_cast<int>(std::size(kStates)) - 1);
+  using Copy =
+      void (*)(const double*, const MembraneTriangleLanes&, TriangleLaneVectors&, WrinkleState*);
+  std::vector<std::pair<const char*, Copy>> copies = {{"baseline", &membraneTriangleForcesBaseline},
+                                                      {"dispatched", &membraneTriangleForces}};
+  if (avx2Available()) copies.emplace_back("avx2", &membraneTriangleForcesAvx2);
+  int counts[3] = {0, 0, 0}, compared = 0;
+  for (int batch = 0; batch < 2000; ++batch) {
+    MembraneTriangleLanes lanes;
+    double x[3 * 3 * kTriangleLanes];  // lane l's node i is node 4 (2 - i) + l
+    std::array<MembraneTriangleRecord, kTriangleLanes> recs;
+    std::array<std::array<Vec3, 3>, kTriangleLanes> xs;
+    for (int l = 0; l < kTriangleLanes; ++l) {
+      const std::array<Vec3, 3> X = {Vec3(0, 0, 0), Vec3(1 + jitter(rng), jitter(rng), 0),
+                                     Vec3(jitter(rng), 1 + jitter(rng), 0)};
+      const auto ref = triangleReference(X, kFabric.thickness);
+      const auto& c = kStates[pickState(rng)];
+      xs[l] = deformed<3>(X, c.lx, c.ly, c.shear, rng, 2e-2);
+      recs[l] = membraneTriangleRecord(ref, kFabric, (batch + l) % 3 != 0);
+      const std::array<int, 3> nodes = {8 + l, 4 + l, l};
+      setLane(lanes, l, recs[l], nodes);
+      for (int i = 0; i < 3; ++i)
+        for (int r = 0; r < 3; ++r) x[3 * nodes[i] + r] = xs[l][i][r];
+    }
+    for (const auto& [name, copy] : copies) {
+      TriangleLaneVectors f;
+      WrinkleState states[kTriangleLanes];
+      copy(x, lanes, f, states);
+      for (int l = 0; l < kTriangleLanes; ++l) {
+        double expect[9];
+        const WrinkleState s = membraneTriangleForce(xs[l][0].data(), xs[l][1].data(),
+                                                     xs[l][2].data(), recs[l], expect);
+        ASSERT_EQ(states[l], s) << name << " lane " << l;
+        ++counts[static_cast<int>(s)];
+        for (int i = 0; i < 3; ++i)
+          for (int r = 0; r < 3; ++r) {
+            ASSERT_EQ(std::bit_cast<std::uint64_t>(f.v[i][r][l] + 0.0),
+                      std::bit_cast<std::uint64_t>(expect[3 * i + r] + 0.0))
+                << name << " lane " << l << " node " << i << " coordinate " << r;
+            ++compared;
+          }
+      }
+    }
+  }
+  std::printf("%d entries compared bit for bit (%zu copies%s): %d taut, %d wrinkled, %d slack\n",
+              compared, copies.size(), avx2Available() ? ", AVX2 among them" : ", no AVX2 here",
+              counts[0], counts[1], counts[2]);
+  EXPECT_GT(counts[1], 1000);
+  EXPECT_GT(counts[2], 1000);
 }

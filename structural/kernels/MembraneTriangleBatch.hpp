@@ -1,0 +1,48 @@
+#pragma once
+// The explicit step's membrane triangles four at a time (docs/formulation.md M1-M3, WR1-WR3):
+// membraneTriangleForce's operations, in its order, on four triangles side by side, so that each
+// lane gives that function's bits (a test holds them bit for bit, on every instruction set this
+// machine runs). One copy is built for the baseline instruction set and one for AVX2; the AVX2
+// copy is taken at run time when the processor has it (docs/performance.md, "The membrane four
+// triangles at a time"). Neither fuses a multiply and an add, so both give the same bits.
+#include <array>
+#include <cstdint>
+
+#include "kernels/MembraneTriangleForce.hpp"
+
+namespace chute::kernels {
+
+constexpr int kTriangleLanes = 4;
+
+// Four triangles' records (MembraneTriangleRecord), lane by lane.
+struct alignas(32) MembraneTriangleLanes {
+  double dN[3][2][kTriangleLanes];
+  double weight[kTriangleLanes], d00[kTriangleLanes], d01[kTriangleLanes], d22[kTriangleLanes];
+  double E[kTriangleLanes], nu[kTriangleLanes];
+  std::int64_t noWrinkling[kTriangleLanes];  // all bits set where the set has no wrinkling
+  int nodes[kTriangleLanes][3];              // each lane's nodes
+};
+
+// Lane `lane` of `lanes` holds record t of the triangle on these nodes.
+void setLane(MembraneTriangleLanes& lanes, int lane, const MembraneTriangleRecord& t,
+             const std::array<int, 3>& nodes);
+
+// The forces of four triangles: [node][xyz][lane].
+struct alignas(32) TriangleLaneVectors {
+  double v[3][3][kTriangleLanes];
+};
+
+// f: each lane's nodal forces at the positions x (node by node, xyz), as membraneTriangleForce
+// gives them; state: each lane's wrinkling state. The copy for the processor at hand. The
+// positions are read straight into the lanes: staged through memory by single stores, each
+// four-lane load waited for the stores to drain (13 % of the copy's time, perf).
+void membraneTriangleForces(const double* x, const MembraneTriangleLanes& t, TriangleLaneVectors& f,
+                            WrinkleState* state);
+// The two copies themselves (tests); the AVX2 one only where avx2Available().
+void membraneTriangleForcesBaseline(const double* x, const MembraneTriangleLanes& t,
+                                    TriangleLaneVectors& f, WrinkleState* state);
+void membraneTriangleForcesAvx2(const double* x, const MembraneTriangleLanes& t,
+                                TriangleLaneVectors& f, WrinkleState* state);
+bool avx2Available();
+
+}  // namespace chute::kernels
