@@ -1,6 +1,8 @@
 #include "kernels/MembraneTriangleBatch.hpp"
 
+#include <cstdlib>
 #include <cstring>
+#include <string_view>
 
 // GCC warns that a 32-byte vector returned without AVX changes the calling convention; in this
 // file such vectors live only inside the inlined body (the helpers below), never across a call.
@@ -104,8 +106,13 @@ using M = std::int64_t __attribute__((vector_size(32)));
 
 using Forces = void (*)(const double*, const MembraneTriangleLanes&, TriangleLaneVectors&,
                         WrinkleState*);
+// CHUTE_SIMD=baseline keeps the baseline copy on a processor with AVX2 (the same bits; for
+// measuring what the AVX2 copy gives, docs/performance.md).
 Forces chosen() {
-  return avx2Available() ? &membraneTriangleForcesAvx2 : &membraneTriangleForcesBaseline;
+  const char* want = std::getenv("CHUTE_SIMD");
+  const bool baseline = want && std::string_view(want) == "baseline";
+  return avx2Available() && !baseline ? &membraneTriangleForcesAvx2
+                                      : &membraneTriangleForcesBaseline;
 }
 }  // namespace
 

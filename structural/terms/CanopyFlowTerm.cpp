@@ -203,29 +203,32 @@ CanopyFlowTerm::Geometry CanopyFlowTerm::geometry(const Eigen::VectorXd& x,
   Vec3 velocity = Vec3::Zero();
   // One face with its node count known to the compiler (the loops over its nodes unrolled: 7 %
   // of the pass's instructions on the explicit C-9).
+  // Divisions by the node count and by 9 are multiplications by their reciprocals: a division
+  // costs several multiplications' time, and the pass made eight of them per face.
   auto face = [&](size_t i, const FaceNodes& fn, auto nodesTag, auto keep) {
     constexpr int N = decltype(nodesTag)::value;
+    constexpr double perNode = 1.0 / N;
     const Vec3 x0 = at(x, fn.node[0]), x1 = at(x, fn.node[1]), x2 = at(x, fn.node[2]);
     Vec3 vf = at(v, fn.node[0]) + at(v, fn.node[1]) + at(v, fn.node[2]);
     Vec3 A;
     if constexpr (N == 3) {
       A = 0.5 * (x1 - x0).cross(x2 - x0);
-      volume += (x0 + x1 + x2).dot(A) / 9.0;  // tetraVolume(x0, x1, x2): centroid . A / 3
+      volume += (x0 + x1 + x2).dot(A) * (1.0 / 9.0);  // tetraVolume(x0, x1, x2): centroid . A / 3
     } else {
       const Vec3 x3 = at(x, fn.node[3]);
       vf += at(v, fn.node[3]);
       A = 0.5 * (x2 - x0).cross(x3 - x1);  // the exact area vector of a bilinear quad
       volume += kernels::tetraVolume(x0, x1, x2) + kernels::tetraVolume(x0, x2, x3);
     }
-    vf /= static_cast<double>(N);
+    vf *= perNode;
     const double faceArea = A.norm();
     area += faceArea;
     velocity += faceArea * vf;
     volumeRate += A.dot(vf);
     if constexpr (decltype(keep)::value) {
       faceData_[i] = {A, faceArea, vf};
-      const double shareN = faceArea / N;
-      const Vec3 aN = A / N;
+      const double shareN = faceArea * perNode;
+      const Vec3 aN = A * perNode;
       for (int k = 0; k < N; ++k) {
         shares_[fn.slot[k]] += shareN;
         nodeArea_[fn.slot[k]] += aN;
@@ -404,7 +407,8 @@ CanopyFlowTerm::Evaluation CanopyFlowTerm::evaluate(const Eigen::VectorXd& x,
     for (size_t i = 0; i < faces_.size(); ++i) {
       const FaceData& f = faceData_[i];
       if (!(f.area > 0.0)) continue;
-      const kernels::FacePressure fp = kernels::facePressure(f.A / f.area, f.vf, atAmbient);
+      // The unit normal by one division (three before).
+      const kernels::FacePressure fp = kernels::facePressure(f.A * (1.0 / f.area), f.vf, atAmbient);
       if (permeable) {
         // FL6's pressure difference: inside (at the step's start mass) minus outside.
         const double dp = b.insideGauge + fp.staticDifference;
@@ -415,10 +419,10 @@ CanopyFlowTerm::Evaluation CanopyFlowTerm::evaluate(const Eigen::VectorXd& x,
       // Gathered per node, handed to the assembler once per node below.
       const FaceNodes& fn = faceNodes_[i];
       if (fn.size == 3) {  // the node count known: the loop unrolled
-        const Vec3 force = (fp.netPressure / 3) * f.A;
+        const Vec3 force = (fp.netPressure * (1.0 / 3.0)) * f.A;
         for (int k = 0; k < 3; ++k) nodeForce_[fn.slot[k]] += force;
       } else {
-        const Vec3 force = (fp.netPressure / 4) * f.A;
+        const Vec3 force = (fp.netPressure * 0.25) * f.A;
         for (int k = 0; k < 4; ++k) nodeForce_[fn.slot[k]] += force;
       }
     }

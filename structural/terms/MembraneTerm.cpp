@@ -70,7 +70,6 @@ void MembraneTerm::makeExplicitTriangles() {
     }
     ExplicitTriangle& t = explicitTriangles_[slot_[k]];
     t.nodes = nodeIds<3>(e);
-    t.element = static_cast<int>(k);
     t.force = kernels::membraneTriangleRecord(refs3_[slot_[k]], m_->membraneMaterials[e.material],
                                               m_->membraneSets[e.set].wrinkling);
     const std::array<double, 4> share = massSharesOf(k);  // with or without gravity
@@ -86,8 +85,11 @@ void MembraneTerm::makeExplicitTriangles() {
     }
 }
 
-// The explicit step's triangles, four at a time (kernels/MembraneTriangleBatch.hpp): their
-// forces and states (each lane membraneTriangleForce's bits), their weights
+// The explicit step's triangles, four at a time (kernels/MembraneTriangleBatch.hpp). Their
+// wrinkling states are not written to states_: elementStates() makes them, with the principal
+// values, from the assembly's positions when output asks (writing a state per triangle touched a
+// cache line of states_ each, 2 % of the generated 12k C-9's step, perf). Their
+// forces (each lane membraneTriangleForce's bits), their weights
 // added and scattered in the triangles' order; what assembleInternalForce<3> gives (M3, M4).
 void MembraneTerm::assembleExplicitTriangles(const EvalPoint& p, SystemAssembler& out) {
   constexpr int kLanes = kernels::kTriangleLanes;
@@ -105,7 +107,6 @@ void MembraneTerm::assembleExplicitTriangles(const EvalPoint& p, SystemAssembler
       Eigen::Matrix<double, 9, 1> r;
       for (int i = 0; i < 3; ++i)
         for (int c = 0; c < 3; ++c) r[3 * i + c] = fs.v[i][c][l];
-      states_[t.element].state = states[l];
       if (weighed) addWeight<3>(t.share.data(), p.loadFactor, r);
       out.add<3>(t.nodes, r, nullptr);
     }

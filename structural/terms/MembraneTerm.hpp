@@ -59,7 +59,6 @@ class MembraneTerm final : public Term {
   // side (kernels/MembraneTriangleForce.hpp); the lumped triangles' energies read them too.
   struct ExplicitTriangle {
     std::array<int, 3> nodes;
-    int element;  // its index in the model's membranes
     kernels::MembraneTriangleRecord force;
     std::array<double, 3> share;  // massSharesOf's, with or without gravity
   };
