@@ -1,12 +1,6 @@
 #include "kernels/MembraneTriangleBatch.hpp"
 
-#include <cstdlib>
-#include <cstring>
-#include <string_view>
-
-// GCC warns that a 32-byte vector returned without AVX changes the calling convention; in this
-// file such vectors live only inside the inlined body (the helpers below), never across a call.
-#pragma GCC diagnostic ignored "-Wpsabi"
+#include "kernels/Lanes.hpp"
 
 namespace chute::kernels {
 
@@ -22,28 +16,17 @@ void setLane(MembraneTriangleLanes& lanes, int lane, const MembraneTriangleRecor
 }
 
 namespace {
-// GCC's vector extension: four doubles, and four 64-bit masks (all bits set: true). On the
-// baseline instruction set each operation is made of two SSE2 ones. Kept inside this file's
-// inlined body: passed between functions a 32-byte vector would change the calling convention
-// with the instruction set.
-using V = double __attribute__((vector_size(32)));
-using M = std::int64_t __attribute__((vector_size(32)));
+using lanes::all;
+using lanes::kLanes;
+using lanes::load;
+using lanes::M;
+using lanes::store;
+using lanes::V;
 
-[[gnu::always_inline]] inline V load(const double* p) {
-  V v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
-}
 [[gnu::always_inline]] inline M loadMask(const std::int64_t* p) {
   M v;
   std::memcpy(&v, p, sizeof v);
   return v;
-}
-[[gnu::always_inline]] inline void store(double* p, V v) {
-  std::memcpy(p, &v, sizeof v);
-}
-[[gnu::always_inline]] inline V all(double s) {
-  return V{s, s, s, s};
 }
 
 // membraneTriangleForce (MembraneTriangleForce.hpp) lane by lane: the same operations in the
@@ -73,8 +56,7 @@ using M = std::int64_t __attribute__((vector_size(32)));
   const V a = e0, d = e1;
   const V w = half * e2, u = half * (a - d);
   const V q = u * u + w * w;
-  V R;
-  for (int l = 0; l < kTriangleLanes; ++l) R[l] = __builtin_sqrt(q[l]);
+  const V R = lanes::sqrt(q);
   const V l1 = half * (a + d) + R;
   const V l2 = half * (a + d) - R;
   const V nu = load(t.nu);
@@ -106,20 +88,7 @@ using M = std::int64_t __attribute__((vector_size(32)));
 
 using Forces = void (*)(const double*, const MembraneTriangleLanes&, TriangleLaneVectors&,
                         WrinkleState*);
-// CHUTE_SIMD=baseline keeps the baseline copy on a processor with AVX2 (the same bits; for
-// measuring what the AVX2 copy gives, docs/performance.md).
-Forces chosen() {
-  const char* want = std::getenv("CHUTE_SIMD");
-  const bool baseline = want && std::string_view(want) == "baseline";
-  return avx2Available() && !baseline ? &membraneTriangleForcesAvx2
-                                      : &membraneTriangleForcesBaseline;
-}
 }  // namespace
-
-bool avx2Available() {
-  __builtin_cpu_init();
-  return __builtin_cpu_supports("avx2");
-}
 
 void membraneTriangleForcesBaseline(const double* x, const MembraneTriangleLanes& t,
                                     TriangleLaneVectors& f, WrinkleState* state) {
@@ -135,7 +104,8 @@ void membraneTriangleForcesBaseline(const double* x, const MembraneTriangleLanes
 
 void membraneTriangleForces(const double* x, const MembraneTriangleLanes& t, TriangleLaneVectors& f,
                             WrinkleState* state) {
-  static const Forces copy = chosen();
+  static const Forces copy =
+      useAvx2() ? &membraneTriangleForcesAvx2 : &membraneTriangleForcesBaseline;
   copy(x, t, f, state);
 }
 

@@ -2,13 +2,13 @@
 // The explicit step's membrane triangles four at a time (docs/formulation.md M1-M3, WR1-WR3):
 // membraneTriangleForce's operations, in its order, on four triangles side by side, so that each
 // lane gives that function's bits (a test holds them bit for bit, on every instruction set this
-// machine runs). One copy is built for the baseline instruction set and one for AVX2; the AVX2
-// copy is taken at run time when the processor has it (docs/performance.md, "The membrane four
-// triangles at a time"). Neither fuses a multiply and an add, so both give the same bits.
+// machine runs). One copy is built for the baseline instruction set and one for AVX2, taken at run
+// time (SimdCopies.hpp; docs/performance.md, "Four at a time").
 #include <array>
 #include <cstdint>
 
 #include "kernels/MembraneTriangleForce.hpp"
+#include "kernels/SimdCopies.hpp"
 
 namespace chute::kernels {
 
@@ -38,11 +38,10 @@ struct alignas(32) TriangleLaneVectors {
 // four-lane load waited for the stores to drain (13 % of the copy's time, perf).
 void membraneTriangleForces(const double* x, const MembraneTriangleLanes& t, TriangleLaneVectors& f,
                             WrinkleState* state);
-// The two copies themselves (tests); the AVX2 one only where avx2Available().
+// The two copies themselves (tests); the AVX2 one only where avx2Available() (SimdCopies.hpp).
 void membraneTriangleForcesBaseline(const double* x, const MembraneTriangleLanes& t,
                                     TriangleLaneVectors& f, WrinkleState* state);
 void membraneTriangleForcesAvx2(const double* x, const MembraneTriangleLanes& t,
                                 TriangleLaneVectors& f, WrinkleState* state);
-bool avx2Available();
 
 }  // namespace chute::kernels
