@@ -62,6 +62,8 @@ def main():
         f.write(",".join(keys) + "\n")
         for r in rows:
             f.write(",".join(str(r[k]) for k in keys) + "\n")
+    simd = ("are taken one at a time (`CHUTE_SIMD=baseline`)" if os.environ.get("CHUTE_SIMD") == "baseline"
+            else "take their four-lane AVX2 copy where the processor has it (kernels/MembraneTriangleBatch.hpp)")
     with open(os.path.join(res, "lean_canopy_step.md"), "w") as f:
         f.write("# chute's explicit step against a lean fused canopy loop\n\n")
         f.write("Made by `bench/speed/run.py` (steps %d, medians of %d): the generated full-scale C-9 "
@@ -69,8 +71,8 @@ def main():
                 "triangle of one fused pass (membrane with branch-free wrinkling, pressure, face "
                 "drag); `chute`: CPU ns per canopy triangle of chute's whole explicit step (every "
                 "term, lines included, the update, the energy balance, the stable step), from two "
-                "runs' difference, on one thread (`CHUTE_THREADS=1`); both as the CPU time of that thread (the BLAS library's worker spins for about 0.1 s after start-up: in the process's time it inflated the first lean measurement 1.5-2x).\n\n"
-                % (a.steps, a.repeat))
+                "runs' difference, on one thread (`CHUTE_THREADS=1`); both as the CPU time of that thread (the BLAS library's worker spins for about 0.1 s after start-up: in the process's time it inflated the first lean measurement 1.5-2x). The lean loop is built for the baseline instruction set; chute's membranes %s.\n\n"
+                % (a.steps, a.repeat, simd))
         f.write("| element size ft | triangles | steps per simulated s | lean ns/triangle | chute "
                 "ns/triangle-step | ratio | CPU s per simulated s | peak RSS MiB |\n"
                 "|---|---|---|---|---|---|---|---|\n")

@@ -96,6 +96,19 @@ void MembraneTerm::assembleExplicitTriangles(const EvalPoint& p, SystemAssembler
   const double* x = p.x.data();
   const bool weighed = !massShare_.empty();
   const size_t count = explicitTriangles_.size();
+  if (!kernels::useAvx2()) {
+    // Without AVX2 one at a time: the baseline copy of the four-lane kernel, two SSE2 operations
+    // for each, was slower than this (chute's step on the generated C-9 113 ns per triangle
+    // against 100). The same bits (each lane is membraneTriangleForce's).
+    for (const ExplicitTriangle& t : explicitTriangles_) {
+      Eigen::Matrix<double, 9, 1> r;
+      kernels::membraneTriangleForce(x + 3 * t.nodes[0], x + 3 * t.nodes[1], x + 3 * t.nodes[2],
+                                     t.force, r.data());
+      if (weighed) addWeight<3>(t.share.data(), p.loadFactor, r);
+      out.add<3>(t.nodes, r, nullptr);
+    }
+    return;
+  }
   for (size_t b = 0; b < triangleLanes_.size(); ++b) {
     const size_t first = b * kLanes;
     const int lanes = static_cast<int>(std::min<size_t>(kLanes, count - first));
