@@ -221,25 +221,51 @@ LEAN_LOOP = """
 
 One process times both on the generated full-scale C-9 in free flight (28 gores, loads from the
 airflow, gravity): a lean, fused pass over the canopy's triangles (membrane with branch-free
-wrinkling, pressure, face drag: gather, compute, scatter) and chute's whole explicit step (every
-term, lines included, the update, the energy balance, the stable step), CPU per triangle, one
-thread. [bench/results/lean_canopy_step.md](../bench/results/lean_canopy_step.md) (below): chute's
-step is 2.4-2.7 times the lean loop at 3.4k-24.5k triangles (2.50 at 12k, 2.41 at 24k; 99-110 ns
-per triangle and step against 126-142 at the start of the day, same bench); the target is 2.0.
-The lean loop's own time moves by up to 15 % from run to run on this shared machine (40-47 ns),
-the ratio with it. What brought it from 3.75-4.2: the residual scattered node by node, the update in one pass, cached cable forces
-and masses, the membranes' weight from shares made once (every generated parachute has gravity,
-and its membranes took the full element path for the weight alone, 9.2 % of the step), and the
-explicit triangle (`kernels/MembraneTriangleForce.hpp`: a record laid out for the pass, the law's
-constants made once, the wrinkling state selected by bits rather than branches; membraneForce's
-bits, a test compares them), which took the membranes from 1,311 M to 901 M instructions of
-3,636 M on 0.006 s of the 12k mesh. What is left: the membranes (28 %: strain, the law, the
-scatter; a square root and three divisions each), the airflow's two passes over the faces (31 %:
-volume, mean velocity, area shares, cloth flow, face pressures; its physics, not overhead), the
-energy balance (6 %: its window's load residual and energy), the moving mass and the stable step
-(5 % and 4 %). Fewer steps: `solver.mass_scaling_quantile` (docs/explicit.md, selective mass
-scaling): on this parachute the least nodal step is 0.66-0.68 of the 1 % quantile, and scaling the
-1 % that set it takes 1.4x fewer steps.
+wrinkling, pressure, face drag: gather, compute, scatter; built for the baseline instruction set)
+and chute's whole explicit step (every term, lines included, the update, the energy balance, the
+stable step), CPU per triangle, one thread.
+[bench/results/lean_canopy_step.md](../bench/results/lean_canopy_step.md) (below): chute's step
+is 1.87-2.04 times the lean loop at 3.4k-24.5k triangles (1.95 at 12k and at 24k; a second
+sitting 1.91 and 1.87; the target is 2.0), 78-82 ns per triangle and step against 99-110 at the
+start of the day. Without AVX2 (`CHUTE_SIMD=baseline`,
+[bench/results/lean_canopy_step_baseline.md](../bench/results/lean_canopy_step_baseline.md)):
+2.18-2.29, 88-92 ns. The lean loop's own time moves by up to 15 % from run to run on this shared
+machine (40-47 ns), the ratio with it.
+
+What brought it there, each kept because it paid (bench/results/explicit_step_before_after.md):
+the residual scattered node by node, the update in one pass, cached cable forces and masses, the
+membranes' weight from shares made once; the explicit triangle (`kernels/MembraneTriangleForce.hpp`:
+a record laid out for the pass, the law's constants made once, the wrinkling state selected by
+bits rather than branches; membraneForce's bits); the triangles four at a time with AVX2 (below);
+line drag with one square root and one division on its path (it had two roots and a division
+waiting on one another) and face drag with none (g from the unnormalised area vector); the
+explicit cable's fast path kept with gravity (the general path had cost three times as much in
+free flight); the airflow's face passes multiplying by reciprocals where they divided by
+constants. What is left on the 12k mesh, one thread (perf): the airflow's two passes over the
+faces (28 %: volume, mean velocity, area shares, cloth flow, face pressures), the membranes
+(21 %: the four-lane kernel 13 %, the gather of its results and the scatter 8 %), the update
+(5 %), the energy balance (3 %), the moving mass and the stable step (3 % each). Tried and not
+kept: the airflow's passes four faces at a time (bit for bit the scalar ones, and no faster:
+gathering six node vectors per face into lanes cost what the arithmetic saved). Fewer steps:
+`solver.mass_scaling_quantile` (docs/explicit.md, selective mass scaling): on this parachute the
+least nodal step is 0.66-0.68 of the 1 % quantile, and scaling the 1 % that set it takes 1.4x
+fewer steps.
+
+## Four at a time
+
+The explicit step's membrane triangles go through `kernels/MembraneTriangleBatch` four at a time:
+the operations of `membraneTriangleForce` in its order, each on four triangles side by side (GCC's
+vector extension, `kernels/Lanes.hpp`), so that each lane gives that function's bits; the test
+`MembraneKernel.FourTrianglesAtATimeAreTheExplicitTriangleBitForBit` compares 216,000 numbers over
+taut, wrinkled and slack lanes with wrinkling on and off, on each copy the processor can run.
+The kernel is built twice, for the baseline instruction set and for AVX2
+(`kernels/SimdCopies`: the AVX2 copy where the processor has it, unless `CHUTE_SIMD=baseline`);
+neither fuses a multiply and an add, so a run gives the same bits on either processor. Without
+AVX2 the step takes the triangles one at a time: the baseline copy, two SSE2 operations for each
+of the kernel's, was slower than that (chute's step 113 ns per triangle against 100). The nodes'
+positions are read straight into the lanes: staged through memory by single stores, each
+four-lane load waited for those stores. On the C-9 slider case the membranes went from 0.34 s to
+0.19 s of 0.5 s simulated (one thread), on the generated 12k C-9 from 28 to 21 % of the step.
 """
 
 
