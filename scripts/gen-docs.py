@@ -72,6 +72,7 @@ MD_PAGES = [
     ("energy_momentum_c9.md", "The C-9 slider case with the energy-momentum integrator"),
     ("lean_canopy_step.md", "The lean loop and chute's step: the table (`bench/speed/run.py`)"),
     ("explicit_step_before_after.md", "The explicit step before and after, one sitting"),
+    ("c9_slider_roundoff_band.md", "The C-9 slider case: what round-off alone moves (`bench/speed/roundoff_band.py`)"),
 ]
 
 
