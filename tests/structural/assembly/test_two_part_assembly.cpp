@@ -65,8 +65,8 @@ TEST(TwoPartRunner, HandsBackWhatEitherPartThrew) {
 }
 
 TEST(TwoPartAssembly, OneThreadAndTwoGiveTheSameBits) {
-  // c9_slider: every kind of term the split moves (membranes, pressure, face drag, cables) and
-  // the ones it keeps on the first thread (sliding groups, line drag, point masses).
+  // c9_slider: every kind of term the split moves (membranes, pressure, face drag, cables, line
+  // drag) and the ones it keeps on the first thread (sliding groups, point masses).
   const CaseSpec spec = readCase(CHUTE_SOURCE_DIR "/cases/c9_slider.toml", {});
   auto one = systemWith(spec, "1");
   auto two = systemWith(spec, "2");
