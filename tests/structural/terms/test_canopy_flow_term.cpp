@@ -10,6 +10,7 @@
 
 #include "solver/CentralDifference.hpp"
 #include "solver/TimeStepper.hpp"
+#include "support/CupModel.hpp"
 #include "terms/CanopyFlowTerm.hpp"
 
 using namespace chute;
@@ -19,36 +20,10 @@ namespace {
 constexpr int kSides = 12;
 constexpr double kRadius = 1.0, kHeight = 0.8;
 
-// A cup open at the bottom: a regular kSides-gon roof (a fan from its centre) at z = kHeight on
-// walls of quads down to z = 0. Outward normals (the node order's). Every node held: the flow's
-// loads act on a rigid shape, and the captured air settles.
+// A cup open at the bottom (support/CupModel.hpp), every node held: the flow's loads act on a
+// rigid shape, and the captured air settles.
 Model rigidCup(double windSpeed, double permeability) {
-  Model m;
-  m.membraneMaterials.push_back({1e6, 0.3, 1e-4, 500.0});
-  m.membraneSets.push_back({"cup"});
-  const int top = m.addNode(Vec3(0, 0, kHeight));
-  std::vector<int> upper, lower;
-  for (int k = 0; k < kSides; ++k) {
-    const double a = 2 * std::numbers::pi * k / kSides;
-    upper.push_back(m.addNode(Vec3(kRadius * std::cos(a), kRadius * std::sin(a), kHeight)));
-    lower.push_back(m.addNode(Vec3(kRadius * std::cos(a), kRadius * std::sin(a), 0.0)));
-  }
-  auto element = [&](std::array<int, 4> nodes, int n) {
-    MembraneElement e;
-    e.nodes = nodes;
-    e.numNodes = n;
-    e.material = 0;
-    e.set = 0;
-    m.membranes.push_back(e);
-  };
-  for (int k = 0; k < kSides; ++k) {
-    const int j = (k + 1) % kSides;
-    element({top, upper[k], upper[j], -1}, 3);             // roof, normal up
-    element({lower[k], lower[j], upper[j], upper[k]}, 4);  // wall, normal out
-  }
-  m.u0.assign(m.numNodes(), Vec3::Zero());
-  m.pointMass.assign(m.numNodes(), 0.0);
-  m.constraint.assign(m.numNodes(), NodeConstraint{});
+  Model m = chute::testing::openCup(kSides, kRadius, kHeight, {1e6, 0.3, 1e-4, 500.0});
   for (auto& c : m.constraint) c.fixed = {true, true, true};
   m.air.given = true;
   m.air.density = 1.225;

@@ -7,10 +7,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <numbers>
 #include <random>
 
 #include "assembly/SystemAssembler.hpp"
+#include "support/CupModel.hpp"
 #include "terms/MembraneTerm.hpp"
 
 using namespace chute;
@@ -20,33 +20,7 @@ namespace {
 // A cup of 13 roof triangles fanned from the top and 13 wall quads, element by element in turn
 // (triangle, quad, ...), on free nodes, with gravity.
 Model cup() {
-  constexpr int kSides = 13;
-  Model m;
-  m.membraneMaterials.push_back({1e6, 0.3, 1e-4, 500.0});
-  m.membraneSets.push_back({"cup"});
-  const int top = m.addNode(Vec3(0, 0, 0.8));
-  std::vector<int> upper, lower;
-  for (int k = 0; k < kSides; ++k) {
-    const double a = 2 * std::numbers::pi * k / kSides;
-    upper.push_back(m.addNode(Vec3(std::cos(a), std::sin(a), 0.8)));
-    lower.push_back(m.addNode(Vec3(std::cos(a), std::sin(a), 0.0)));
-  }
-  auto element = [&](std::array<int, 4> nodes, int n) {
-    MembraneElement e;
-    e.nodes = nodes;
-    e.numNodes = n;
-    e.material = 0;
-    e.set = 0;
-    m.membranes.push_back(e);
-  };
-  for (int k = 0; k < kSides; ++k) {
-    const int j = (k + 1) % kSides;
-    element({top, upper[k], upper[j], -1}, 3);
-    element({lower[k], lower[j], upper[j], upper[k]}, 4);
-  }
-  m.u0.assign(m.numNodes(), Vec3::Zero());
-  m.pointMass.assign(m.numNodes(), 0.0);
-  m.constraint.assign(m.numNodes(), NodeConstraint{});
+  Model m = chute::testing::openCup(13, 1.0, 0.8, {1e6, 0.3, 1e-4, 500.0});
   m.gravity = Vec3(0, 0, -9.81);
   return m;
 }
