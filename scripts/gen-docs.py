@@ -192,9 +192,12 @@ with sliding groups or contact, whose bounds read their state); the energy balan
 residual and energy run one on each thread (`StructuralSystem::runTwo`). Each is done by one
 thread in its own order, so none changes a bit (`GeneratedFlight.OneThreadAndTwoFlyTheSameBits`:
 a folded generated flight, rows and steps bit for bit). On the generated 12k and 24k C-9 two
-threads run 1.47-1.56x faster than one (whole process, two sittings; target 1.7x): the airflow's passes and the
-membranes fill the two parts about equally, and what is left on the first thread alone is the
-step's own work between assemblies (the update, the commit, the energy balance's larger half).
+threads run 1.45x and 1.35x faster than one (whole process; target 1.7x; 1.47-1.56x before the
+membranes took four triangles at a time): the airflow's passes and the membranes fill the two
+parts about equally, and what is left is the step's own work between assemblies on the first
+thread (the update, the commit, the energy balance's larger half: 0.30 s of the 12k mesh's
+1.69 s on one thread over 0.06 s) and the moving mass and stable-step bound alongside the
+assembly (about 0.17 s), which did not shrink with the parts.
 
 Two threads pay only while the machine has a core free for the second. On a loaded machine the
 first thread waits for a worker that waits for a core: with the CPU taken by a build or by two
