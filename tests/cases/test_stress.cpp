@@ -210,9 +210,13 @@ TEST(Stress, MasslessRopeNodes) {
 }
 
 TEST(Stress, TwentyEightLinesThroughOneRing) {
-  // (g) 28 sliding groups sharing one slider point; the ring drops into its lines.
+  // (g) 28 sliding groups sharing one slider point; the ring drops into its lines. Its snatches
+  // are chaotic: round-off alone spreads the relative drift over 0.0128-0.0294 (12 runs of
+  // `chute run cases/stress_ring28.toml --set nodes.ring=[0.2,0.1,-0.8000000000k]`, k = 0 ..
+  // 11, 2026-11-27; 0.0194 as given), so the bound sits above that spread; an integration that
+  // made energy up would go far past it.
   const auto s = run("ring28 (2 s)", "stress_ring28");
   printTable({s});
-  expectBounded(s, 2e-2);
+  expectBounded(s, 5e-2);
   EXPECT_EQ(s.r.handovers.size(), 28u);
 }

@@ -69,8 +69,7 @@ class SlidingGroupTerm final : public Term, public EventSource {
   }
   // Not moved to the second thread, though it reads only the model and its own state: the C-9's
   // parts balance without it, and a scene made of sliding groups alone would be split group by
-  // group, changing its sums' order (the chaotic stress ring of 28 lines moved its energy drift
-  // from 0.019 to 0.026 of its kinetic energy on that round-off alone).
+  // group for no measured gain.
   // Sliders with friction: the converged split at x is found (docs/friction.md) and committed.
   bool hasHistory() const override { return true; }
   void commit(const CommitPoint& c) override;
