@@ -85,12 +85,12 @@ void MembraneTerm::makeExplicitTriangles() {
     }
 }
 
-// The explicit step's triangles, four at a time (kernels/MembraneTriangleBatch.hpp). Their
-// wrinkling states are not written to states_: elementStates() makes them, with the principal
-// values, from the assembly's positions when output asks (writing a state per triangle touched a
-// cache line of states_ each, 2 % of the generated 12k C-9's step, perf). Their
-// forces (each lane membraneTriangleForce's bits), their weights
-// added and scattered in the triangles' order; what assembleInternalForce<3> gives (M3, M4).
+// The explicit step's triangles, four at a time (kernels/MembraneTriangleBatch.hpp): their forces
+// (each lane membraneTriangleForce's bits) with their weights, scattered in the triangles' order;
+// what assembleInternalForce<3> gives (M3, M4). Their wrinkling states are not written to
+// states_: elementStates() makes them, with the principal values, from the assembly's positions
+// when output asks (writing a state per triangle touched a cache line of states_ each, 2 % of the
+// generated 12k C-9's step, perf).
 void MembraneTerm::assembleExplicitTriangles(const EvalPoint& p, SystemAssembler& out) {
   constexpr int kLanes = kernels::kTriangleLanes;
   const double* x = p.x.data();
