@@ -259,7 +259,7 @@ fewer steps.
 
 The explicit step's membrane triangles go through `kernels/MembraneTriangleBatch` four at a time:
 the operations of `membraneTriangleForce` in its order, each on four triangles side by side (GCC's
-vector extension, `kernels/Lanes.hpp`), so that each lane gives that function's bits; the test
+vector extension), so that each lane gives that function's bits; the test
 `MembraneKernel.FourTrianglesAtATimeAreTheExplicitTriangleBitForBit` compares 216,000 numbers over
 taut, wrinkled and slack lanes with wrinkling on and off, on each copy the processor can run.
 The kernel is built twice, for the baseline instruction set and for AVX2

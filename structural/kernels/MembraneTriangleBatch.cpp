@@ -1,6 +1,11 @@
 #include "kernels/MembraneTriangleBatch.hpp"
 
-#include "kernels/Lanes.hpp"
+#include <cstring>
+
+// GCC warns that a 32-byte vector returned without AVX changes the calling convention; in this
+// file such vectors live only inside the inlined body and its helpers, never across a call (the
+// helpers take them by reference: by value GCC notes the parameters' convention).
+#pragma GCC diagnostic ignored "-Wpsabi"
 
 namespace chute::kernels {
 
@@ -16,17 +21,31 @@ void setLane(MembraneTriangleLanes& lanes, int lane, const MembraneTriangleRecor
 }
 
 namespace {
-using lanes::all;
-using lanes::kLanes;
-using lanes::load;
-using lanes::M;
-using lanes::store;
-using lanes::V;
+// GCC's vector extension: four doubles, and four 64-bit masks (all bits set: true). On the
+// baseline instruction set each operation is made of two SSE2 ones, on AVX2 of one.
+using V = double __attribute__((vector_size(8 * kTriangleLanes)));
+using M = std::int64_t __attribute__((vector_size(8 * kTriangleLanes)));
 
+[[gnu::always_inline]] inline V load(const double* p) {
+  V v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
 [[gnu::always_inline]] inline M loadMask(const std::int64_t* p) {
   M v;
   std::memcpy(&v, p, sizeof v);
   return v;
+}
+[[gnu::always_inline]] inline void store(double* p, const V& v) {
+  std::memcpy(p, &v, sizeof v);
+}
+[[gnu::always_inline]] inline V all(double s) {
+  return V{s, s, s, s};
+}
+[[gnu::always_inline]] inline V sqrt(const V& a) {
+  V r;
+  for (int l = 0; l < kTriangleLanes; ++l) r[l] = __builtin_sqrt(a[l]);
+  return r;
 }
 
 // membraneTriangleForce (MembraneTriangleForce.hpp) lane by lane: the same operations in the
@@ -56,7 +75,7 @@ using lanes::V;
   const V a = e0, d = e1;
   const V w = half * e2, u = half * (a - d);
   const V q = u * u + w * w;
-  const V R = lanes::sqrt(q);
+  const V R = sqrt(q);
   const V l1 = half * (a + d) + R;
   const V l2 = half * (a + d) - R;
   const V nu = load(t.nu);
@@ -81,9 +100,10 @@ using lanes::V;
   }
   for (int i = 0; i < 3; ++i)
     for (int r = 0; r < 3; ++r) store(fs.v[i][r], P[r][0] * dN[i][0] + P[r][1] * dN[i][1]);
-  for (int l = 0; l < kTriangleLanes; ++l)
-    state[l] =
-        taut[l] ? WrinkleState::Taut : (slack[l] ? WrinkleState::Slack : WrinkleState::Wrinkled);
+  if (state)
+    for (int l = 0; l < kTriangleLanes; ++l)
+      state[l] =
+          taut[l] ? WrinkleState::Taut : (slack[l] ? WrinkleState::Slack : WrinkleState::Wrinkled);
 }
 
 using Forces = void (*)(const double*, const MembraneTriangleLanes&, TriangleLaneVectors&,

@@ -33,12 +33,12 @@ struct alignas(32) TriangleLaneVectors {
 };
 
 // f: each lane's nodal forces at the positions x (node by node, xyz), as membraneTriangleForce
-// gives them; state: each lane's wrinkling state. The copy useAvx2() picks. The explicit step
-// calls it only with AVX2 (MembraneTerm): the baseline copy, two SSE2 operations for each of
-// these, is slower than the triangles one at a time, and stays as the lanes' definition the
-// tests check on any processor. The
-// positions are read straight into the lanes: staged through memory by single stores, each
-// four-lane load waited for the stores to drain (13 % of the copy's time, perf).
+// gives them; state (unless nullptr): each lane's wrinkling state. The copy useAvx2() picks. The
+// explicit step calls it only with AVX2 (MembraneTerm): the baseline copy, two SSE2 operations
+// for each of these, is slower than the triangles one at a time, and stays as the lanes'
+// definition the tests check on any processor. The positions are read straight into the lanes:
+// staged through memory by single stores, each four-lane load waited for the stores to drain
+// (13 % of the copy's time, perf).
 void membraneTriangleForces(const double* x, const MembraneTriangleLanes& t, TriangleLaneVectors& f,
                             WrinkleState* state);
 // The two copies themselves (tests); the AVX2 one only where avx2Available() (SimdCopies.hpp).

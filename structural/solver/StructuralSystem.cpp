@@ -41,11 +41,11 @@ StructuralSystem::StructuralSystem(const Model& model, TermOptions options,
 
 // Terms that read only the model and state no assembly writes (Term::assemblesApart) may be
 // assembled on the second thread; the others stay on the first. Costs are the terms' own
-// estimates (Term::assemblyCost, per element relative to a membrane triangle). Largest first,
-// each to the lighter part, a tie to the second; the order of terms within a part is the term
-// list's. The explicit step's own work
-// between assemblies also runs on the first thread; giving that thread less assembly to make up
-// for it was measured slower on the C-9 (the second thread then waits).
+// estimates (Term::assemblyCost, per element relative to an explicit membrane triangle). Largest
+// first, each to the lighter part, a tie to the second; the order of terms within a part is the
+// term list's. The explicit step's own work between assemblies also runs on the first thread;
+// giving that thread less assembly to make up for it was measured slower on the C-9 (the second
+// thread then waits).
 void StructuralSystem::splitAssembly() {
   std::vector<std::pair<double, Term*>> movable;
   double first = 0.0;

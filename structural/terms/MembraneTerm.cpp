@@ -113,8 +113,7 @@ void MembraneTerm::assembleExplicitTriangles(const EvalPoint& p, SystemAssembler
     const size_t first = b * kLanes;
     const int lanes = static_cast<int>(std::min<size_t>(kLanes, count - first));
     kernels::TriangleLaneVectors fs;
-    kernels::WrinkleState states[kLanes];
-    kernels::membraneTriangleForces(x, triangleLanes_[b], fs, states);
+    kernels::membraneTriangleForces(x, triangleLanes_[b], fs, nullptr);  // states: see above
     for (int l = 0; l < lanes; ++l) {
       const ExplicitTriangle& t = explicitTriangles_[first + l];
       Eigen::Matrix<double, 9, 1> r;
