@@ -120,6 +120,11 @@ class SystemAssembler {
   // While set, every residual is also summed over all dofs, constrained ones included (for
   // reactions and applied loads in the output); nullptr switches it off.
   void captureAllDofs(Eigen::VectorXd* full) { full_ = full; }
+  // While set (an explicit step whose loads the energy balance keeps, StructuralSystem::
+  // captureStepLoads), a term that adds loads inside its own residual (the membranes' fused face
+  // loads, FaceLoadFusion.hpp) also sums those loads here over all dofs.
+  void captureFusedLoads(Eigen::VectorXd* loads) { fusedLoads_ = loads; }
+  Eigen::VectorXd* fusedLoads() const { return fusedLoads_; }
 
   const Eigen::VectorXd& residual() const { return residual_; }
   const SparseMatrix& matrix() const { return matrix_; }  // empty before the first begin(true)
@@ -139,6 +144,7 @@ class SystemAssembler {
   Eigen::VectorXd residual_;
   bool wantMatrix_ = true;
   Eigen::VectorXd* full_ = nullptr;
+  Eigen::VectorXd* fusedLoads_ = nullptr;
   WorkCounters work_;
 };
 

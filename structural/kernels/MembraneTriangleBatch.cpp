@@ -47,11 +47,53 @@ using M = std::int64_t __attribute__((vector_size(8 * kTriangleLanes)));
   for (int l = 0; l < kTriangleLanes; ++l) r[l] = __builtin_sqrt(a[l]);
   return r;
 }
+[[gnu::always_inline]] inline V abs(const V& a) {
+  V r;
+  for (int l = 0; l < kTriangleLanes; ++l) r[l] = __builtin_fabs(a[l]);
+  return r;
+}
+
+// triangleFaceLoad (TriangleFaceLoads.hpp) lane by lane, the same operations in the same order,
+// from the lanes' edges x1 - x0, x2 - x0 already formed and the velocities at v.
+[[gnu::always_inline]] inline void faceLoads(const V (&e1)[3], const V (&e2)[3], const double* v,
+                                             const MembraneTriangleLanes& t,
+                                             const TriangleFaceLoadLanes& q, V (&f)[3]) {
+  const double* pv[3][kTriangleLanes];
+  for (int i = 0; i < 3; ++i)
+    for (int l = 0; l < kTriangleLanes; ++l) pv[i][l] = v + 3 * t.nodes[l][i];
+  V vf[3];
+  for (int c = 0; c < 3; ++c) {
+    const V v0 = {pv[0][0][c], pv[0][1][c], pv[0][2][c], pv[0][3][c]};
+    const V v1 = {pv[1][0][c], pv[1][1][c], pv[1][2][c], pv[1][3][c]};
+    const V v2 = {pv[2][0][c], pv[2][1][c], pv[2][2][c], pv[2][3][c]};
+    vf[c] = (v0 + v1) + v2;
+  }
+  const V half = all(0.5), zero = all(0.0), third = all(1.0 / 3.0);
+  const V A[3] = {half * (e1[1] * e2[2] - e1[2] * e2[1]), half * (e1[2] * e2[0] - e1[0] * e2[2]),
+                  half * (e1[0] * e2[1] - e1[1] * e2[0])};
+  const V aa = (A[0] * A[0] + A[1] * A[1]) + A[2] * A[2];
+  V rel[3], w[3];
+  for (int c = 0; c < 3; ++c) {
+    w[c] = load(q.wind[c]);
+    rel[c] = vf[c] * third - w[c];
+  }
+  const V ua = (rel[0] * A[0] + rel[1] * A[1]) + rel[2] * A[2];
+  const V u0a = -((w[0] * A[0] + w[1] * A[1]) + w[2] * A[2]);
+  const V num = abs(ua) * ua - load(q.steady) * (abs(u0a) * u0a);
+  const M positive = aa > zero;
+  const V g = positive ? num / (positive ? aa : all(1.0)) : zero;
+  const V k = (load(q.drag) * g - load(q.pressure)) * third;
+  for (int c = 0; c < 3; ++c) f[c] = k * A[c];
+}
 
 // membraneTriangleForce (MembraneTriangleForce.hpp) lane by lane: the same operations in the
 // same order, the wrinkling state selected by masks as its select() does by bits.
+// With face loads (v and q given): fs gets each lane's face load added, loads the load alone.
 [[gnu::always_inline]] inline void forces(const double* x, const MembraneTriangleLanes& t,
-                                          TriangleLaneVectors& fs, WrinkleState* state) {
+                                          TriangleLaneVectors& fs, WrinkleState* state,
+                                          const double* v = nullptr,
+                                          const TriangleFaceLoadLanes* faceLoad = nullptr,
+                                          double (*loads)[kTriangleLanes] = nullptr) {
   const double* at[3][kTriangleLanes];
   for (int i = 0; i < 3; ++i)
     for (int l = 0; l < kTriangleLanes; ++l) at[i][l] = x + 3 * t.nodes[l][i];
@@ -59,12 +101,15 @@ using M = std::int64_t __attribute__((vector_size(8 * kTriangleLanes)));
   for (int i = 0; i < 3; ++i)
     for (int c = 0; c < 2; ++c) dN[i][c] = load(t.dN[i][c]);
   // M1: F = sum_i x_i dN_i^T and C = F^T F.
-  V F[3][2];
+  // With them the edges x1 - x0 and x2 - x0 for the face loads (dropped without).
+  V F[3][2], edge1[3], edge2[3];
   for (int r = 0; r < 3; ++r) {
     const V x0 = {at[0][0][r], at[0][1][r], at[0][2][r], at[0][3][r]};
     const V x1 = {at[1][0][r], at[1][1][r], at[1][2][r], at[1][3][r]};
     const V x2 = {at[2][0][r], at[2][1][r], at[2][2][r], at[2][3][r]};
     for (int c = 0; c < 2; ++c) F[r][c] = (x0 * dN[0][c] + x1 * dN[1][c]) + x2 * dN[2][c];
+    edge1[r] = x1 - x0;
+    edge2[r] = x2 - x0;
   }
   const V c00 = (F[0][0] * F[0][0] + F[1][0] * F[1][0]) + F[2][0] * F[2][0];
   const V c11 = (F[0][1] * F[0][1] + F[1][1] * F[1][1]) + F[2][1] * F[2][1];
@@ -98,8 +143,18 @@ using M = std::int64_t __attribute__((vector_size(8 * kTriangleLanes)));
     P[r][0] = wf0 * s0 + wf1 * s2;
     P[r][1] = wf0 * s2 + wf1 * s1;
   }
-  for (int i = 0; i < 3; ++i)
-    for (int r = 0; r < 3; ++r) store(fs.v[i][r], P[r][0] * dN[i][0] + P[r][1] * dN[i][1]);
+  if (faceLoad) {
+    // P2 added to each node's force, as the triangles one at a time add it.
+    V f[3];
+    faceLoads(edge1, edge2, v, t, *faceLoad, f);
+    for (int i = 0; i < 3; ++i)
+      for (int r = 0; r < 3; ++r)
+        store(fs.v[i][r], (P[r][0] * dN[i][0] + P[r][1] * dN[i][1]) + f[r]);
+    for (int r = 0; r < 3; ++r) store(loads[r], f[r]);
+  } else {
+    for (int i = 0; i < 3; ++i)
+      for (int r = 0; r < 3; ++r) store(fs.v[i][r], P[r][0] * dN[i][0] + P[r][1] * dN[i][1]);
+  }
   if (state)
     for (int l = 0; l < kTriangleLanes; ++l)
       state[l] =
@@ -108,6 +163,9 @@ using M = std::int64_t __attribute__((vector_size(8 * kTriangleLanes)));
 
 using Forces = void (*)(const double*, const MembraneTriangleLanes&, TriangleLaneVectors&,
                         WrinkleState*);
+using ForcesAndLoads = void (*)(const double*, const double*, const MembraneTriangleLanes&,
+                                const TriangleFaceLoadLanes&, TriangleLaneVectors&,
+                                double (&)[3][kTriangleLanes]);
 }  // namespace
 
 void membraneTriangleForcesBaseline(const double* x, const MembraneTriangleLanes& t,
@@ -127,6 +185,27 @@ void membraneTriangleForces(const double* x, const MembraneTriangleLanes& t, Tri
   static const Forces copy =
       useAvx2() ? &membraneTriangleForcesAvx2 : &membraneTriangleForcesBaseline;
   copy(x, t, f, state);
+}
+
+void membraneTriangleForcesAndLoadsBaseline(const double* x, const double* v,
+                                            const MembraneTriangleLanes& t,
+                                            const TriangleFaceLoadLanes& q, TriangleLaneVectors& f,
+                                            double (&loads)[3][kTriangleLanes]) {
+  forces(x, t, f, nullptr, v, &q, loads);
+}
+
+[[gnu::target("avx2")]] void membraneTriangleForcesAndLoadsAvx2(
+    const double* x, const double* v, const MembraneTriangleLanes& t,
+    const TriangleFaceLoadLanes& q, TriangleLaneVectors& f, double (&loads)[3][kTriangleLanes]) {
+  forces(x, t, f, nullptr, v, &q, loads);
+}
+
+void membraneTriangleForcesAndLoads(const double* x, const double* v,
+                                    const MembraneTriangleLanes& t, const TriangleFaceLoadLanes& q,
+                                    TriangleLaneVectors& f, double (&loads)[3][kTriangleLanes]) {
+  static const ForcesAndLoads copy =
+      useAvx2() ? &membraneTriangleForcesAndLoadsAvx2 : &membraneTriangleForcesAndLoadsBaseline;
+  copy(x, v, t, q, f, loads);
 }
 
 }  // namespace chute::kernels

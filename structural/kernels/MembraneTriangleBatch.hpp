@@ -9,6 +9,7 @@
 
 #include "kernels/MembraneTriangleForce.hpp"
 #include "kernels/SimdCopies.hpp"
+#include "kernels/TriangleFaceLoads.hpp"
 
 namespace chute::kernels {
 
@@ -46,5 +47,27 @@ void membraneTriangleForcesBaseline(const double* x, const MembraneTriangleLanes
                                     TriangleLaneVectors& f, WrinkleState* state);
 void membraneTriangleForcesAvx2(const double* x, const MembraneTriangleLanes& t,
                                 TriangleLaneVectors& f, WrinkleState* state);
+
+// Four triangles' face loads (TriangleFaceLoadParameters, P2), lane by lane.
+struct alignas(32) TriangleFaceLoadLanes {
+  double pressure[kTriangleLanes], drag[kTriangleLanes];
+  double wind[3][kTriangleLanes];
+  double steady[kTriangleLanes];
+};
+
+// membraneTriangleForces with the face loads of P2 at the velocities v in the same pass (the
+// positions gathered once): f, each lane's nodal forces plus its face load, membraneTriangleForce
+// then triangleFaceLoad added (their bits); loads[xyz][lane], the face load alone.
+void membraneTriangleForcesAndLoads(const double* x, const double* v,
+                                    const MembraneTriangleLanes& t, const TriangleFaceLoadLanes& q,
+                                    TriangleLaneVectors& f, double (&loads)[3][kTriangleLanes]);
+void membraneTriangleForcesAndLoadsBaseline(const double* x, const double* v,
+                                            const MembraneTriangleLanes& t,
+                                            const TriangleFaceLoadLanes& q, TriangleLaneVectors& f,
+                                            double (&loads)[3][kTriangleLanes]);
+void membraneTriangleForcesAndLoadsAvx2(const double* x, const double* v,
+                                        const MembraneTriangleLanes& t,
+                                        const TriangleFaceLoadLanes& q, TriangleLaneVectors& f,
+                                        double (&loads)[3][kTriangleLanes]);
 
 }  // namespace chute::kernels

@@ -151,12 +151,14 @@ void StructuralSystem::assemble(const EvalPoint& at, bool wantMatrix,
   capturedLoadsT_ = std::numeric_limits<double>::quiet_NaN();
   auto assemblePart = [&](const auto& part, SystemAssembler& out, Eigen::VectorXd& loads) {
     if (capture) loads.setZero(3 * model_->numNodes());
+    out.captureFusedLoads(capture ? &loads : nullptr);
     for (const auto& t : part) {
       const bool loadTerm = capture && t->doesExternalWork();
       if (loadTerm) out.captureAllDofs(&loads);
       t->assemble(p, out);
       if (loadTerm) out.captureAllDofs(nullptr);
     }
+    out.captureFusedLoads(nullptr);
   };
   auto keepLoads = [&] {
     if (!capture) return;

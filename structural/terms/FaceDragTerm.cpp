@@ -33,20 +33,26 @@ void addNodeResiduals(const MembraneElement& e, const FaceDragLoadDef& load, dou
 }
 }  // namespace
 
-// Per face, 0.72 of an explicit membrane triangle (Term::assemblyCost).
+// Per face, 0.72 of an explicit membrane triangle (Term::assemblyCost); none for the faces the
+// membrane term takes (P2).
 double FaceDragTerm::assemblyCost() const {
-  double cost = 0.0;
-  for (const auto& l : m_->faceDrags) cost += 0.72 * m_->membranesInSet(l.set);
-  return cost;
+  double faces = 0.0;
+  for (const auto& l : m_->faceDrags)
+    for (size_t k = 0; k < m_->membranes.size(); ++k)
+      faces += m_->membranes[k].set == l.set && !(taken_ && (*taken_)[k]);
+  return 0.72 * faces;
 }
 
 void FaceDragTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
   if (!p.inertia) return;  // drag needs motion: nothing in statics
   const bool wantJ = out.wantMatrix();
+  const std::vector<char>* taken = taken_ && fusedFaceLoads(p, out) ? taken_.get() : nullptr;
   for (const auto& load : m_->faceDrags) {
     const double coef = load.coefficient * p.loadFactor;  // an applied load, like the others
-    for (const auto& e : m_->membranes) {
+    for (size_t k = 0; k < m_->membranes.size(); ++k) {
+      const auto& e = m_->membranes[k];
       if (e.set != load.set) continue;
+      if (taken && (*taken)[k]) continue;  // in the membranes' pass (P2)
       ++out.work().faceDrag;
       if (!wantJ) {
         if (e.numNodes == 3)

@@ -6,6 +6,7 @@
 
 #include "assembly/Term.hpp"
 #include "model/Model.hpp"
+#include "terms/FaceLoadFusion.hpp"
 
 namespace chute {
 
@@ -21,9 +22,12 @@ class FaceDragTerm final : public Term {
   bool symmetricJacobian() const override { return false; }
   double assemblyCost() const override;
   bool assemblesApart() const override { return true; }
+  // The faces whose drag the membrane term adds on the explicit step (P2): left out then.
+  void leaveFaces(TakenFaces taken) { taken_ = std::move(taken); }
 
  private:
   const Model* m_;
+  TakenFaces taken_;
 };
 
 }  // namespace chute

@@ -9,6 +9,13 @@
 
 namespace chute {
 
+namespace {
+// A load taken (P2), in explicit triangles: on the C-9 slider case the membranes' pass took 29.6
+// ns per triangle with a pressure and a face drag, 20.4 without (timed per term), 0.23 of a
+// triangle per load.
+constexpr double kTakenFaceCost = 0.23;
+}  // namespace
+
 using kernels::Vec3;
 using membrane_assembly::expand;
 using membrane_assembly::gatherNodes;
@@ -94,16 +101,46 @@ void MembraneTerm::makeExplicitTriangles() {
 void MembraneTerm::assembleExplicitTriangles(const EvalPoint& p, SystemAssembler& out) {
   constexpr int kLanes = kernels::kTriangleLanes;
   const double* x = p.x.data();
+  const double* v = p.v.data();
   const bool weighed = !massShare_.empty();
   const size_t count = explicitTriangles_.size();
+  // P2: the face loads taken, at this evaluation's time and load factor (PressureTerm's and
+  // FaceDragTerm's products); also kept over all dofs where the energy balance asks.
+  const bool loads = !taken_.empty() && fusedFaceLoads(p, out);
+  Eigen::VectorXd* captured = loads ? out.fusedLoads() : nullptr;
+  if (loads) {
+    // Counted as PressureTerm counts (not while a pressure is zero) and FaceDragTerm does.
+    for (size_t i = 0; i < pressureNow_.size(); ++i) {
+      pressureNow_[i] = p.loadFactor * m_->pressures[i].at(p.t);
+      if (pressureNow_[i] != 0.0) out.work().pressure += takenPerPressure_[i];
+    }
+    for (size_t i = 0; i < dragNow_.size(); ++i)
+      dragNow_[i] = m_->faceDrags[i].coefficient * p.loadFactor;
+    out.work().faceDrag += takenDrags_;
+  }
+  auto capture = [&](const std::array<int, 3>& nodes, const double* f) {
+    for (int i = 0; i < 3; ++i)
+      for (int c = 0; c < 3; ++c) (*captured)[3 * nodes[i] + c] += f[c];
+  };
   if (!kernels::useAvx2()) {
     // Without AVX2 one at a time: the baseline copy of the four-lane kernel, two SSE2 operations
     // for each, was slower than this (chute's step on the generated C-9 113 ns per triangle
-    // against 100). The same bits (each lane is membraneTriangleForce's).
-    for (const ExplicitTriangle& t : explicitTriangles_) {
+    // against 100). The same bits (each lane is membraneTriangleForce's, and
+    // triangleFaceLoad's).
+    for (size_t k = 0; k < count; ++k) {
+      const ExplicitTriangle& t = explicitTriangles_[k];
       Eigen::Matrix<double, 9, 1> r;
       kernels::membraneTriangleForce(x + 3 * t.nodes[0], x + 3 * t.nodes[1], x + 3 * t.nodes[2],
                                      t.force, r.data());
+      if (loads) {
+        double f[3];
+        kernels::triangleFaceLoad(x + 3 * t.nodes[0], x + 3 * t.nodes[1], x + 3 * t.nodes[2],
+                                  v + 3 * t.nodes[0], v + 3 * t.nodes[1], v + 3 * t.nodes[2],
+                                  takenParameters(k), f);
+        for (int i = 0; i < 3; ++i)
+          for (int c = 0; c < 3; ++c) r[3 * i + c] += f[c];
+        if (captured) capture(t.nodes, f);
+      }
       if (weighed) addWeight<3>(t.share.data(), p.loadFactor, r);
       out.add<3>(t.nodes, r, nullptr);
     }
@@ -112,17 +149,95 @@ void MembraneTerm::assembleExplicitTriangles(const EvalPoint& p, SystemAssembler
   for (size_t b = 0; b < triangleLanes_.size(); ++b) {
     const size_t first = b * kLanes;
     const int lanes = static_cast<int>(std::min<size_t>(kLanes, count - first));
-    kernels::TriangleLaneVectors fs;
-    kernels::membraneTriangleForces(x, triangleLanes_[b], fs, nullptr);  // states: see above
+    kernels::TriangleLaneVectors fs;  // with the face loads added where taken
+    double f[3][kLanes];
+    if (loads) {
+      kernels::TriangleFaceLoadLanes& q = takenLanes_[b];
+      for (int l = 0; l < kLanes; ++l) {  // the missing lanes repeat the last triangle
+        const TakenLoad& tl = taken_[std::min(first + l, count - 1)];
+        q.pressure[l] = tl.pressure >= 0 ? pressureNow_[tl.pressure] * tl.pressureFactor : 0.0;
+        q.drag[l] = tl.drag >= 0 ? dragNow_[tl.drag] : 0.0;
+      }
+      kernels::membraneTriangleForcesAndLoads(x, v, triangleLanes_[b], q, fs, f);
+    } else {
+      kernels::membraneTriangleForces(x, triangleLanes_[b], fs, nullptr);  // states: see above
+    }
     for (int l = 0; l < lanes; ++l) {
       const ExplicitTriangle& t = explicitTriangles_[first + l];
       Eigen::Matrix<double, 9, 1> r;
       for (int i = 0; i < 3; ++i)
         for (int c = 0; c < 3; ++c) r[3 * i + c] = fs.v[i][c][l];
+      if (captured) {
+        const double fl[3] = {f[0][l], f[1][l], f[2][l]};
+        capture(t.nodes, fl);
+      }
       if (weighed) addWeight<3>(t.share.data(), p.loadFactor, r);
       out.add<3>(t.nodes, r, nullptr);
     }
   }
+}
+
+kernels::TriangleFaceLoadParameters MembraneTerm::takenParameters(size_t triangle) const {
+  const TakenLoad& tl = taken_[triangle];
+  kernels::TriangleFaceLoadParameters q;
+  if (tl.pressure >= 0) q.pressure = pressureNow_[tl.pressure] * tl.pressureFactor;
+  if (tl.drag >= 0) {
+    const FaceDragLoadDef& d = m_->faceDrags[tl.drag];
+    q.drag = dragNow_[tl.drag];
+    for (int c = 0; c < 3; ++c) q.wind[c] = d.wind[c];
+    q.steady = d.steadySubtracted ? 1.0 : 0.0;
+  }
+  return q;
+}
+
+TakenFaces MembraneTerm::takeFaceLoads() {
+  const Model& m = *m_;
+  if (m.massDamping != 0.0 || explicitTriangles_.empty()) return nullptr;
+  // Per set: its one pressure and one face drag, -2 where it has more than one.
+  std::vector<int> pressureOf(m.membraneSets.size(), -1), dragOf(m.membraneSets.size(), -1);
+  for (size_t i = 0; i < m.pressures.size(); ++i) {
+    int& slot = pressureOf[m.pressures[i].set];
+    slot = slot == -1 ? static_cast<int>(i) : -2;
+  }
+  for (size_t i = 0; i < m.faceDrags.size(); ++i) {
+    int& slot = dragOf[m.faceDrags[i].set];
+    slot = slot == -1 ? static_cast<int>(i) : -2;
+  }
+  auto taken = std::make_shared<std::vector<char>>(m.membranes.size(), 0);
+  std::vector<TakenLoad> loads(explicitTriangles_.size());
+  std::vector<int> inSet(m.membraneSets.size(), 0);  // the element's place in its set
+  long pressures = 0, drags = 0;
+  for (size_t k = 0; k < m.membranes.size(); ++k) {
+    const auto& e = m.membranes[k];
+    const int place = inSet[e.set]++;
+    const int pi = pressureOf[e.set], di = dragOf[e.set];
+    if (e.numNodes != 3 || pi == -2 || di == -2 || (pi < 0 && di < 0)) continue;
+    TakenLoad& tl = loads[slot_[k]];
+    tl.pressure = pi, tl.drag = di;
+    if (pi >= 0 && !m.pressures[pi].elementFactor.empty())
+      tl.pressureFactor = m.pressures[pi].elementFactor[place];
+    (*taken)[k] = 1;
+    pressures += pi >= 0, drags += di >= 0;
+  }
+  if (pressures + drags == 0) return nullptr;
+  taken_ = std::move(loads);
+  takenPressures_ = pressures, takenDrags_ = drags;
+  takenPerPressure_.assign(m.pressures.size(), 0);
+  for (const TakenLoad& tl : taken_)
+    if (tl.pressure >= 0) ++takenPerPressure_[tl.pressure];
+  pressureNow_.assign(m.pressures.size(), 0.0);
+  dragNow_.assign(m.faceDrags.size(), 0.0);
+  // The lanes' winds and steady parts (the missing lanes of the last batch: its last triangle's).
+  constexpr size_t kLanes = kernels::kTriangleLanes;
+  takenLanes_.assign(triangleLanes_.size(), kernels::TriangleFaceLoadLanes{});
+  for (size_t b = 0; b < takenLanes_.size(); ++b)
+    for (size_t l = 0; l < kLanes; ++l) {
+      const kernels::TriangleFaceLoadParameters q =
+          takenParameters(std::min(b * kLanes + l, taken_.size() - 1));
+      for (int c = 0; c < 3; ++c) takenLanes_[b].wind[c][l] = q.wind[c];
+      takenLanes_[b].steady[l] = q.steady;
+    }
+  return taken;
 }
 
 void MembraneTerm::makeBound() const {
@@ -153,12 +268,12 @@ void MembraneTerm::addStiffnessBound(const Eigen::VectorXd& x, double /*t*/,
   }
 }
 
-// A triangle is the unit; a quad, which the explicit step takes one at a time, costs 5
-// (Term::assemblyCost).
+// A triangle is the unit; a quad, which the explicit step takes one at a time, costs 5; a face
+// load taken (P2), a pressure or a drag, kTakenFaceCost (Term::assemblyCost).
 double MembraneTerm::assemblyCost() const {
   double tri = 0.0, quad = 0.0;
   for (const auto& e : m_->membranes) (e.numNodes == 3 ? tri : quad) += 1.0;
-  return tri + 5.0 * quad;
+  return tri + 5.0 * quad + kTakenFaceCost * static_cast<double>(takenPressures_ + takenDrags_);
 }
 
 void MembraneTerm::addCouplings(std::vector<std::vector<int>>& cliques) const {

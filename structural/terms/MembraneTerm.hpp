@@ -9,7 +9,9 @@
 #include "kernels/MembraneTriangleBatch.hpp"
 #include "kernels/MembraneTriangleForce.hpp"
 #include "kernels/StiffnessBound.hpp"
+#include "kernels/TriangleFaceLoads.hpp"
 #include "model/Model.hpp"
+#include "terms/FaceLoadFusion.hpp"
 
 namespace chute {
 
@@ -43,6 +45,12 @@ class MembraneTerm final : public Term {
                          std::vector<double>& S) const override;
   double assemblyCost() const override;
   bool assemblesApart() const override { return true; }
+  // P2: takes the pressure and face drag of the triangles whose set has at most one of each (and
+  // one at least), to add to their forces on the explicit step's evaluations (fusedFaceLoads());
+  // the pressure and face-drag terms are given the faces taken, to leave out then. None without
+  // such triangles, or with mass damping (the explicit step's triangles are then not taken apart
+  // from the element path).
+  TakenFaces takeFaceLoads();
   // Elements around a node, for stress probes.
   std::vector<int> elementsAt(int node) const;
 
@@ -68,6 +76,20 @@ class MembraneTerm final : public Term {
   // again. And the quads, which the explicit step takes after the triangles.
   std::vector<kernels::MembraneTriangleLanes> triangleLanes_;
   std::vector<int> quads_;
+  // P2: per explicit triangle, the pressure and face drag taken (index into the model's
+  // pressures and faceDrags, -1: none) and the pressure's factor for the element; empty: none
+  // taken. Per batch the lanes' winds and steady parts, set once; their pressures and drags per
+  // evaluation. The loads at the evaluation's time and load factor, per pressure and face drag.
+  struct TakenLoad {
+    int pressure = -1, drag = -1;
+    double pressureFactor = 1.0;
+  };
+  std::vector<TakenLoad> taken_;
+  std::vector<kernels::TriangleFaceLoadLanes> takenLanes_;
+  std::vector<double> pressureNow_, dragNow_;
+  long takenPressures_ = 0, takenDrags_ = 0;  // faces (the cost)
+  std::vector<long> takenPerPressure_;        // faces per pressure (the work counters)
+  kernels::TriangleFaceLoadParameters takenParameters(size_t triangle) const;
   void makeExplicitTriangles();
   void assembleExplicitTriangles(const EvalPoint& p, SystemAssembler& out);
   // Per element, each node's share of its mass, rho t0 int N_i dA: the weight, made once when the

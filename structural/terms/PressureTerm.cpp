@@ -33,23 +33,29 @@ void addTriangleResidual(const MembraneElement& e, double pressure, const EvalPo
 }
 }  // namespace
 
-// Per face, 0.42 of an explicit membrane triangle (Term::assemblyCost).
+// Per face, 0.42 of an explicit membrane triangle (Term::assemblyCost); none for the faces the
+// membrane term takes (P2).
 double PressureTerm::assemblyCost() const {
-  double cost = 0.0;
-  for (const auto& l : m_->pressures) cost += 0.42 * m_->membranesInSet(l.set);
-  return cost;
+  double faces = 0.0;
+  for (const auto& l : m_->pressures)
+    for (size_t k = 0; k < m_->membranes.size(); ++k)
+      faces += m_->membranes[k].set == l.set && !(taken_ && (*taken_)[k]);
+  return 0.42 * faces;
 }
 
 void PressureTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
   const bool wantJ = out.wantMatrix();
+  const std::vector<char>* taken = taken_ && fusedFaceLoads(p, out) ? taken_.get() : nullptr;
   for (const auto& load : m_->pressures) {
     const double p0 = p.loadFactor * load.at(p.t);
     if (p0 == 0.0) continue;
     int inSet = 0;
-    for (const auto& e : m_->membranes) {
+    for (size_t k = 0; k < m_->membranes.size(); ++k) {
+      const auto& e = m_->membranes[k];
       if (e.set != load.set) continue;
       const double pr = load.elementFactor.empty() ? p0 : p0 * load.elementFactor[inSet];
       ++inSet;
+      if (taken && (*taken)[k]) continue;  // in the membranes' pass (P2)
       ++out.work().pressure;
       if (!wantJ && e.numNodes == 3) {
         addTriangleResidual(e, pr, p, out);

@@ -30,13 +30,25 @@ TermList::TermList(const Model& model, TermOptions options,
     membranes_ = t.get();
     terms_.push_back(std::move(t));
   }
-  if (!model.pressures.empty()) terms_.push_back(std::make_unique<PressureTerm>(model));
+  // P2: the explicit step's pressure and face drag of the membranes' triangles in their pass.
+  const TakenFaces taken = membranes_ && (!model.pressures.empty() || !model.faceDrags.empty())
+                               ? membranes_->takeFaceLoads()
+                               : nullptr;
+  if (!model.pressures.empty()) {
+    auto t = std::make_unique<PressureTerm>(model);
+    t->leaveFaces(taken);
+    terms_.push_back(std::move(t));
+  }
   if (!model.drags.empty()) {
     std::vector<const SlidingGroupState*> states;
     for (auto* g : groups_) states.push_back(&g->state());
     terms_.push_back(std::make_unique<LineDragTerm>(model, states));
   }
-  if (!model.faceDrags.empty()) terms_.push_back(std::make_unique<FaceDragTerm>(model));
+  if (!model.faceDrags.empty()) {
+    auto t = std::make_unique<FaceDragTerm>(model);
+    t->leaveFaces(taken);
+    terms_.push_back(std::move(t));
+  }
   for (size_t f = 0; f < model.canopyFlows.size(); ++f) {
     auto t = std::make_unique<CanopyFlowTerm>(model, static_cast<int>(f));
     canopyFlows_.push_back(t.get());
