@@ -35,7 +35,8 @@ class EventSource {
   virtual bool drivesKinks() const { return false; }
   virtual int crossDriven(const Eigen::VectorXd& /*from*/, Eigen::VectorXd& /*to*/) { return 0; }
   // Explicit steps, which have no iterations that would land a kink on a step's end (EX3): the
-  // step moved the positions from x by `motion` to xEnd (xEnd = x + motion up to round-off).
+  // step moved the positions from x by `motion` to xEnd (xEnd = x + motion up to round-off;
+  // `motion` is given at the nodes of the watchers' couplings, zero elsewhere).
   // A source notes the kinks passed, for the next updateState, and may move xEnd by a negligible
   // amount onto a kink reached. Only sources that say they watch the motion are asked.
   virtual bool watchesExplicitMotion() const { return false; }

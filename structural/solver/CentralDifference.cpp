@@ -66,8 +66,10 @@ CentralDifference::CentralDifference(StructuralSystem& sys, ExplicitSettings set
     for (const auto& c : cliques)
       for (int n : c) touched[n] = 1;
     for (int n = 0; n < static_cast<int>(touched.size()); ++n)
-      for (int k = 0; k < 3; ++k)
+      for (int k = 0; k < 3; ++k) {
         if (const int e = sys.dofs().eq(n, k); touched[n] && e >= 0) movingMassEqs_.push_back(e);
+        if (touched[n]) movingMassDofs_.push_back(3 * n + k);
+      }
   }
   const Model& m = sys.model();
   freeNode_.assign(m.numNodes(), 0);
@@ -86,7 +88,7 @@ CentralDifference::CentralDifference(StructuralSystem& sys, ExplicitSettings set
       // The nodes whose own step is below the quantile's get the mass that lifts it there.
       settings_.targetStep = settings_.safety * quantile(nodalSteps, settings_.massScalingQuantile);
     if (settings_.targetStep > 0.0) scaleMass(S, mass);
-    cachedX_.resize(0);  // the mass evaluated above is without the added mass
+    cacheValid_ = false;  // the mass evaluated above is without the added mass
   }
   record_.targetStep = settings_.targetStep;
   if (sys.numEquations() > 0) lumpedMass(x0_, 0.0);  // refuses massless nodes at the start
@@ -164,7 +166,7 @@ const Eigen::VectorXd& CentralDifference::lumpedMass(const Eigen::VectorXd& x, d
     // its restart; only a cut changes it.
     fixedMass_ = massOf(fixedMassTerms_, x0_, t);
     fixedMassCuts_ = cuts;
-    cachedX_.resize(0);
+    cacheValid_ = false;
     massBaseStale_ = true;
   }
   if (massBaseStale_) {
@@ -181,7 +183,12 @@ const Eigen::VectorXd& CentralDifference::lumpedMass(const Eigen::VectorXd& x, d
   }
   // A sliding element's lumped mass follows the slider's split (F10): evaluated at x (the
   // step's end positions are the next step's start: evaluated once for both).
-  if (!(cachedT_ == t && cachedX_.size() == x.size() && cachedX_ == x)) {
+  auto samePositions = [&] {
+    for (size_t k = 0; k < movingMassDofs_.size(); ++k)
+      if (!(cachedX_[static_cast<long>(k)] == x[movingMassDofs_[k]])) return false;
+    return true;
+  };
+  if (!(cacheValid_ && cachedT_ == t && samePositions())) {
     if (!movingMassTerms_.empty()) {
       // M(x) 1 directly: the terms whose mass moves evaluate only their inertia when asked.
       if (zeroDofs_.size() != x.size()) zeroDofs_ = Eigen::VectorXd::Zero(x.size());
@@ -202,8 +209,11 @@ const Eigen::VectorXd& CentralDifference::lumpedMass(const Eigen::VectorXd& x, d
       }
       movingPositive_ = positive;
     }
-    cachedX_ = x;
+    cachedX_.resize(static_cast<long>(movingMassDofs_.size()));
+    for (size_t k = 0; k < movingMassDofs_.size(); ++k)
+      cachedX_[static_cast<long>(k)] = x[movingMassDofs_[k]];
     cachedT_ = t;
+    cacheValid_ = true;
     if (check && !(basePositive_ && movingPositive_)) refuseMassless(cachedMass_);
   }
   return cachedMass_;

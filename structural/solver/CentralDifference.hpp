@@ -116,9 +116,13 @@ class CentralDifference final : public TimeIntegrator {
   static double quantile(const std::vector<double>& sorted, double q);
   std::vector<char> freeNode_;
   StableStepRecord record_;
-  // The last lumped mass and where it was evaluated (the active elements are those at x).
+  // The last lumped mass and where it was evaluated (the active elements are those at x): the
+  // positions at movingMassDofs_, all the moving mass depends on (a copy of every position at
+  // every step was a pass over all dofs of the step's own work).
   Eigen::VectorXd cachedMass_, cachedX_;
   double cachedT_ = 0.0;
+  bool cacheValid_ = false;
+  std::vector<int> movingMassDofs_;  // every dof of the nodes the moving mass's terms couple
   // Kept from step to step rather than allocated at each: zero and unit vectors over all dofs
   // (the step's zero acceleration, the sliding mass's M(x) 1) and the state being built.
   Eigen::VectorXd zeroDofs_, onesDofs_;

@@ -15,15 +15,25 @@ StructuralSystem::StructuralSystem(const Model& model, TermOptions options,
       terms_(list_.terms()),
       assembler_(dofs_),
       secondAssembler_(dofs_) {
+  std::vector<char> watched(model.numNodes(), 0);
   for (const auto& t : terms_) {
     if (auto* e = t->events()) {
       events_.push_back(e);
-      watchesExplicitMotion_ = watchesExplicitMotion_ || e->watchesExplicitMotion();
+      if (e->watchesExplicitMotion()) {
+        watchesExplicitMotion_ = true;
+        std::vector<std::vector<int>> cliques;
+        t->addCouplings(cliques);
+        for (const auto& c : cliques)
+          for (int n : c) watched[n] = 1;
+      }
     }
     if (t->dynamicCouplings()) dynamicCouplings_.push_back(t.get());
     boundOfPositions_ = boundOfPositions_ && t->stiffnessBoundOfPositions();
   }
 
+  for (int n = 0; n < model.numNodes(); ++n)
+    if (watched[n])
+      for (int k = 0; k < 3; ++k) watchedDofs_.push_back(3 * n + k);
   for (const auto& t : terms_) searches_ = searches_ || t->searchesPerUpdate() > 0;
   for (int d = 0; d < dofs_.numDofs(); ++d)
     if (dofs_.eqOfDof(d) < 0) constrainedDofs_.push_back(d);
@@ -109,9 +119,12 @@ double StructuralSystem::frequencySquaredBound(const Eigen::VectorXd& x, double 
 
 void StructuralSystem::afterExplicitMotion(const Eigen::VectorXd& x, Eigen::VectorXd& xEnd) {
   if (!watchesExplicitMotion_) return;
-  const Eigen::VectorXd motion = xEnd - x;
+  // The motion at the watchers' nodes only (zero elsewhere): a pass over every dof at every step
+  // for the few nodes they read.
+  if (motion_.size() != xEnd.size()) motion_.setZero(xEnd.size());
+  for (int d : watchedDofs_) motion_[d] = xEnd[d] - x[d];
   for (auto* e : events_)
-    if (e->watchesExplicitMotion()) e->afterExplicitMotion(x, motion, xEnd);
+    if (e->watchesExplicitMotion()) e->afterExplicitMotion(x, motion_, xEnd);
 }
 
 int StructuralSystem::updateState(const Eigen::VectorXd& x) {

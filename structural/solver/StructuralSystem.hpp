@@ -156,6 +156,8 @@ class StructuralSystem {
   const std::vector<std::unique_ptr<Term>>& terms_;  // list_'s
   std::vector<EventSource*> events_;
   bool watchesExplicitMotion_ = false;
+  std::vector<int> watchedDofs_;  // the dofs of the watchers' nodes (their couplings')
+  Eigen::VectorXd motion_;        // afterExplicitMotion's, at watchedDofs_
   bool boundOfPositions_ = true;
   // captureStepLoads: the loads' residual of each part (the first's then their sum) and the time
   // of that sum (NaN: none).
