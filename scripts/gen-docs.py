@@ -72,6 +72,8 @@ MD_PAGES = [
     ("energy_momentum_c9.md", "The C-9 slider case with the energy-momentum integrator"),
     ("lean_canopy_step.md", "The lean loop and chute's step: the table (`bench/speed/run.py`)"),
     ("explicit_step_before_after.md", "The explicit step before and after, one sitting"),
+    ("face_loads_in_membrane_pass.md",
+     "Face loads in the membranes' pass, and two threads in the caches, one sitting"),
     ("c9_slider_roundoff_band.md", "The C-9 slider case: what round-off alone moves (`bench/speed/roundoff_band.py`)"),
 ]
 
@@ -165,7 +167,8 @@ Assembly runs in two parts at once (`StructuralSystem::splitAssembly`,
 sliding groups' active elements, set between assemblies) and a coupled flow's surface loads may
 go to a second thread; sliding groups and point masses stay on the first. The split is made once
 per scene from costs per element measured on the C-9 slider case (one thread, residual only, in
-units of the explicit membrane triangle: pressure face 0.42, face-drag face 0.72, line element 0.7,
+units of the explicit membrane triangle: pressure face 0.42, face-drag face 0.72 (a load the
+membranes' pass takes, P2: 0.23 added to the membranes), line element 0.7,
 line-drag segment 0.7, sliding element 0.9 and 8 more per slider, quad 5; the airflow's face 1.3,
 measured on the generated C-9 in free flight; largest first, each to the lighter part, a tie to
 the second), never from timings, the thread count or the instruction set. Over 0.5 s of the C-9
@@ -270,6 +273,22 @@ of the kernel's, was slower than that (chute's step 113 ns per triangle against 
 positions are read straight into the lanes: staged through memory by single stores, each
 four-lane load waited for those stores. On the C-9 slider case the membranes went from 0.34 s to
 0.19 s of 0.5 s simulated (one thread), on the generated 12k C-9 from 28 to 21 % of the step.
+
+## Face loads in the membranes' pass
+
+On an explicit step the pressure and face drag of a triangle are one vector per node,
+`((c g - p)/3) a` (docs/formulation.md P2): the same kernel adds it to the triangle's forces from
+the positions it has already gathered, with the velocities gathered beside them, and scatters both
+at once (`membraneTriangleForcesAndLoads`; `triangleFaceLoad` its one-at-a-time twin, each lane its
+bits). The membrane term takes the loads of every triangle whose set has at most one pressure and
+one face drag (`MembraneTerm::takeFaceLoads`); the pressure and face-drag terms then leave those
+faces out on the explicit step's evaluations only (`fusedFaceLoads`), and every other evaluation
+(the start, the energy balance's loads, output, implicit steps) has each term add its own. The
+loads the energy balance keeps are captured in the pass (`SystemAssembler::captureFusedLoads`).
+On the C-9 slider case the three terms' 0.858 s became 0.687 s of the step's 1 s (two threads);
+whole runs 0.87-0.91x on one thread and 0.946x on two: the second thread now reads the velocities
+too, and the first thread's update waits on the cache lines it shares
+(bench/results/face_loads_in_membrane_pass.md).
 """
 
 
