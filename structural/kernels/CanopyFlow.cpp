@@ -12,6 +12,7 @@ ClothPermeability ClothPermeability::fromTest(double uRef, double dpRef, double 
     throw std::invalid_argument("cloth permeability: the test point leaves no viscous part");
   c.inertial = inertial;
   c.viscous = (dpRef - inertial * uRef * uRef) / uRef;
+  c.perViscous = 1.0 / c.viscous;
   return c;
 }
 

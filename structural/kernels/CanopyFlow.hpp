@@ -21,20 +21,22 @@ namespace chute::kernels {
 struct ClothPermeability {
   double viscous = 0.0;   // Delta p per unit velocity (0 with inertial 0: impermeable)
   double inertial = 0.0;  // Delta p per unit velocity squared
+  double perViscous = 0.0;  // 1 / viscous: the linear law by a multiplication (every face, every
+                            // step: the division's latency was a fifth of the airflow's loads pass)
   // viscous from the test point once the inertial part is taken out: dpRef = a uRef + b uRef^2.
   static ClothPermeability fromTest(double uRef, double dpRef, double inertial);
   bool permeable() const { return viscous > 0.0 || inertial > 0.0; }
   // u for a pressure difference dp (inside minus outside), and du/d(dp). Inline: called for
   // every canopy face on every step.
   double velocity(double dp) const {
-    if (inertial == 0.0) return viscous > 0.0 ? dp / viscous : 0.0;
+    if (inertial == 0.0) return dp * perViscous;
     // b u^2 + a u = |dp| for u >= 0, odd in dp.
     const double u = 2.0 * std::abs(dp) /
                      (viscous + std::sqrt(viscous * viscous + 4.0 * inertial * std::abs(dp)));
     return dp < 0.0 ? -u : u;
   }
   double dVelocity(double dp) const {
-    if (inertial == 0.0) return viscous > 0.0 ? 1.0 / viscous : 0.0;
+    if (inertial == 0.0) return perViscous;
     return 1.0 / std::sqrt(viscous * viscous + 4.0 * inertial * std::abs(dp));
   }
 };
@@ -55,15 +57,17 @@ double dOrificeFlow(double dp, double area, double cd, double rho, double dpLine
 // attached): the base pressure fades to none there, Cb min(1, |c| / band). A face turned into
 // the flow (c < 0) also takes impact, rising to stagnation (1) head on: + (1 - Cb) c^2 (modified
 // Newtonian). Continuous; its slope jumps at c = 0 and at the band's edges.
+// Without branches (min, not a test: every face at every step, the faces' attitudes in no order
+// a predictor follows): the impact term (1 - Cb) min(c, 0)^2.
 inline constexpr double kAttachedFlowBand = 0.2;  // sin 11.5 deg
 inline double outsidePressureCoefficient(double c, double cb) {
-  const double base = cb * std::min(1.0, std::abs(c) / kAttachedFlowBand);
-  return c >= 0.0 ? base : base + (1.0 - cb) * c * c;
+  const double into = std::min(c, 0.0);
+  return cb * std::min(1.0, std::abs(c) * (1.0 / kAttachedFlowBand)) + (1.0 - cb) * into * into;
 }
 inline double dOutsidePressureCoefficient(double c, double cb) {
   const double dBase =
-      std::abs(c) < kAttachedFlowBand ? (c >= 0.0 ? cb : -cb) / kAttachedFlowBand : 0.0;
-  return c >= 0.0 ? dBase : dBase + 2.0 * (1.0 - cb) * c;
+      std::abs(c) < kAttachedFlowBand ? (c >= 0.0 ? cb : -cb) * (1.0 / kAttachedFlowBand) : 0.0;
+  return dBase + 2.0 * (1.0 - cb) * std::min(c, 0.0);
 }
 
 // FL8's resistance of the air to a face's own normal motion, as a pressure against it:

@@ -33,29 +33,44 @@ void addTriangleResidual(const MembraneElement& e, double pressure, const EvalPo
 }
 }  // namespace
 
+PressureTerm::PressureTerm(const Model& m) : m_(&m), faces_(m.pressures.size()) {
+  for (size_t li = 0; li < m.pressures.size(); ++li) {
+    int inSet = 0;
+    for (size_t k = 0; k < m.membranes.size(); ++k)
+      if (m.membranes[k].set == m.pressures[li].set)
+        faces_[li].push_back({static_cast<int>(k), inSet++});
+  }
+  left_ = faces_;
+}
+
+void PressureTerm::leaveFaces(TakenFaces taken) {
+  taken_ = std::move(taken);
+  for (size_t li = 0; li < faces_.size(); ++li) {
+    left_[li].clear();
+    for (const Face& f : faces_[li])
+      if (!(taken_ && (*taken_)[f.element])) left_[li].push_back(f);
+  }
+}
+
 // Per face, 0.42 of an explicit membrane triangle (Term::assemblyCost); none for the faces the
 // membrane term takes (P2).
 double PressureTerm::assemblyCost() const {
   double faces = 0.0;
-  for (const auto& l : m_->pressures)
-    for (size_t k = 0; k < m_->membranes.size(); ++k)
-      faces += m_->membranes[k].set == l.set && !(taken_ && (*taken_)[k]);
+  for (const auto& l : left_) faces += static_cast<double>(l.size());
   return 0.42 * faces;
 }
 
 void PressureTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
   const bool wantJ = out.wantMatrix();
-  const std::vector<char>* taken = taken_ && fusedFaceLoads(p, out) ? taken_.get() : nullptr;
-  for (const auto& load : m_->pressures) {
+  // The faces the membranes' pass takes are left out of the explicit step's evaluation (P2).
+  const auto& faces = taken_ && fusedFaceLoads(p, out) ? left_ : faces_;
+  for (size_t li = 0; li < faces.size(); ++li) {
+    const PressureLoadDef& load = m_->pressures[li];
     const double p0 = p.loadFactor * load.at(p.t);
     if (p0 == 0.0) continue;
-    int inSet = 0;
-    for (size_t k = 0; k < m_->membranes.size(); ++k) {
-      const auto& e = m_->membranes[k];
-      if (e.set != load.set) continue;
-      const double pr = load.elementFactor.empty() ? p0 : p0 * load.elementFactor[inSet];
-      ++inSet;
-      if (taken && (*taken)[k]) continue;  // in the membranes' pass (P2)
+    for (const Face& f : faces[li]) {
+      const auto& e = m_->membranes[f.element];
+      const double pr = load.elementFactor.empty() ? p0 : p0 * load.elementFactor[f.inSet];
       ++out.work().pressure;
       if (!wantJ && e.numNodes == 3) {
         addTriangleResidual(e, pr, p, out);

@@ -1,6 +1,8 @@
 #pragma once
 // Follower pressure on membrane sets (docs/formulation.md section 6), with its non-symmetric load
 // stiffness.
+#include <vector>
+
 #include "assembly/Term.hpp"
 #include "model/Model.hpp"
 #include "terms/FaceLoadFusion.hpp"
@@ -9,7 +11,7 @@ namespace chute {
 
 class PressureTerm final : public Term {
  public:
-  explicit PressureTerm(const Model& m) : m_(&m) {}
+  explicit PressureTerm(const Model& m);
   const char* name() const override { return "pressure"; }
   bool doesExternalWork() const override { return true; }
   void addCouplings(std::vector<std::vector<int>>& cliques) const override;
@@ -20,11 +22,17 @@ class PressureTerm final : public Term {
   double assemblyCost() const override;
   bool assemblesApart() const override { return true; }
   // The faces whose pressure the membrane term adds on the explicit step (P2): left out then.
-  void leaveFaces(TakenFaces taken) { taken_ = std::move(taken); }
+  void leaveFaces(TakenFaces taken);
 
  private:
   const Model* m_;
   TakenFaces taken_;
+  // Per load (the model's order): its set's elements and their places in the set, all of them
+  // and those not taken (the explicit step's).
+  struct Face {
+    int element, inSet;
+  };
+  std::vector<std::vector<Face>> faces_, left_;
 };
 
 }  // namespace chute
