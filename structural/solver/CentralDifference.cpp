@@ -70,6 +70,10 @@ CentralDifference::CentralDifference(StructuralSystem& sys, ExplicitSettings set
         if (const int e = sys.dofs().eq(n, k); touched[n] && e >= 0) movingMassEqs_.push_back(e);
         if (touched[n]) movingMassDofs_.push_back(3 * n + k);
       }
+    // Most of the dofs (a canopy's air, docs/flight.md FL11): the whole vector is the key, its
+    // copy a vectorised pass, cheaper than one through the list.
+    if (2 * movingMassDofs_.size() > static_cast<size_t>(sys.dofs().numDofs()))
+      movingMassDofs_.clear(), wholeKey_ = true;
   }
   const Model& m = sys.model();
   freeNode_.assign(m.numNodes(), 0);
@@ -184,6 +188,7 @@ const Eigen::VectorXd& CentralDifference::lumpedMass(const Eigen::VectorXd& x, d
   // A sliding element's lumped mass follows the slider's split (F10): evaluated at x (the
   // step's end positions are the next step's start: evaluated once for both).
   auto samePositions = [&] {
+    if (wholeKey_) return cachedX_.size() == x.size() && cachedX_ == x;
     for (size_t k = 0; k < movingMassDofs_.size(); ++k)
       if (!(cachedX_[static_cast<long>(k)] == x[movingMassDofs_[k]])) return false;
     return true;
@@ -209,9 +214,13 @@ const Eigen::VectorXd& CentralDifference::lumpedMass(const Eigen::VectorXd& x, d
       }
       movingPositive_ = positive;
     }
-    cachedX_.resize(static_cast<long>(movingMassDofs_.size()));
-    for (size_t k = 0; k < movingMassDofs_.size(); ++k)
-      cachedX_[static_cast<long>(k)] = x[movingMassDofs_[k]];
+    if (wholeKey_) {
+      cachedX_ = x;
+    } else {
+      cachedX_.resize(static_cast<long>(movingMassDofs_.size()));
+      for (size_t k = 0; k < movingMassDofs_.size(); ++k)
+        cachedX_[static_cast<long>(k)] = x[movingMassDofs_[k]];
+    }
     cachedT_ = t;
     cacheValid_ = true;
     if (check && !(basePositive_ && movingPositive_)) refuseMassless(cachedMass_);

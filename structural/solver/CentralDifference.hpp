@@ -123,6 +123,7 @@ class CentralDifference final : public TimeIntegrator {
   double cachedT_ = 0.0;
   bool cacheValid_ = false;
   std::vector<int> movingMassDofs_;  // every dof of the nodes the moving mass's terms couple
+  bool wholeKey_ = false;            // ... or, where those are most, every position
   // Kept from step to step rather than allocated at each: zero and unit vectors over all dofs
   // (the step's zero acceleration, the sliding mass's M(x) 1) and the state being built.
   Eigen::VectorXd zeroDofs_, onesDofs_;

@@ -146,35 +146,46 @@ void MembraneTerm::assembleExplicitTriangles(const EvalPoint& p, SystemAssembler
     }
     return;
   }
-  for (size_t b = 0; b < triangleLanes_.size(); ++b) {
-    const size_t first = b * kLanes;
-    const int lanes = static_cast<int>(std::min<size_t>(kLanes, count - first));
-    kernels::TriangleLaneVectors fs;  // with the face loads added where taken
-    double f[3][kLanes];
-    if (loads) {
-      kernels::TriangleFaceLoadLanes& q = takenLanes_[b];
-      for (int l = 0; l < kLanes; ++l) {  // the missing lanes repeat the last triangle
-        const TakenLoad& tl = taken_[std::min(first + l, count - 1)];
-        q.pressure[l] = tl.pressure >= 0 ? pressureNow_[tl.pressure] * tl.pressureFactor : 0.0;
-        q.drag[l] = tl.drag >= 0 ? dragNow_[tl.drag] : 0.0;
+  // The batches with and without the face loads in loops of their own: one loop testing for the
+  // loads at every triangle cost 11 % more instructions without any (callgrind, generated 12k C-9).
+  auto batches = [&](auto withLoads) {
+    constexpr bool kLoads = decltype(withLoads)::value;
+    for (size_t b = 0; b < triangleLanes_.size(); ++b) {
+      const size_t first = b * kLanes;
+      const int lanes = static_cast<int>(std::min<size_t>(kLanes, count - first));
+      kernels::TriangleLaneVectors fs;  // with the face loads added where taken
+      double f[3][kLanes];
+      if constexpr (kLoads) {
+        kernels::TriangleFaceLoadLanes& q = takenLanes_[b];
+        for (int l = 0; l < kLanes; ++l) {  // the missing lanes repeat the last triangle
+          const TakenLoad& tl = taken_[std::min(first + l, count - 1)];
+          q.pressure[l] = tl.pressure >= 0 ? pressureNow_[tl.pressure] * tl.pressureFactor : 0.0;
+          q.drag[l] = tl.drag >= 0 ? dragNow_[tl.drag] : 0.0;
+        }
+        kernels::membraneTriangleForcesAndLoads(x, v, triangleLanes_[b], q, fs, f);
+      } else {
+        kernels::membraneTriangleForces(x, triangleLanes_[b], fs, nullptr);  // states: see above
       }
-      kernels::membraneTriangleForcesAndLoads(x, v, triangleLanes_[b], q, fs, f);
-    } else {
-      kernels::membraneTriangleForces(x, triangleLanes_[b], fs, nullptr);  // states: see above
-    }
-    for (int l = 0; l < lanes; ++l) {
-      const ExplicitTriangle& t = explicitTriangles_[first + l];
-      Eigen::Matrix<double, 9, 1> r;
-      for (int i = 0; i < 3; ++i)
-        for (int c = 0; c < 3; ++c) r[3 * i + c] = fs.v[i][c][l];
-      if (captured) {
-        const double fl[3] = {f[0][l], f[1][l], f[2][l]};
-        capture(t.nodes, fl);
+      for (int l = 0; l < lanes; ++l) {
+        const ExplicitTriangle& t = explicitTriangles_[first + l];
+        Eigen::Matrix<double, 9, 1> r;
+        for (int i = 0; i < 3; ++i)
+          for (int c = 0; c < 3; ++c) r[3 * i + c] = fs.v[i][c][l];
+        if constexpr (kLoads) {
+          if (captured) {
+            const double fl[3] = {f[0][l], f[1][l], f[2][l]};
+            capture(t.nodes, fl);
+          }
+        }
+        if (weighed) addWeight<3>(t.share.data(), p.loadFactor, r);
+        out.add<3>(t.nodes, r, nullptr);
       }
-      if (weighed) addWeight<3>(t.share.data(), p.loadFactor, r);
-      out.add<3>(t.nodes, r, nullptr);
     }
-  }
+  };
+  if (loads)
+    batches(std::true_type{});
+  else
+    batches(std::false_type{});
 }
 
 kernels::TriangleFaceLoadParameters MembraneTerm::takenParameters(size_t triangle) const {
