@@ -286,9 +286,11 @@ faces out on the explicit step's evaluations only (`fusedFaceLoads`), and every 
 (the start, the energy balance's loads, output, implicit steps) has each term add its own. The
 loads the energy balance keeps are captured in the pass (`SystemAssembler::captureFusedLoads`).
 On the C-9 slider case the three terms' 0.858 s became 0.687 s of the step's 1 s (two threads);
-whole runs 0.87-0.91x on one thread and 0.946x on two: the second thread now reads the velocities
-too, and the first thread's update waits on the cache lines it shares
-(bench/results/face_loads_in_membrane_pass.md).
+whole runs 0.87-0.91x on one thread and 0.95-1.01x on two: the second thread now reads the
+velocities too, and the first thread's update waits on the cache lines it shares. On that case
+one thread is now the faster (1.61-1.62 s of wall time per simulated second against 1.68-1.71 s
+on two; bench/results/face_loads_in_membrane_pass.md); the generated 12k C-9 in free flight still
+runs 1.43x faster on two.
 """
 
 
