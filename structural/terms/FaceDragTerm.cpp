@@ -33,42 +33,21 @@ void addNodeResiduals(const MembraneElement& e, const FaceDragLoadDef& load, dou
 }
 }  // namespace
 
-FaceDragTerm::FaceDragTerm(const Model& m) : m_(&m), faces_(m.faceDrags.size()) {
-  for (size_t li = 0; li < m.faceDrags.size(); ++li) {
-    int inSet = 0;
-    for (size_t k = 0; k < m.membranes.size(); ++k)
-      if (m.membranes[k].set == m.faceDrags[li].set)
-        faces_[li].push_back({static_cast<int>(k), inSet++});
-  }
-  left_ = faces_;
-}
-
-void FaceDragTerm::leaveFaces(TakenFaces taken) {
-  taken_ = std::move(taken);
-  for (size_t li = 0; li < faces_.size(); ++li) {
-    left_[li].clear();
-    for (const Face& f : faces_[li])
-      if (!(taken_ && (*taken_)[f.element])) left_[li].push_back(f);
-  }
-}
-
 // Per face, 0.72 of an explicit membrane triangle (Term::assemblyCost); none for the faces the
 // membrane term takes (P2).
 double FaceDragTerm::assemblyCost() const {
-  double faces = 0.0;
-  for (const auto& l : left_) faces += static_cast<double>(l.size());
-  return 0.72 * faces;
+  return 0.72 * faces_.left();
 }
 
 void FaceDragTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
   if (!p.inertia) return;  // drag needs motion: nothing in statics
   const bool wantJ = out.wantMatrix();
   // The faces the membranes' pass takes are left out of the explicit step's evaluation (P2).
-  const auto& faces = taken_ && fusedFaceLoads(p, out) ? left_ : faces_;
+  const auto& faces = faces_.of(p, out);
   for (size_t li = 0; li < faces.size(); ++li) {
     const FaceDragLoadDef& load = m_->faceDrags[li];
     const double coef = load.coefficient * p.loadFactor;  // an applied load, like the others
-    for (const Face& f : faces[li]) {
+    for (const auto& f : faces[li]) {
       const auto& e = m_->membranes[f.element];
       ++out.work().faceDrag;
       if (!wantJ) {

@@ -12,7 +12,7 @@ namespace chute {
 
 class FaceDragTerm final : public Term {
  public:
-  explicit FaceDragTerm(const Model& m);
+  explicit FaceDragTerm(const Model& m) : m_(&m), faces_(m, m.faceDrags) {}
   const char* name() const override { return "face_drag"; }
   bool doesExternalWork() const override { return true; }
   void addCouplings(std::vector<std::vector<int>>& cliques) const override;
@@ -23,17 +23,11 @@ class FaceDragTerm final : public Term {
   double assemblyCost() const override;
   bool assemblesApart() const override { return true; }
   // The faces whose drag the membrane term adds on the explicit step (P2): left out then.
-  void leaveFaces(TakenFaces taken);
+  void leaveFaces(const TakenFaces& taken) { faces_.leave(taken); }
 
  private:
   const Model* m_;
-  TakenFaces taken_;
-  // Per load (the model's order): its set's elements and their places in the set, all of them
-  // and those not taken (the explicit step's).
-  struct Face {
-    int element, inSet;
-  };
-  std::vector<std::vector<Face>> faces_, left_;
+  FacesOfLoads faces_;  // per load, all and those left on the explicit step
 };
 
 }  // namespace chute

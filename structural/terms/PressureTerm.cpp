@@ -33,42 +33,21 @@ void addTriangleResidual(const MembraneElement& e, double pressure, const EvalPo
 }
 }  // namespace
 
-PressureTerm::PressureTerm(const Model& m) : m_(&m), faces_(m.pressures.size()) {
-  for (size_t li = 0; li < m.pressures.size(); ++li) {
-    int inSet = 0;
-    for (size_t k = 0; k < m.membranes.size(); ++k)
-      if (m.membranes[k].set == m.pressures[li].set)
-        faces_[li].push_back({static_cast<int>(k), inSet++});
-  }
-  left_ = faces_;
-}
-
-void PressureTerm::leaveFaces(TakenFaces taken) {
-  taken_ = std::move(taken);
-  for (size_t li = 0; li < faces_.size(); ++li) {
-    left_[li].clear();
-    for (const Face& f : faces_[li])
-      if (!(taken_ && (*taken_)[f.element])) left_[li].push_back(f);
-  }
-}
-
 // Per face, 0.42 of an explicit membrane triangle (Term::assemblyCost); none for the faces the
 // membrane term takes (P2).
 double PressureTerm::assemblyCost() const {
-  double faces = 0.0;
-  for (const auto& l : left_) faces += static_cast<double>(l.size());
-  return 0.42 * faces;
+  return 0.42 * faces_.left();
 }
 
 void PressureTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
   const bool wantJ = out.wantMatrix();
   // The faces the membranes' pass takes are left out of the explicit step's evaluation (P2).
-  const auto& faces = taken_ && fusedFaceLoads(p, out) ? left_ : faces_;
+  const auto& faces = faces_.of(p, out);
   for (size_t li = 0; li < faces.size(); ++li) {
     const PressureLoadDef& load = m_->pressures[li];
     const double p0 = p.loadFactor * load.at(p.t);
     if (p0 == 0.0) continue;
-    for (const Face& f : faces[li]) {
+    for (const auto& f : faces[li]) {
       const auto& e = m_->membranes[f.element];
       const double pr = load.elementFactor.empty() ? p0 : p0 * load.elementFactor[f.inSet];
       ++out.work().pressure;

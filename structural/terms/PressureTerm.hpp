@@ -11,7 +11,7 @@ namespace chute {
 
 class PressureTerm final : public Term {
  public:
-  explicit PressureTerm(const Model& m);
+  explicit PressureTerm(const Model& m) : m_(&m), faces_(m, m.pressures) {}
   const char* name() const override { return "pressure"; }
   bool doesExternalWork() const override { return true; }
   void addCouplings(std::vector<std::vector<int>>& cliques) const override;
@@ -22,17 +22,11 @@ class PressureTerm final : public Term {
   double assemblyCost() const override;
   bool assemblesApart() const override { return true; }
   // The faces whose pressure the membrane term adds on the explicit step (P2): left out then.
-  void leaveFaces(TakenFaces taken);
+  void leaveFaces(const TakenFaces& taken) { faces_.leave(taken); }
 
  private:
   const Model* m_;
-  TakenFaces taken_;
-  // Per load (the model's order): its set's elements and their places in the set, all of them
-  // and those not taken (the explicit step's).
-  struct Face {
-    int element, inSet;
-  };
-  std::vector<std::vector<Face>> faces_, left_;
+  FacesOfLoads faces_;  // per load, all and those left on the explicit step
 };
 
 }  // namespace chute
