@@ -256,4 +256,13 @@ class Term {
   virtual void load(HistoryReader& /*h*/) {}
 };
 
+// Marks in `nodes` (one flag per model node) every node of t's couplings (Term::addCouplings):
+// the nodes it may write to.
+inline void markCoupledNodes(const Term& t, std::vector<char>& nodes) {
+  std::vector<std::vector<int>> cliques;
+  t.addCouplings(cliques);
+  for (const auto& c : cliques)
+    for (int n : c) nodes[n] = 1;
+}
+
 }  // namespace chute

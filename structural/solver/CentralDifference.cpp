@@ -60,11 +60,8 @@ CentralDifference::CentralDifference(StructuralSystem& sys, ExplicitSettings set
   for (const auto& t : sys.terms())
     (t->massMovesWithPositions() ? movingMassTerms_ : fixedMassTerms_).push_back(t.get());
   {
-    std::vector<std::vector<int>> cliques;
-    for (auto* t : movingMassTerms_) t->addCouplings(cliques);
     std::vector<char> touched(sys.dofs().numDofs() / 3, 0);
-    for (const auto& c : cliques)
-      for (int n : c) touched[n] = 1;
+    for (auto* t : movingMassTerms_) markCoupledNodes(*t, touched);
     for (int n = 0; n < static_cast<int>(touched.size()); ++n)
       for (int k = 0; k < 3; ++k) {
         if (const int e = sys.dofs().eq(n, k); touched[n] && e >= 0) movingMassEqs_.push_back(e);

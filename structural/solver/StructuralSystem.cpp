@@ -21,10 +21,7 @@ StructuralSystem::StructuralSystem(const Model& model, TermOptions options,
       events_.push_back(e);
       if (e->watchesExplicitMotion()) {
         watchesExplicitMotion_ = true;
-        std::vector<std::vector<int>> cliques;
-        t->addCouplings(cliques);
-        for (const auto& c : cliques)
-          for (int n : c) watched[n] = 1;
+        markCoupledNodes(*t, watched);
       }
     }
     if (t->dynamicCouplings()) dynamicCouplings_.push_back(t.get());

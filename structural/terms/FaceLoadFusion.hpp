@@ -41,16 +41,15 @@ class FacesOfLoads {
     left_ = all_;
   }
   void leave(const TakenFaces& taken) {
-    taken_ = taken;
     for (size_t li = 0; li < all_.size(); ++li) {
       left_[li].clear();
       for (const Face& f : all_[li])
         if (!(taken && (*taken)[f.element])) left_[li].push_back(f);
     }
   }
-  // The faces an evaluation goes over.
+  // The faces an evaluation goes over (left_ is all_ where nothing was taken).
   const Lists& of(const EvalPoint& p, const SystemAssembler& out) const {
-    return taken_ && fusedFaceLoads(p, out) ? left_ : all_;
+    return fusedFaceLoads(p, out) ? left_ : all_;
   }
   // How many faces the explicit step goes over (the split's cost).
   double left() const {
@@ -61,7 +60,6 @@ class FacesOfLoads {
 
  private:
   Lists all_, left_;
-  TakenFaces taken_;
 };
 
 }  // namespace chute

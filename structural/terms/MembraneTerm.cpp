@@ -159,8 +159,8 @@ void MembraneTerm::assembleExplicitTriangles(const EvalPoint& p, SystemAssembler
         kernels::TriangleFaceLoadLanes& q = takenLanes_[b];
         for (int l = 0; l < kLanes; ++l) {  // the missing lanes repeat the last triangle
           const TakenLoad& tl = taken_[std::min(first + l, count - 1)];
-          q.pressure[l] = tl.pressure >= 0 ? pressureNow_[tl.pressure] * tl.pressureFactor : 0.0;
-          q.drag[l] = tl.drag >= 0 ? dragNow_[tl.drag] : 0.0;
+          q.pressure[l] = takenPressure(tl);
+          q.drag[l] = takenDrag(tl);
         }
         kernels::membraneTriangleForcesAndLoads(x, v, triangleLanes_[b], q, fs, f);
       } else {
@@ -191,10 +191,10 @@ void MembraneTerm::assembleExplicitTriangles(const EvalPoint& p, SystemAssembler
 kernels::TriangleFaceLoadParameters MembraneTerm::takenParameters(size_t triangle) const {
   const TakenLoad& tl = taken_[triangle];
   kernels::TriangleFaceLoadParameters q;
-  if (tl.pressure >= 0) q.pressure = pressureNow_[tl.pressure] * tl.pressureFactor;
+  q.pressure = takenPressure(tl);
+  q.drag = takenDrag(tl);
   if (tl.drag >= 0) {
     const FaceDragLoadDef& d = m_->faceDrags[tl.drag];
-    q.drag = dragNow_[tl.drag];
     for (int c = 0; c < 3; ++c) q.wind[c] = d.wind[c];
     q.steady = d.steadySubtracted ? 1.0 : 0.0;
   }
@@ -232,7 +232,7 @@ TakenFaces MembraneTerm::takeFaceLoads() {
   }
   if (pressures + drags == 0) return nullptr;
   taken_ = std::move(loads);
-  takenPressures_ = pressures, takenDrags_ = drags;
+  takenDrags_ = drags;
   takenPerPressure_.assign(m.pressures.size(), 0);
   for (const TakenLoad& tl : taken_)
     if (tl.pressure >= 0) ++takenPerPressure_[tl.pressure];
@@ -284,7 +284,9 @@ void MembraneTerm::addStiffnessBound(const Eigen::VectorXd& x, double /*t*/,
 double MembraneTerm::assemblyCost() const {
   double tri = 0.0, quad = 0.0;
   for (const auto& e : m_->membranes) (e.numNodes == 3 ? tri : quad) += 1.0;
-  return tri + 5.0 * quad + kTakenFaceCost * static_cast<double>(takenPressures_ + takenDrags_);
+  double taken = static_cast<double>(takenDrags_);
+  for (long n : takenPerPressure_) taken += static_cast<double>(n);
+  return tri + 5.0 * quad + kTakenFaceCost * taken;
 }
 
 void MembraneTerm::addCouplings(std::vector<std::vector<int>>& cliques) const {

@@ -87,8 +87,13 @@ class MembraneTerm final : public Term {
   std::vector<TakenLoad> taken_;
   std::vector<kernels::TriangleFaceLoadLanes> takenLanes_;
   std::vector<double> pressureNow_, dragNow_;
-  long takenPressures_ = 0, takenDrags_ = 0;  // faces (the cost)
-  std::vector<long> takenPerPressure_;        // faces per pressure (the work counters)
+  long takenDrags_ = 0;                 // faces with a drag taken
+  std::vector<long> takenPerPressure_;  // faces per pressure taken
+  // What a taken load carries at the evaluation (0 where it has none), and all of a triangle's.
+  double takenPressure(const TakenLoad& tl) const {
+    return tl.pressure >= 0 ? pressureNow_[tl.pressure] * tl.pressureFactor : 0.0;
+  }
+  double takenDrag(const TakenLoad& tl) const { return tl.drag >= 0 ? dragNow_[tl.drag] : 0.0; }
   kernels::TriangleFaceLoadParameters takenParameters(size_t triangle) const;
   void makeExplicitTriangles();
   void assembleExplicitTriangles(const EvalPoint& p, SystemAssembler& out);
