@@ -133,11 +133,12 @@ CanopyFlowTerm::CanopyFlowTerm(const Model& m, int flow) : m_(&m), def_(&m.canop
   // The start holds air at the ambient pressure plus the case's initial gauge (FL3, isentropic).
   Eigen::VectorXd x0(3 * m.numNodes());
   for (int n = 0; n < m.numNodes(); ++n) x0.segment<3>(3 * n) = m.X[n] + m.u0[n];
-  const Geometry g = geometry(x0, Eigen::VectorXd::Zero(x0.size()), false);
+  const Geometry g = geometry(x0);
   captured_ = m.air.density * (std::max(g.volume, 0.0) + volumeFloor_) *
               std::pow(1.0 + def_->initialInsideGauge / m.air.pressure, 1.0 / def_->gamma);
   inertiaMass_ = apparentMass(x0) + captured_;  // FL11: the air around it and the air inside
   committedShares_ = areaShares(x0);
+  committedVolume_ = g.volume;
 }
 
 double CanopyFlowTerm::reach(const Eigen::VectorXd& x) const {
@@ -163,7 +164,7 @@ double CanopyFlowTerm::apparentMass(const Eigen::VectorXd& x) const {
   // (R^3 = 3 V / (2 pi)). The volume, an integral over the surface, changes smoothly with the
   // positions; the canopy's largest radius (its reach) jumps as one node swings out, and the
   // growth force of FL10 took such a jump as a burst of air (a folded C-9 went unstable).
-  return apparentMassOfVolume(geometry(x, Eigen::VectorXd::Zero(x.size()), false).volume);
+  return apparentMassOfVolume(geometry(x).volume);
 }
 
 double CanopyFlowTerm::apparentMassOfVolume(double volume) const {
@@ -185,27 +186,65 @@ Vec3 CanopyFlowTerm::loopArea(const Loop& l, const Eigen::VectorXd& x) const {
   return l.sign * A;
 }
 
-CanopyFlowTerm::Geometry CanopyFlowTerm::geometry(const Eigen::VectorXd& x,
-                                                  const Eigen::VectorXd& v, bool keepFaces) const {
-  // One pass over the faces: what the volume, the mean velocity, the cloth and the loads need
-  // of each (kept for the evaluation that asked, keepFaces).
+CanopyFlowTerm::Geometry CanopyFlowTerm::geometry(const Eigen::VectorXd& x) const {
   Geometry g;
-  if (keepFaces) {
-    faceData_.resize(faces_.size());
-    shares_.assign(nodes_.size(), 0.0);
-    nodeArea_.assign(nodes_.size(), Vec3::Zero());
+  double volume = 0.0, area = 0.0;
+  for (const FaceNodes& fn : faceNodes_) {
+    const Vec3 x0 = at(x, fn.node[0]), x1 = at(x, fn.node[1]), x2 = at(x, fn.node[2]);
+    Vec3 A;
+    if (fn.size == 3) {
+      A = 0.5 * (x1 - x0).cross(x2 - x0);
+      volume += (x0 + x1 + x2).dot(A) * (1.0 / 9.0);  // tetraVolume(x0, x1, x2): centroid . A / 3
+    } else {
+      const Vec3 x3 = at(x, fn.node[3]);
+      A = 0.5 * (x2 - x0).cross(x3 - x1);  // the exact area vector of a bilinear quad
+      volume += kernels::tetraVolume(x0, x1, x2) + kernels::tetraVolume(x0, x2, x3);
+    }
+    area += A.norm();
   }
-  // The same operations in the same order for both kinds of pass; keepFaces is hoisted out of
-  // the loop (a pass over every face on every explicit step).
-  // The sums are held in locals: g is the caller's (returned in place), and the compiler cannot
-  // tell it from the arrays stored to, so sums in g went through memory on every face.
-  double volume = 0.0, area = 0.0, volumeRate = 0.0;
-  Vec3 velocity = Vec3::Zero();
-  // One face with its node count known to the compiler (the loops over its nodes unrolled: 7 %
-  // of the pass's instructions on the explicit C-9).
-  // Divisions by the node count and by 9 are multiplications by their reciprocals: a division
-  // costs several multiplications' time, and the pass made eight of them per face.
-  auto face = [&](size_t i, const FaceNodes& fn, auto nodesTag, auto keep) {
+  g.volume = volume, g.area = area;
+  closeOpenings(x, g);
+  return g;
+}
+
+void CanopyFlowTerm::closeOpenings(const Eigen::VectorXd& x, Geometry& g) const {
+  // The openings close the surface with fans from their centroids (FL2).
+  auto close = [&](const Loop& l) {
+    const double n = static_cast<double>(l.nodes.size());
+    Vec3 c = Vec3::Zero();
+    for (int node : l.nodes) c += at(x, node);
+    c /= n;
+    Vec3 A = Vec3::Zero();
+    for (size_t i = 0; i < l.nodes.size(); ++i) {
+      int a = l.nodes[i], b = l.nodes[(i + 1) % l.nodes.size()];
+      if (l.sign < 0.0) std::swap(a, b);
+      A += 0.5 * (at(x, a) - c).cross(at(x, b) - c);
+      g.volume += kernels::tetraVolume(c, at(x, a), at(x, b));
+    }
+    return A;
+  };
+  g.mouth = close(mouth_);
+  g.vents.clear();
+  for (const auto& vent : vents_) g.vents.push_back(close(vent));
+}
+
+template <bool Keep>
+CanopyFlowTerm::FaceSums CanopyFlowTerm::facePass(const Eigen::VectorXd& x,
+                                                  const Eigen::VectorXd& v,
+                                                  const kernels::CanopyFlowState& s,
+                                                  double clothGauge, bool permeable) const {
+  // One pass over the faces for everything an evaluation needs of them: the faces' area vectors
+  // and mean velocities are made once and used at once (two passes, the second reading them
+  // back from memory, had cost twice as much: the flow state they need, FL1, is known before
+  // the pass, from the nodes' shares at the step's start).
+  if constexpr (Keep)
+    nodeSums_.assign(nodes_.size(), NodeSums{Vec3::Zero(), Vec3::Zero(), 0.0, 0.0});
+  // The sums are held in locals (the compiler cannot tell a member from the arrays stored to).
+  double volume = 0.0, area = 0.0, cloth = 0.0, dCloth = 0.0;
+  const kernels::ClothPermeability& law = def_->cloth;
+  // One face with its node count known to the compiler (its loops over its nodes unrolled).
+  // Divisions by the node count and by 9 are multiplications by their reciprocals.
+  auto face = [&](const FaceNodes& fn, auto nodesTag) {
     constexpr int N = decltype(nodesTag)::value;
     constexpr double perNode = 1.0 / N;
     const Vec3 x0 = at(x, fn.node[0]), x1 = at(x, fn.node[1]), x2 = at(x, fn.node[2]);
@@ -223,57 +262,37 @@ CanopyFlowTerm::Geometry CanopyFlowTerm::geometry(const Eigen::VectorXd& x,
     vf *= perNode;
     const double faceArea = A.norm();
     area += faceArea;
-    velocity += faceArea * vf;
-    volumeRate += A.dot(vf);
-    if constexpr (decltype(keep)::value) {
-      faceData_[i] = {A, faceArea, vf};
-      const double shareN = faceArea * perNode;
+    if (!(faceArea > 0.0)) return;  // no normal: no load, no share, no cloth
+    // FL7-FL8 at the ambient inside pressure; the unit normal by one division.
+    const kernels::FacePressure fp = kernels::facePressure(A * (1.0 / faceArea), vf, s);
+    if (permeable) {
+      // FL6's pressure difference: inside (at the linearisation's gauge) minus outside.
+      const double dp = clothGauge + fp.staticDifference;
+      cloth += faceArea * law.velocity(dp);
+      dCloth += faceArea * law.dVelocity(dp);
+    }
+    if constexpr (Keep) {
       const Vec3 aN = A * perNode;
+      const Vec3 force = fp.netPressure * aN;
+      const double shareN = faceArea * perNode;
       for (int k = 0; k < N; ++k) {
-        shares_[fn.slot[k]] += shareN;
-        nodeArea_[fn.slot[k]] += aN;
+        NodeSums& n = nodeSums_[fn.slot[k]];
+        n.force += force;
+        n.area += aN;
+        n.share += shareN;
       }
     }
   };
-  auto pass = [&](auto keep) {
-    for (size_t i = 0; i < faceNodes_.size(); ++i) {
-      const FaceNodes& fn = faceNodes_[i];
-      if (fn.size == 3)
-        face(i, fn, std::integral_constant<int, 3>{}, keep);
-      else
-        face(i, fn, std::integral_constant<int, 4>{}, keep);
-    }
-  };
-  if (keepFaces)
-    pass(std::true_type{});
-  else
-    pass(std::false_type{});
-  g.volume = volume, g.area = area, g.volumeRate = volumeRate, g.velocity = velocity;
-  if (g.area > 0.0) {
-    g.velocity /= g.area;
-    if (keepFaces)
-      for (double& sh : shares_) sh /= g.area;
+  for (const FaceNodes& fn : faceNodes_) {
+    if (fn.size == 3)
+      face(fn, std::integral_constant<int, 3>{});
+    else
+      face(fn, std::integral_constant<int, 4>{});
   }
-  // The openings close the surface with fans from their centroids (FL2).
-  auto close = [&](const Loop& l) {
-    const double n = static_cast<double>(l.nodes.size());
-    Vec3 c = Vec3::Zero(), vc = Vec3::Zero();
-    for (int node : l.nodes) c += at(x, node), vc += at(v, node);
-    c /= n, vc /= n;
-    Vec3 A = Vec3::Zero();
-    for (size_t i = 0; i < l.nodes.size(); ++i) {
-      int a = l.nodes[i], b = l.nodes[(i + 1) % l.nodes.size()];
-      if (l.sign < 0.0) std::swap(a, b);
-      const Vec3 Ai = 0.5 * (at(x, a) - c).cross(at(x, b) - c);
-      A += Ai;
-      g.volume += kernels::tetraVolume(c, at(x, a), at(x, b));
-      g.volumeRate += Ai.dot((vc + at(v, a) + at(v, b)) / 3.0);
-    }
-    return A;
-  };
-  g.mouth = close(mouth_);
-  for (const auto& vent : vents_) g.vents.push_back(close(vent));
-  return g;
+  if constexpr (Keep)
+    if (area > 0.0)
+      for (NodeSums& n : nodeSums_) n.share /= area;
+  return {volume, area, cloth, dCloth};
 }
 
 std::vector<double> CanopyFlowTerm::areaShares(const Eigen::VectorXd& x) const {
@@ -362,16 +381,36 @@ CanopyFlowTerm::Evaluation CanopyFlowTerm::evaluate(const Eigen::VectorXd& x,
                                                     double loadFactor, double stepDt) const {
   const Model& m = *m_;
   const double rho = m.air.density;
-  const Geometry g = geometry(x, v, true);
-  // FL1: the relative flow of the canopy as a whole.
-  const Vec3 U = m.air.wind - g.velocity;
+  // FL1: the relative flow of the canopy as a whole; the canopy's velocity the mean of its
+  // nodes' by their shares of its area at the step's start.
+  Vec3 canopyVelocity = Vec3::Zero();
+  for (size_t i = 0; i < nodes_.size(); ++i)
+    canopyVelocity += committedShares_[i] * at(v, nodes_[i]);
+  const Vec3 U = m.air.wind - canopyVelocity;
   const double speed = U.norm();
   kernels::CanopyFlowState s;
-  s.canopyVelocity = g.velocity;
+  s.canopyVelocity = canopyVelocity;
   s.flowDirection = speed > 0.0 ? Vec3(U / speed) : Vec3::Zero();
   s.dynamicPressure = 0.5 * rho * speed * speed;
   s.baseCoefficient = def_->baseCoefficient;
   s.normalDrag = 0.5 * rho * def_->normalDrag;
+  // FL6, FL9: the cloth's outflow linearised in the inside pressure about the step's start (its
+  // mass in its volume).
+  const double startGauge =
+      kernels::capturedAirPressure(captured_, std::max(committedVolume_, 0.0) + volumeFloor_,
+                                   m.air.pressure, rho, def_->gamma) -
+      m.air.pressure;
+  // One pass over the faces for the volume, the cloth's outflow (FL6) and the loads that do not
+  // depend on the inside pressure (FL8 is linear in it: its part, p_in a_i with a_i the share of
+  // the area vectors at node i, is added per node once the captured air's update has found p_in).
+  const bool permeable = def_->cloth.permeable();
+  kernels::CanopyFlowState atAmbient = s;
+  atAmbient.insideGauge = 0.0;
+  const FaceSums sums = out ? facePass<true>(x, v, atAmbient, startGauge, permeable)
+                            : facePass<false>(x, v, atAmbient, startGauge, permeable);
+  Geometry g;
+  g.volume = sums.volume, g.area = sums.area;
+  closeOpenings(x, g);
   // FL2: the volume the gas law sees, with its floor.
   const double volume = std::max(g.volume, 0.0) + volumeFloor_;
   // FL4-FL5: the openings: the flow's ram pressure into the mouth, the vents' outside pressure.
@@ -391,41 +430,8 @@ CanopyFlowTerm::Evaluation CanopyFlowTerm::evaluate(const Eigen::VectorXd& x,
     b.vents.emplace_back(
         area, s.dynamicPressure * kernels::outsidePressureCoefficient(c, s.baseCoefficient));
   }
-  // FL6: the cloth's outflow, linearised in the inside pressure about the step's start mass's.
-  b.insideGauge =
-      kernels::capturedAirPressure(captured_, volume, m.air.pressure, rho, def_->gamma) -
-      m.air.pressure;
-  // One pass over the faces for the cloth's outflow (FL6) and the loads that do not depend on
-  // the inside pressure (FL8 is linear in it: its part, p_in a_i with a_i the share of the area
-  // vectors at node i, is added per node once the captured air's update has found p_in).
-  const bool permeable = def_->cloth.permeable();
-  kernels::CanopyFlowState atAmbient = s;
-  atAmbient.insideGauge = 0.0;
-  if (out) nodeForce_.assign(nodes_.size(), Vec3::Zero());
-  double cloth = 0.0, dCloth = 0.0;  // locals, not b's: see geometry
-  if (permeable || out)
-    for (size_t i = 0; i < faces_.size(); ++i) {
-      const FaceData& f = faceData_[i];
-      if (!(f.area > 0.0)) continue;
-      // The unit normal by one division (three before).
-      const kernels::FacePressure fp = kernels::facePressure(f.A * (1.0 / f.area), f.vf, atAmbient);
-      if (permeable) {
-        // FL6's pressure difference: inside (at the step's start mass) minus outside.
-        const double dp = b.insideGauge + fp.staticDifference;
-        cloth += f.area * def_->cloth.velocity(dp);
-        dCloth += f.area * def_->cloth.dVelocity(dp);
-      }
-      if (!out) continue;
-      // Gathered per node, handed to the assembler once per node below.
-      const FaceNodes& fn = faceNodes_[i];
-      if (fn.size == 3) {  // the node count known: the loop unrolled
-        const Vec3 force = (fp.netPressure * (1.0 / 3.0)) * f.A;
-        for (int k = 0; k < 3; ++k) nodeForce_[fn.slot[k]] += force;
-      } else {
-        const Vec3 force = (fp.netPressure * 0.25) * f.A;
-        for (int k = 0; k < 4; ++k) nodeForce_[fn.slot[k]] += force;
-      }
-    }
+  b.insideGauge = startGauge;
+  const double cloth = sums.cloth, dCloth = sums.dCloth;
   b.cloth = cloth, b.dCloth = dCloth;
   // FL3, FL9: the captured air at the end of a step (its update solved here), or as committed.
   e.capturedMass = stepDt > 0.0 ? b.massAfter(captured_, stepDt, *this) : captured_;
@@ -436,12 +442,13 @@ CanopyFlowTerm::Evaluation CanopyFlowTerm::evaluate(const Eigen::VectorXd& x,
   // (in the air) to the canopy's velocity: the force -dm_a/dt (v_c - w) while the apparent mass
   // grows (air shed as it shrinks leaves with the canopy's velocity), shared as the inertia is.
   if (out) {
-    const Vec3 push = massRate_ > 0.0 ? Vec3(massRate_ * (g.velocity - m.air.wind)) : Vec3::Zero();
-    for (size_t i = 0; i < nodes_.size(); ++i)
-      out->add<1>(
-          {nodes_[i]},
-          Vec3(loadFactor * (shares_[i] * push - s.insideGauge * nodeArea_[i] - nodeForce_[i])),
-          nullptr);
+    const Vec3 push =
+        massRate_ > 0.0 ? Vec3(massRate_ * (canopyVelocity - m.air.wind)) : Vec3::Zero();
+    for (size_t i = 0; i < nodes_.size(); ++i) {
+      const NodeSums& n = nodeSums_[i];
+      out->add<1>({nodes_[i]},
+                  Vec3(loadFactor * (n.share * push - s.insideGauge * n.area - n.force)), nullptr);
+    }
   }
   // What probes and the summary report of this evaluation.
   Figures& fig = e.figures;
@@ -480,16 +487,21 @@ double CanopyFlowTerm::frequencySquaredBound(const Eigen::VectorXd& x, double t,
   const Model& m = *m_;
   double volume = scratchVolume_;
   if (!(scratchTime_ == t)) {
-    volume = geometry(x, Eigen::VectorXd::Zero(x.size()), true).volume;
+    // The per-node sums at x (in still air: no loads wanted, only the area vectors' shares).
+    const FaceSums sums =
+        facePass<true>(x, Eigen::VectorXd::Zero(x.size()), kernels::CanopyFlowState{}, 0.0, false);
+    Geometry g;
+    g.volume = sums.volume;
+    closeOpenings(x, g);
+    volume = g.volume;
     scratchTime_ = std::numeric_limits<double>::quiet_NaN();  // made without velocities
   }
-  const std::vector<Vec3>& a = nodeArea_;
   volume = std::max(volume, 0.0) + volumeFloor_;
   const double pAbs =
       kernels::capturedAirPressure(captured_, volume, m.air.pressure, m.air.density, def_->gamma);
   double sum = 0.0;
   for (size_t i = 0; i < nodes_.size(); ++i)
-    if (nodalMass[nodes_[i]] > 0.0) sum += a[i].squaredNorm() / nodalMass[nodes_[i]];
+    if (nodalMass[nodes_[i]] > 0.0) sum += nodeSums_[i].area.squaredNorm() / nodalMass[nodes_[i]];
   return def_->gamma * pAbs / volume * sum;
 }
 
@@ -502,19 +514,22 @@ void CanopyFlowTerm::commit(const CommitPoint& c) {
   // FL9: the captured air as the step's evaluation found it at the step's end.
   if (c.dt > 0.0 && trialTime_ == c.t) captured_ = trialMass_;
   const double before = inertiaMass_;
-  inertiaMass_ =
-      (evaluatedHere ? apparentMassOfVolume(scratchVolume_) : apparentMass(c.x)) + captured_;
+  const double volume = evaluatedHere ? scratchVolume_ : geometry(c.x).volume;
+  inertiaMass_ = apparentMassOfVolume(volume) + captured_;
   massRate_ = c.dt > 0.0 ? (inertiaMass_ - before) / c.dt : 0.0;
-  std::vector<double> shares = evaluatedHere ? shares_ : areaShares(c.x);
+  std::vector<double> made;
+  if (!evaluatedHere) made = areaShares(c.x);
+  auto share = [&](size_t i) { return evaluatedHere ? nodeSums_[i].share : made[i]; };
   if (c.v) {
     // The nodes' apparent masses change from m_a s_i to m_a' s_i' at the velocities they have.
     double gained = 0.0;
     for (size_t i = 0; i < nodes_.size(); ++i)
-      gained += (inertiaMass_ * shares[i] - before * committedShares_[i]) *
+      gained += (inertiaMass_ * share(i) - before * committedShares_[i]) *
                 at(*c.v, nodes_[i]).squaredNorm();
     supplied_ += 0.5 * gained;
   }
-  committedShares_ = std::move(shares);
+  for (size_t i = 0; i < nodes_.size(); ++i) committedShares_[i] = share(i);
+  committedVolume_ = volume;
 }
 
 void CanopyFlowTerm::save(History& h) const {
@@ -523,6 +538,7 @@ void CanopyFlowTerm::save(History& h) const {
   h.put(massRate_);
   h.put(supplied_);
   h.put(committedShares_);
+  h.put(committedVolume_);
 }
 
 void CanopyFlowTerm::load(HistoryReader& h) {
@@ -533,8 +549,10 @@ void CanopyFlowTerm::load(HistoryReader& h) {
   std::vector<double> shares = h.reals(nodes_.size());
   for (double sh : shares)
     if (!(sh >= 0.0 && sh <= 1.0)) h.fail("a node's share of the canopy's area outside [0, 1]");
+  const double volume = h.finiteReal();
   captured_ = captured, inertiaMass_ = inertia, massRate_ = rate, supplied_ = supplied;
   committedShares_ = std::move(shares);
+  committedVolume_ = volume;
 }
 
 }  // namespace chute

@@ -64,22 +64,28 @@ class CanopyFlowTerm final : public Term {
     std::vector<int> nodes;  // in order around the opening
     double sign = 1.0;       // orients its area vector out of the closed surface (FL2)
   };
-  // The closed surface's volume, the openings' outward area vectors, and the canopy's mean
-  // velocity and outward area at positions x, velocities v (FL1-FL2).
+  // The closed surface's volume and area and the openings' outward area vectors at positions x
+  // (FL2).
   struct Geometry {
-    double volume = 0.0, area = 0.0, volumeRate = 0.0;
-    Eigen::Vector3d velocity = Eigen::Vector3d::Zero();
+    double volume = 0.0, area = 0.0;
     Eigen::Vector3d mouth = Eigen::Vector3d::Zero();  // outward area vector of the mouth
     std::vector<Eigen::Vector3d> vents;
   };
-  // keepFaces: also each face's area vector and mean velocity, and each node's area share, in
-  // faceData_ and shares_.
-  Geometry geometry(const Eigen::VectorXd& x, const Eigen::VectorXd& v, bool keepFaces) const;
-  struct FaceData {
-    Eigen::Vector3d A;  // area vector (outward)
-    double area;
-    Eigen::Vector3d vf;  // mean velocity of its nodes
+  Geometry geometry(const Eigen::VectorXd& x) const;
+  // The openings' fans (FL2): their outward area vectors into g, their volume added to g.
+  void closeOpenings(const Eigen::VectorXd& x, Geometry& g) const;
+  // What one pass over the faces sums besides the per-node sums (nodeSums_).
+  struct FaceSums {
+    double volume = 0.0, area = 0.0;
+    double cloth = 0.0, dCloth = 0.0;  // FL6's outflow and its derivative in the inside pressure
   };
+  // The one pass over the faces of an evaluation (FL2, FL6, FL8): the volume and area, the
+  // cloth's outflow at the inside gauge clothGauge (when permeable), and with keep each node's
+  // sums in nodeSums_: its share of the area, of the area vectors, and of the faces' loads at
+  // the ambient inside pressure (state s, its insideGauge 0).
+  template <bool Keep>
+  FaceSums facePass(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
+                    const kernels::CanopyFlowState& s, double clothGauge, bool permeable) const;
   Eigen::Vector3d loopArea(const Loop& l, const Eigen::VectorXd& x) const;
   // Per canopy node, its share of the canopy's area at x (the captured air's inertia, FL11).
   std::vector<double> areaShares(const Eigen::VectorXd& x) const;
@@ -129,18 +135,24 @@ class CanopyFlowTerm final : public Term {
   // commit), and its rate over the last step (FL10); the kinetic energy the air set moving
   // brought in so far (FL12).
   double captured_ = 0.0, inertiaMass_ = 0.0, massRate_ = 0.0, supplied_ = 0.0;
-  std::vector<double> committedShares_;  // each node's share of the area at the last commit
+  // Each node's share of the area at the last commit (FL11's inertia, FL1's canopy velocity), and
+  // the volume (FL9's cloth linearisation).
+  std::vector<double> committedShares_;
+  double committedVolume_ = 0.0;
   // Of the last evaluation of a step (not history: made again by the next step's evaluation).
   // The captured mass an explicit step's evaluation found at the step's end, and the step's end
   // time (committed with that step only).
   double trialMass_ = 0.0, trialTime_ = -1.0;
-  // Scratch of the last evaluation (one pass over the faces serves the volume, the cloth, the
-  // loads and the commit): per face, per node, the volume, and the time of the explicit step's
-  // end whose positions they belong to (NaN: none).
-  mutable std::vector<FaceData> faceData_;
-  mutable std::vector<double> shares_;
-  mutable std::vector<Eigen::Vector3d> nodeForce_;  // the faces' loads at p_in = p_a, per node
-  mutable std::vector<Eigen::Vector3d> nodeArea_;   // a_i: the share of the area vectors at node i
+  // Scratch of the last evaluation (its one pass over the faces serves the volume, the cloth,
+  // the loads and the commit): per node, the volume, and the time of the explicit step's end
+  // whose positions they belong to (NaN: none).
+  struct NodeSums {
+    Eigen::Vector3d force;  // the faces' loads at p_in = p_a
+    Eigen::Vector3d area;   // a_i: the share of the area vectors at node i
+    double share;           // the share of the area (over the whole area once the pass is done)
+    double unused;          // one cache line per node
+  };
+  mutable std::vector<NodeSums> nodeSums_;
   mutable double scratchVolume_ = 0.0;
   mutable double scratchTime_ = std::numeric_limits<double>::quiet_NaN();
 };
