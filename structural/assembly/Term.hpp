@@ -49,6 +49,7 @@ struct EvalPoint {
   // the step's own positions, for loads that are not part of the stiffness it damps (the
   // captured air of a canopy, docs/flight.md FL3). nullptr: x is the step's.
   const Eigen::VectorXd* undamped = nullptr;
+  double dampingShift = 0.0;  // with undamped: beta, x = *undamped + beta v (to round-off)
   const Eigen::VectorXd& stepPositions() const { return undamped ? *undamped : x; }
   // A Newton iteration's Jacobian may give tension-only parts on the kink their taut tangent
   // (RG10); off for the iteration that confirms convergence with the exact tangent.
@@ -85,9 +86,11 @@ struct EvalPoint {
   // positions when x is shifted by stiffness damping (EX7).
   static EvalPoint explicitForces(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
                                   const Eigen::VectorXd& zeroA, double t, double dt,
-                                  const Eigen::VectorXd* undamped = nullptr) {
+                                  const Eigen::VectorXd* undamped = nullptr,
+                                  double dampingShift = 0.0) {
     EvalPoint p(x, v, zeroA, t);
     p.undamped = undamped;
+    p.dampingShift = undamped ? dampingShift : 0.0;
     p.cx = p.cv = p.ca = 0.0;
     p.dt = dt;
     p.explicitStep = dt;

@@ -1,5 +1,6 @@
 #include "kernels/MembraneTriangleBatch.hpp"
 
+#include <cstddef>
 #include <cstring>
 
 // GCC warns that a 32-byte vector returned without AVX changes the calling convention; in this
@@ -86,14 +87,86 @@ using M = std::int64_t __attribute__((vector_size(8 * kTriangleLanes)));
   for (int c = 0; c < 3; ++c) f[c] = k * A[c];
 }
 
+// triangleFlowLoad (TriangleFlowLoads.hpp) lane by lane, the same operations in the same order,
+// from the lanes' edges x1 - x0, x2 - x0 and sums x0 + x1 + x2 already formed, the velocities at
+// v: f, each lane's residual per node; sums, its sums.
+[[gnu::always_inline]] inline void flowLoads(const V (&edge1)[3], const V (&edge2)[3],
+                                             const V (&xsum)[3], const double* v,
+                                             const MembraneTriangleLanes& t,
+                                             const TriangleFlowParameters& q, V (&f)[3],
+                                             V (&sums)[8]) {
+  const double* pv[3][kTriangleLanes];
+  for (int i = 0; i < 3; ++i)
+    for (int l = 0; l < kTriangleLanes; ++l) pv[i][l] = v + 3 * t.nodes[l][i];
+  const V b = all(q.dampingShift), third = all(1.0 / 3.0), zero = all(0.0), one = all(1.0);
+  V e1[3], e2[3], vs[3], xs[3];
+  for (int c = 0; c < 3; ++c) {
+    const V v0 = {pv[0][0][c], pv[0][1][c], pv[0][2][c], pv[0][3][c]};
+    const V v1 = {pv[1][0][c], pv[1][1][c], pv[1][2][c], pv[1][3][c]};
+    const V v2 = {pv[2][0][c], pv[2][1][c], pv[2][2][c], pv[2][3][c]};
+    e1[c] = edge1[c] - b * (v1 - v0);
+    e2[c] = edge2[c] - b * (v2 - v0);
+    vs[c] = (v0 + v1) + v2;
+    xs[c] = xsum[c] - b * vs[c];
+  }
+  const V half = all(0.5);
+  const V A[3] = {half * (e1[1] * e2[2] - e1[2] * e2[1]), half * (e1[2] * e2[0] - e1[0] * e2[2]),
+                  half * (e1[0] * e2[1] - e1[1] * e2[0])};
+  const V aa = (A[0] * A[0] + A[1] * A[1]) + A[2] * A[2];
+  const V area = sqrt(aa);
+  const M positive = aa > zero;
+  const V inv = one / (positive ? area : one);
+  V n[3], rel[3];
+  for (int c = 0; c < 3; ++c) {
+    n[c] = A[c] * inv;
+    rel[c] = vs[c] * third - all(q.canopyVelocity[c]);
+  }
+  const V c = (n[0] * all(q.flowDirection[0]) + n[1] * all(q.flowDirection[1])) +
+              n[2] * all(q.flowDirection[2]);
+  const V un = (rel[0] * n[0] + rel[1] * n[1]) + rel[2] * n[2];
+  const V into = zero < c ? zero : c;
+  const V band = abs(c) * all(1.0 / kAttachedFlowBand);
+  const V base = band < one ? band : one;
+  const V cb = all(q.baseCoefficient);
+  const V cout = cb * base + ((one - cb) * into) * into;
+  const V ps = zero - all(q.dynamicPressure) * cout;
+  const V net = ps - (all(q.normalDrag) * abs(un)) * un;
+  const V k = positive ? -((all(q.loadFactor) * net) * third) : zero;
+  for (int i = 0; i < 3; ++i) f[i] = k * A[i];
+  // sums: A / 3 (three), |A| / 3, the volume, |A|, the cloth's outflow and its derivative.
+  V cloth = zero, dCloth = zero;
+  if (q.permeable) {
+    const V dp = all(q.clothGauge) + ps;
+    V u, du;
+    if (q.inertial == 0.0) {
+      u = dp * all(q.perViscous);
+      du = all(q.perViscous);
+    } else {
+      const V root = sqrt(all(q.viscous) * all(q.viscous) + all(4.0 * q.inertial) * abs(dp));
+      const V magnitude = (all(2.0) * abs(dp)) / (all(q.viscous) + root);
+      u = dp < zero ? -magnitude : magnitude;
+      du = one / root;
+    }
+    cloth = positive ? area * u : zero;
+    dCloth = positive ? area * du : zero;
+  }
+  for (int i = 0; i < 3; ++i) sums[i] = A[i] * third;
+  sums[3] = area * third;
+  sums[4] = ((xs[0] * A[0] + xs[1] * A[1]) + xs[2] * A[2]) * all(1.0 / 9.0);
+  sums[5] = area;
+  sums[6] = cloth;
+  sums[7] = dCloth;
+}
+
 // membraneTriangleForce (MembraneTriangleForce.hpp) lane by lane: the same operations in the
 // same order, the wrinkling state selected by masks as its select() does by bits.
 // With face loads (v and q given): fs gets each lane's face load added, loads the load alone.
-[[gnu::always_inline]] inline void forces(const double* x, const MembraneTriangleLanes& t,
-                                          TriangleLaneVectors& fs, WrinkleState* state,
-                                          const double* v = nullptr,
-                                          const TriangleFaceLoadLanes* faceLoad = nullptr,
-                                          double (*loads)[kTriangleLanes] = nullptr) {
+[[gnu::always_inline]] inline void forces(
+    const double* x, const MembraneTriangleLanes& t, TriangleLaneVectors& fs, WrinkleState* state,
+    const double* v = nullptr, const TriangleFaceLoadLanes* faceLoad = nullptr,
+    double (*loads)[kTriangleLanes] = nullptr, const TriangleFlowParameters* flow = nullptr,
+    const TriangleFlowBatch* batch = nullptr, TriangleFlowAccumulators* acc = nullptr,
+    double* nodeSums = nullptr) {
   const double* at[3][kTriangleLanes];
   for (int i = 0; i < 3; ++i)
     for (int l = 0; l < kTriangleLanes; ++l) at[i][l] = x + 3 * t.nodes[l][i];
@@ -102,7 +175,7 @@ using M = std::int64_t __attribute__((vector_size(8 * kTriangleLanes)));
     for (int c = 0; c < 2; ++c) dN[i][c] = load(t.dN[i][c]);
   // M1: F = sum_i x_i dN_i^T and C = F^T F.
   // With them the edges x1 - x0 and x2 - x0 for the face loads (dropped without).
-  V F[3][2], edge1[3], edge2[3];
+  V F[3][2], edge1[3], edge2[3], xsum[3];
   for (int r = 0; r < 3; ++r) {
     const V x0 = {at[0][0][r], at[0][1][r], at[0][2][r], at[0][3][r]};
     const V x1 = {at[1][0][r], at[1][1][r], at[1][2][r], at[1][3][r]};
@@ -110,6 +183,7 @@ using M = std::int64_t __attribute__((vector_size(8 * kTriangleLanes)));
     for (int c = 0; c < 2; ++c) F[r][c] = (x0 * dN[0][c] + x1 * dN[1][c]) + x2 * dN[2][c];
     edge1[r] = x1 - x0;
     edge2[r] = x2 - x0;
+    xsum[r] = (x0 + x1) + x2;
   }
   const V c00 = (F[0][0] * F[0][0] + F[1][0] * F[1][0]) + F[2][0] * F[2][0];
   const V c11 = (F[0][1] * F[0][1] + F[1][1] * F[1][1]) + F[2][1] * F[2][1];
@@ -151,6 +225,32 @@ using M = std::int64_t __attribute__((vector_size(8 * kTriangleLanes)));
       for (int r = 0; r < 3; ++r)
         store(fs.v[i][r], (P[r][0] * dN[i][0] + P[r][1] * dN[i][1]) + f[r]);
     for (int r = 0; r < 3; ++r) store(loads[r], f[r]);
+  } else if (flow) {
+    // FL13 added to each node's force in the flow's lanes, as the triangles one at a time add it.
+    V f[3], sums[8];
+    flowLoads(edge1, edge2, xsum, v, t, *flow, f, sums);
+    const M in = loadMask(batch->inFlow);
+    for (int i = 0; i < 3; ++i)
+      for (int r = 0; r < 3; ++r) {
+        const V force = P[r][0] * dN[i][0] + P[r][1] * dN[i][1];
+        store(fs.v[i][r], in ? force + f[r] : force);
+      }
+    for (int r = 0; r < 3; ++r) store(loads[r], f[r]);
+    double* accumulated[4] = {acc->volume, acc->area, acc->cloth, acc->dCloth};
+    for (int k = 0; k < 4; ++k) {
+      const V before = load(accumulated[k]);
+      store(accumulated[k], in ? before + sums[4 + k] : before);
+    }
+    // Each canopy lane's record (A / 3, |A| / 3) added at its three nodes: one four-double
+    // addition per node, lane after lane.
+    for (int l = 0; l < kTriangleLanes; ++l) {
+      if (!in[l]) continue;
+      const V record = {sums[0][l], sums[1][l], sums[2][l], sums[3][l]};
+      for (int i = 0; i < 3; ++i) {
+        double* sum = nodeSums + batch->record[i][l];
+        store(sum, load(sum) + record);
+      }
+    }
   } else {
     for (int i = 0; i < 3; ++i)
       for (int r = 0; r < 3; ++r) store(fs.v[i][r], P[r][0] * dN[i][0] + P[r][1] * dN[i][1]);
@@ -166,6 +266,10 @@ using Forces = void (*)(const double*, const MembraneTriangleLanes&, TriangleLan
 using ForcesAndLoads = void (*)(const double*, const double*, const MembraneTriangleLanes&,
                                 const TriangleFaceLoadLanes&, TriangleLaneVectors&,
                                 double (&)[3][kTriangleLanes]);
+using ForcesAndFlow = void (*)(const double*, const double*, const MembraneTriangleLanes&,
+                               const TriangleFlowBatch&, const TriangleFlowParameters&,
+                               TriangleLaneVectors&, double (&)[3][kTriangleLanes],
+                               TriangleFlowAccumulators&, double*);
 }  // namespace
 
 void membraneTriangleForcesBaseline(const double* x, const MembraneTriangleLanes& t,
@@ -206,6 +310,31 @@ void membraneTriangleForcesAndLoads(const double* x, const double* v,
   static const ForcesAndLoads copy =
       useAvx2() ? &membraneTriangleForcesAndLoadsAvx2 : &membraneTriangleForcesAndLoadsBaseline;
   copy(x, v, t, q, f, loads);
+}
+
+void membraneTriangleForcesAndFlowBaseline(const double* x, const double* v,
+                                           const MembraneTriangleLanes& t,
+                                           const TriangleFlowBatch& batch,
+                                           const TriangleFlowParameters& q, TriangleLaneVectors& f,
+                                           double (&loads)[3][kTriangleLanes],
+                                           TriangleFlowAccumulators& acc, double* nodeSums) {
+  forces(x, t, f, nullptr, v, nullptr, loads, &q, &batch, &acc, nodeSums);
+}
+
+[[gnu::target("avx2")]] void membraneTriangleForcesAndFlowAvx2(
+    const double* x, const double* v, const MembraneTriangleLanes& t,
+    const TriangleFlowBatch& batch, const TriangleFlowParameters& q, TriangleLaneVectors& f,
+    double (&loads)[3][kTriangleLanes], TriangleFlowAccumulators& acc, double* nodeSums) {
+  forces(x, t, f, nullptr, v, nullptr, loads, &q, &batch, &acc, nodeSums);
+}
+
+void membraneTriangleForcesAndFlow(const double* x, const double* v, const MembraneTriangleLanes& t,
+                                   const TriangleFlowBatch& batch, const TriangleFlowParameters& q,
+                                   TriangleLaneVectors& f, double (&loads)[3][kTriangleLanes],
+                                   TriangleFlowAccumulators& acc, double* nodeSums) {
+  static const ForcesAndFlow copy =
+      useAvx2() ? &membraneTriangleForcesAndFlowAvx2 : &membraneTriangleForcesAndFlowBaseline;
+  copy(x, v, t, batch, q, f, loads, acc, nodeSums);
 }
 
 }  // namespace chute::kernels

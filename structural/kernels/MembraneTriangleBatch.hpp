@@ -10,6 +10,7 @@
 #include "kernels/MembraneTriangleForce.hpp"
 #include "kernels/SimdCopies.hpp"
 #include "kernels/TriangleFaceLoads.hpp"
+#include "kernels/TriangleFlowLoads.hpp"
 
 namespace chute::kernels {
 
@@ -69,5 +70,41 @@ void membraneTriangleForcesAndLoadsAvx2(const double* x, const double* v,
                                         const MembraneTriangleLanes& t,
                                         const TriangleFaceLoadLanes& q, TriangleLaneVectors& f,
                                         double (&loads)[3][kTriangleLanes]);
+
+// FL13: which lanes of a batch are the canopy's (all bits set; a missing lane of the last batch
+// is not), and for those where their nodes' records in the per-node sums begin, in doubles,
+// [node][lane]: each record A / 3 then |A| / 3 (TriangleFlowSums' nodeArea, share), added to in
+// place.
+struct alignas(32) TriangleFlowBatch {
+  std::int64_t inFlow[kTriangleLanes];
+  int record[3][kTriangleLanes];
+};
+// The canopy's sums over the faces lane by lane (triangle k's in lane k mod 4).
+struct alignas(32) TriangleFlowAccumulators {
+  double volume[kTriangleLanes] = {}, area[kTriangleLanes] = {};
+  double cloth[kTriangleLanes] = {}, dCloth[kTriangleLanes] = {};
+};
+
+// membraneTriangleForces with the airflow's loads of FL13 at the velocities v in the same pass: in
+// the canopy's lanes f gets each lane's nodal forces plus its load (membraneTriangleForce then
+// triangleFlowLoad added: their bits) and its sums are added to acc and to the records at
+// nodeSums + record, lane after lane, node after node (the triangles' order); elsewhere
+// the forces alone. loads[xyz][lane]: each lane's load alone.
+void membraneTriangleForcesAndFlow(const double* x, const double* v, const MembraneTriangleLanes& t,
+                                   const TriangleFlowBatch& batch, const TriangleFlowParameters& q,
+                                   TriangleLaneVectors& f, double (&loads)[3][kTriangleLanes],
+                                   TriangleFlowAccumulators& acc, double* nodeSums);
+void membraneTriangleForcesAndFlowBaseline(const double* x, const double* v,
+                                           const MembraneTriangleLanes& t,
+                                           const TriangleFlowBatch& batch,
+                                           const TriangleFlowParameters& q, TriangleLaneVectors& f,
+                                           double (&loads)[3][kTriangleLanes],
+                                           TriangleFlowAccumulators& acc, double* nodeSums);
+void membraneTriangleForcesAndFlowAvx2(const double* x, const double* v,
+                                       const MembraneTriangleLanes& t,
+                                       const TriangleFlowBatch& batch,
+                                       const TriangleFlowParameters& q, TriangleLaneVectors& f,
+                                       double (&loads)[3][kTriangleLanes],
+                                       TriangleFlowAccumulators& acc, double* nodeSums);
 
 }  // namespace chute::kernels

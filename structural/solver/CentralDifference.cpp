@@ -398,8 +398,9 @@ NewtonReport CentralDifference::advance(StructuralState& s, double dt) {
   const bool damped = settings_.stiffnessDamping > 0.0;
   if (damped) xEval_ = n.x + settings_.stiffnessDamping * vStar_;
   // EX2: the forces at a = 0; the step's length for RG8.
-  const EvalPoint p = EvalPoint::explicitForces(damped ? xEval_ : n.x, vStar_, zeroDofs_, n.t, dt,
-                                                damped ? &n.x : nullptr);
+  const EvalPoint p =
+      EvalPoint::explicitForces(damped ? xEval_ : n.x, vStar_, zeroDofs_, n.t, dt,
+                                damped ? &n.x : nullptr, settings_.stiffnessDamping);
   const Eigen::VectorXd* mass = nullptr;
   if (cutSets(n.t) == fixedMassCuts_) {
     // The sliding elements' mass M(x) 1 at x_{n+1} (all lumpedMass has to evaluate while no cut

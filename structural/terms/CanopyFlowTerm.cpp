@@ -9,6 +9,8 @@
 #include <stdexcept>
 #include <type_traits>
 
+#include "terms/FaceLoadFusion.hpp"
+
 namespace chute {
 
 using Vec3 = Eigen::Vector3d;
@@ -238,7 +240,7 @@ CanopyFlowTerm::FaceSums CanopyFlowTerm::facePass(const Eigen::VectorXd& x,
   // back from memory, had cost twice as much: the flow state they need, FL1, is known before
   // the pass, from the nodes' shares at the step's start).
   if constexpr (Keep)
-    nodeSums_.assign(nodes_.size(), NodeSums{Vec3::Zero(), Vec3::Zero(), 0.0, 0.0});
+    nodeSums_.assign(nodes_.size(), NodeSums{Vec3::Zero(), 0.0, Vec3::Zero(), 0.0});
   // The sums are held in locals (the compiler cannot tell a member from the arrays stored to).
   double volume = 0.0, area = 0.0, cloth = 0.0, dCloth = 0.0;
   const kernels::ClothPermeability& law = def_->cloth;
@@ -334,11 +336,50 @@ void CanopyFlowTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
   // Loads, not stiffness: at the step's own positions whatever stiffness damping shifts (EX7).
   // An explicit step's forces take the captured air at the step's end (FL9): its update is made
   // here, on trial, and committed with the step.
-  const Evaluation e = evaluate(p.stepPositions(), p.v, &out, p.loadFactor, p.explicitStep);
+  // Taken, the membranes' pass made them (finishTakenPass).
+  if (taken_ && fusedFaceLoads(p, out)) return;
+  keepStepEvaluation(p, evaluate(p.stepPositions(), p.v, &out, p.loadFactor, p.explicitStep));
+}
+
+void CanopyFlowTerm::keepStepEvaluation(const EvalPoint& p, const Evaluation& e) {
   if (p.explicitStep > 0.0) trialMass_ = e.capturedMass, trialTime_ = p.t;
   // The face data just made are those of the state at p.t (an explicit step's end).
   scratchTime_ = p.explicitStep > 0.0 ? p.t : std::numeric_limits<double>::quiet_NaN();
   scratchVolume_ = e.figures.volume;
+}
+
+bool CanopyFlowTerm::trianglesOnly() const {
+  for (const FaceNodes& fn : faceNodes_)
+    if (fn.size != 3) return false;
+  return true;
+}
+
+kernels::TriangleFlowParameters CanopyFlowTerm::beginTakenPass(const EvalPoint& p) const {
+  passState_ = flowState(p.v);
+  passGauge_ = startGauge();
+  nodeSums_.assign(nodes_.size(), NodeSums{Vec3::Zero(), 0.0, Vec3::Zero(), 0.0});
+  const kernels::CanopyFlowState& s = passState_;
+  kernels::TriangleFlowParameters q;
+  for (int c = 0; c < 3; ++c)
+    q.flowDirection[c] = s.flowDirection[c], q.canopyVelocity[c] = s.canopyVelocity[c];
+  q.dynamicPressure = s.dynamicPressure;
+  q.baseCoefficient = s.baseCoefficient;
+  q.normalDrag = s.normalDrag;
+  q.clothGauge = passGauge_;
+  const kernels::ClothPermeability& law = def_->cloth;
+  q.permeable = law.permeable();
+  q.viscous = law.viscous, q.inertial = law.inertial, q.perViscous = law.perViscous;
+  q.loadFactor = p.loadFactor;
+  q.dampingShift = p.undamped ? p.dampingShift : 0.0;
+  return q;
+}
+
+void CanopyFlowTerm::finishTakenPass(const EvalPoint& p, const FaceSums& sums,
+                                     SystemAssembler& out) {
+  if (sums.area > 0.0)
+    for (NodeSums& n : nodeSums_) n.share /= sums.area;
+  keepStepEvaluation(p, complete(p.stepPositions(), sums, passState_, passGauge_, &out,
+                                 p.loadFactor, p.explicitStep));
 }
 
 CanopyFlowTerm::Figures CanopyFlowTerm::figuresAt(const Eigen::VectorXd& x,
@@ -376,17 +417,14 @@ double CanopyFlowTerm::AirBudget::massAfter(double Mn, double dt,
   return 0.5 * (lo + hi);
 }
 
-CanopyFlowTerm::Evaluation CanopyFlowTerm::evaluate(const Eigen::VectorXd& x,
-                                                    const Eigen::VectorXd& v, SystemAssembler* out,
-                                                    double loadFactor, double stepDt) const {
-  const Model& m = *m_;
-  const double rho = m.air.density;
+kernels::CanopyFlowState CanopyFlowTerm::flowState(const Eigen::VectorXd& v) const {
+  const double rho = m_->air.density;
   // FL1: the relative flow of the canopy as a whole; the canopy's velocity the mean of its
   // nodes' by their shares of its area at the step's start.
   Vec3 canopyVelocity = Vec3::Zero();
   for (size_t i = 0; i < nodes_.size(); ++i)
     canopyVelocity += committedShares_[i] * at(v, nodes_[i]);
-  const Vec3 U = m.air.wind - canopyVelocity;
+  const Vec3 U = m_->air.wind - canopyVelocity;
   const double speed = U.norm();
   kernels::CanopyFlowState s;
   s.canopyVelocity = canopyVelocity;
@@ -394,20 +432,39 @@ CanopyFlowTerm::Evaluation CanopyFlowTerm::evaluate(const Eigen::VectorXd& x,
   s.dynamicPressure = 0.5 * rho * speed * speed;
   s.baseCoefficient = def_->baseCoefficient;
   s.normalDrag = 0.5 * rho * def_->normalDrag;
+  return s;
+}
+
+double CanopyFlowTerm::startGauge() const {
   // FL6, FL9: the cloth's outflow linearised in the inside pressure about the step's start (its
   // mass in its volume).
-  const double startGauge =
-      kernels::capturedAirPressure(captured_, std::max(committedVolume_, 0.0) + volumeFloor_,
-                                   m.air.pressure, rho, def_->gamma) -
-      m.air.pressure;
+  const Model& m = *m_;
+  return kernels::capturedAirPressure(captured_, std::max(committedVolume_, 0.0) + volumeFloor_,
+                                      m.air.pressure, m.air.density, def_->gamma) -
+         m.air.pressure;
+}
+
+CanopyFlowTerm::Evaluation CanopyFlowTerm::evaluate(const Eigen::VectorXd& x,
+                                                    const Eigen::VectorXd& v, SystemAssembler* out,
+                                                    double loadFactor, double stepDt) const {
+  const kernels::CanopyFlowState s = flowState(v);
+  const double gauge = startGauge();
   // One pass over the faces for the volume, the cloth's outflow (FL6) and the loads that do not
   // depend on the inside pressure (FL8 is linear in it: its part, p_in a_i with a_i the share of
   // the area vectors at node i, is added per node once the captured air's update has found p_in).
   const bool permeable = def_->cloth.permeable();
-  kernels::CanopyFlowState atAmbient = s;
-  atAmbient.insideGauge = 0.0;
-  const FaceSums sums = out ? facePass<true>(x, v, atAmbient, startGauge, permeable)
-                            : facePass<false>(x, v, atAmbient, startGauge, permeable);
+  const FaceSums sums =
+      out ? facePass<true>(x, v, s, gauge, permeable) : facePass<false>(x, v, s, gauge, permeable);
+  return complete(x, sums, s, gauge, out, loadFactor, stepDt);
+}
+
+CanopyFlowTerm::Evaluation CanopyFlowTerm::complete(const Eigen::VectorXd& x, const FaceSums& sums,
+                                                    kernels::CanopyFlowState s, double gauge,
+                                                    SystemAssembler* out, double loadFactor,
+                                                    double stepDt) const {
+  const Model& m = *m_;
+  const double rho = m.air.density;
+  const Vec3 canopyVelocity = s.canopyVelocity;
   Geometry g;
   g.volume = sums.volume, g.area = sums.area;
   closeOpenings(x, g);
@@ -430,9 +487,8 @@ CanopyFlowTerm::Evaluation CanopyFlowTerm::evaluate(const Eigen::VectorXd& x,
     b.vents.emplace_back(
         area, s.dynamicPressure * kernels::outsidePressureCoefficient(c, s.baseCoefficient));
   }
-  b.insideGauge = startGauge;
-  const double cloth = sums.cloth, dCloth = sums.dCloth;
-  b.cloth = cloth, b.dCloth = dCloth;
+  b.insideGauge = gauge;
+  b.cloth = sums.cloth, b.dCloth = sums.dCloth;
   // FL3, FL9: the captured air at the end of a step (its update solved here), or as committed.
   e.capturedMass = stepDt > 0.0 ? b.massAfter(captured_, stepDt, *this) : captured_;
   s.insideGauge =
@@ -441,7 +497,13 @@ CanopyFlowTerm::Evaluation CanopyFlowTerm::evaluate(const Eigen::VectorXd& x,
   // FL8's inside pressure, and FL10: air newly set moving with the canopy is brought from rest
   // (in the air) to the canopy's velocity: the force -dm_a/dt (v_c - w) while the apparent mass
   // grows (air shed as it shrinks leaves with the canopy's velocity), shared as the inertia is.
-  if (out) {
+  if (out && taken_ && !(massRate_ > 0.0)) {
+    // The membranes' pass made the faces' loads (FL13), and no air is being entrained: the inside
+    // pressure's part alone (the same values as the general loop's with no push and no force).
+    const double p = s.insideGauge;
+    for (size_t i = 0; i < nodes_.size(); ++i)
+      out->add<1>({nodes_[i]}, Vec3(loadFactor * -(p * nodeSums_[i].area)), nullptr);
+  } else if (out) {
     const Vec3 push =
         massRate_ > 0.0 ? Vec3(massRate_ * (canopyVelocity - m.air.wind)) : Vec3::Zero();
     for (size_t i = 0; i < nodes_.size(); ++i) {

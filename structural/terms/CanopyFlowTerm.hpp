@@ -12,6 +12,7 @@
 
 #include "assembly/Term.hpp"
 #include "kernels/CanopyFlow.hpp"
+#include "kernels/TriangleFlowLoads.hpp"
 #include "model/Model.hpp"
 
 namespace chute {
@@ -32,7 +33,10 @@ class CanopyFlowTerm final : public Term {
   // FL12: the captured air is a gas spring over the whole canopy, K = (gamma p / V) a a^T.
   double frequencySquaredBound(const Eigen::VectorXd& x, double t,
                                const std::vector<double>& nodalMass) const override;
-  double assemblyCost() const override { return 1.3 * static_cast<double>(faces_.size()); }
+  // Taken (FL13), the explicit step's loads are the membranes' work.
+  double assemblyCost() const override {
+    return taken_ ? 0.0 : 1.3 * static_cast<double>(faces_.size());
+  }
 
   bool hasHistory() const override { return true; }
   void commit(const CommitPoint& c) override;
@@ -59,6 +63,34 @@ class CanopyFlowTerm final : public Term {
   double nominalDiameter() const { return nominalDiameter_; }
   double nominalArea() const;
 
+  // FL13: the membrane term takes the faces' loads on the explicit step's forces
+  // (FaceLoadFusion.hpp fusedFaceLoads), when every face is a triangle: beginTakenPass gives the
+  // canopy-wide state for kernels::triangleFlowLoad, the membranes' pass adds each triangle's sums
+  // (addTakenFace, at the term's node slots: slotOf), and finishTakenPass makes the rest of the
+  // evaluation (the openings, the captured air's update, the inside pressure's and the entrained
+  // air's loads per node into out) as assemble would have. assemble then adds nothing on those
+  // evaluations.
+  bool trianglesOnly() const;
+  void takeFaces() { taken_ = true; }
+  int slotOf(int node) const { return slot_[node]; }
+  struct FaceSums {
+    double volume = 0.0, area = 0.0;
+    double cloth = 0.0, dCloth = 0.0;  // FL6's outflow and its derivative in the inside pressure
+  };
+  kernels::TriangleFlowParameters beginTakenPass(const EvalPoint& p) const;
+  void addTakenFace(const std::array<int, 3>& slots, const double* nodeArea, double share) const {
+    for (int slot : slots) {
+      NodeSums& n = nodeSums_[slot];
+      for (int c = 0; c < 3; ++c) n.area[c] += nodeArea[c];
+      n.share += share;
+    }
+  }
+  void finishTakenPass(const EvalPoint& p, const FaceSums& sums, SystemAssembler& out);
+  // The per-node records the four-lane kernel adds to (kernels::TriangleFlowBatch): at slot s,
+  // nodeSumsData() + kNodeSumsStride s, A / 3 then |A| / 3.
+  static constexpr int kNodeSumsStride = 8;
+  double* nodeSumsData() const { return nodeSums_.data()->area.data(); }
+
  private:
   struct Loop {
     std::vector<int> nodes;  // in order around the opening
@@ -74,11 +106,6 @@ class CanopyFlowTerm final : public Term {
   Geometry geometry(const Eigen::VectorXd& x) const;
   // The openings' fans (FL2): their outward area vectors into g, their volume added to g.
   void closeOpenings(const Eigen::VectorXd& x, Geometry& g) const;
-  // What one pass over the faces sums besides the per-node sums (nodeSums_).
-  struct FaceSums {
-    double volume = 0.0, area = 0.0;
-    double cloth = 0.0, dCloth = 0.0;  // FL6's outflow and its derivative in the inside pressure
-  };
   // The one pass over the faces of an evaluation (FL2, FL6, FL8): the volume and area, the
   // cloth's outflow at the inside gauge clothGauge (when permeable), and with keep each node's
   // sums in nodeSums_: its share of the area, of the area vectors, and of the faces' loads at
@@ -115,6 +142,15 @@ class CanopyFlowTerm final : public Term {
   };
   Evaluation evaluate(const Eigen::VectorXd& x, const Eigen::VectorXd& v, SystemAssembler* out,
                       double loadFactor, double stepDt) const;
+  // Its parts: the canopy-wide state at velocities v (FL1, the inside gauge left 0), the inside
+  // gauge of the step's start (the cloth's linearisation, FL9), and what follows the pass over
+  // the faces (sums; per-node sums in nodeSums_ when out is given).
+  kernels::CanopyFlowState flowState(const Eigen::VectorXd& v) const;
+  double startGauge() const;
+  Evaluation complete(const Eigen::VectorXd& x, const FaceSums& sums, kernels::CanopyFlowState s,
+                      double gauge, SystemAssembler* out, double loadFactor, double stepDt) const;
+  // An explicit step's evaluation at p.t: its captured air and face data kept for the commit.
+  void keepStepEvaluation(const EvalPoint& p, const Evaluation& e);
 
   const Model* m_;
   const CanopyFlowDef* def_;
@@ -143,16 +179,22 @@ class CanopyFlowTerm final : public Term {
   // The captured mass an explicit step's evaluation found at the step's end, and the step's end
   // time (committed with that step only).
   double trialMass_ = 0.0, trialTime_ = -1.0;
+  bool taken_ = false;  // FL13
+  // Between beginTakenPass and finishTakenPass: the canopy-wide state and the start's gauge.
+  mutable kernels::CanopyFlowState passState_;
+  mutable double passGauge_ = 0.0;
   // Scratch of the last evaluation (its one pass over the faces serves the volume, the cloth,
   // the loads and the commit): per node, the volume, and the time of the explicit step's end
   // whose positions they belong to (NaN: none).
   struct NodeSums {
-    Eigen::Vector3d force;  // the faces' loads at p_in = p_a
     Eigen::Vector3d area;   // a_i: the share of the area vectors at node i
     double share;           // the share of the area (over the whole area once the pass is done)
+    Eigen::Vector3d force;  // the faces' loads at p_in = p_a (not when taken: the membranes')
     double unused;          // one cache line per node
   };
   mutable std::vector<NodeSums> nodeSums_;
+  static_assert(sizeof(Eigen::Vector3d) == 3 * sizeof(double) &&
+                sizeof(NodeSums) == kNodeSumsStride * sizeof(double));
   mutable double scratchVolume_ = 0.0;
   mutable double scratchTime_ = std::numeric_limits<double>::quiet_NaN();
 };

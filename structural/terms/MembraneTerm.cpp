@@ -5,6 +5,7 @@
 
 #include "kernels/MembraneDiscreteGradient.hpp"
 #include "kernels/Regularisations.hpp"
+#include "terms/CanopyFlowTerm.hpp"
 #include "terms/MembraneElementAssembly.hpp"
 
 namespace chute {
@@ -14,6 +15,10 @@ namespace {
 // ns per triangle with a pressure and a face drag, 20.4 without (timed per term), 0.23 of a
 // triangle per load.
 constexpr double kTakenFaceCost = 0.23;
+// The airflow's loads of a triangle taken (FL13), with the airflow's per-node work after the pass
+// shared over its triangles: on the generated C-9 in free flight (cases/c9_flight.toml) the pass
+// made 362 instructions per triangle with them, 193 without (callgrind).
+constexpr double kTakenFlowCost = 0.85;
 }  // namespace
 
 using kernels::Vec3;
@@ -106,6 +111,10 @@ void MembraneTerm::assembleExplicitTriangles(const EvalPoint& p, SystemAssembler
   const size_t count = explicitTriangles_.size();
   // P2: the face loads taken, at this evaluation's time and load factor (PressureTerm's and
   // FaceDragTerm's products); also kept over all dofs where the energy balance asks.
+  if (flow_ && fusedFaceLoads(p, out)) {
+    assembleTrianglesWithFlow(p, out);
+    return;
+  }
   const bool loads = !taken_.empty() && fusedFaceLoads(p, out);
   Eigen::VectorXd* captured = loads ? out.fusedLoads() : nullptr;
   if (loads) {
@@ -201,6 +210,107 @@ kernels::TriangleFaceLoadParameters MembraneTerm::takenParameters(size_t triangl
   return q;
 }
 
+void MembraneTerm::assembleTrianglesWithFlow(const EvalPoint& p, SystemAssembler& out) {
+  constexpr int kLanes = kernels::kTriangleLanes;
+  const double* x = p.x.data();
+  const double* v = p.v.data();
+  const bool weighed = !massShare_.empty();
+  const size_t count = explicitTriangles_.size();
+  const kernels::TriangleFlowParameters q = flow_->beginTakenPass(p);
+  Eigen::VectorXd* captured = out.fusedLoads();  // the energy balance's loads, when kept
+  auto capture = [&](const std::array<int, 3>& nodes, const double* load) {
+    for (int i = 0; i < 3; ++i)
+      for (int c = 0; c < 3; ++c) (*captured)[3 * nodes[i] + c] += load[c];
+  };
+  // The canopy's sums lane by lane, triangle k in lane k mod 4 whichever path runs (the same
+  // bits), added up at the end.
+  kernels::TriangleFlowAccumulators acc;
+  if (!kernels::useAvx2()) {
+    // One at a time (as assembleExplicitTriangles, for the same reason): the lanes' bits.
+    for (size_t k = 0; k < count; ++k) {
+      const ExplicitTriangle& t = explicitTriangles_[k];
+      const double* x0 = x + 3 * t.nodes[0];
+      const double* x1 = x + 3 * t.nodes[1];
+      const double* x2 = x + 3 * t.nodes[2];
+      Eigen::Matrix<double, 9, 1> r;
+      kernels::membraneTriangleForce(x0, x1, x2, t.force, r.data());
+      if (flowSlots_[k][0] >= 0) {
+        double f[3];
+        kernels::TriangleFlowSums o;
+        kernels::triangleFlowLoad(x0, x1, x2, v + 3 * t.nodes[0], v + 3 * t.nodes[1],
+                                  v + 3 * t.nodes[2], q, f, o);
+        for (int i = 0; i < 3; ++i)
+          for (int c = 0; c < 3; ++c) r[3 * i + c] += f[c];
+        const size_t lane = k % kLanes;
+        acc.volume[lane] += o.volume, acc.area[lane] += o.area;
+        acc.cloth[lane] += o.cloth, acc.dCloth[lane] += o.dCloth;
+        flow_->addTakenFace(flowSlots_[k], o.nodeArea, o.share);
+        if (captured) capture(t.nodes, f);
+      }
+      if (weighed) addWeight<3>(t.share.data(), p.loadFactor, r);
+      out.add<3>(t.nodes, r, nullptr);
+    }
+  } else {
+    double* sums = flow_->nodeSumsData();
+    for (size_t b = 0; b < triangleLanes_.size(); ++b) {
+      const size_t first = b * kLanes;
+      const int lanes = static_cast<int>(std::min<size_t>(kLanes, count - first));
+      kernels::TriangleLaneVectors fs;
+      double f[3][kLanes];
+      kernels::membraneTriangleForcesAndFlow(x, v, triangleLanes_[b], flowLanes_[b], q, fs, f, acc,
+                                             sums);
+      for (int l = 0; l < lanes; ++l) {
+        const ExplicitTriangle& t = explicitTriangles_[first + l];
+        Eigen::Matrix<double, 9, 1> r;
+        for (int i = 0; i < 3; ++i)
+          for (int c = 0; c < 3; ++c) r[3 * i + c] = fs.v[i][c][l];
+        if (captured && flowLanes_[b].inFlow[l]) {
+          const double load[3] = {f[0][l], f[1][l], f[2][l]};
+          capture(t.nodes, load);
+        }
+        if (weighed) addWeight<3>(t.share.data(), p.loadFactor, r);
+        out.add<3>(t.nodes, r, nullptr);
+      }
+    }
+  }
+  auto total = [](const double(&lane)[kLanes]) {
+    return ((lane[0] + lane[1]) + lane[2]) + lane[3];
+  };
+  const CanopyFlowTerm::FaceSums faceSums{total(acc.volume), total(acc.area), total(acc.cloth),
+                                          total(acc.dCloth)};
+  // The rest of the airflow's evaluation (its per-node loads kept as the face loads are).
+  if (captured) out.captureAllDofs(captured);
+  flow_->finishTakenPass(p, faceSums, out);
+  if (captured) out.captureAllDofs(nullptr);
+}
+
+bool MembraneTerm::takeCanopyFlow(CanopyFlowTerm& flow) {
+  const Model& m = *m_;
+  if (m.massDamping != 0.0 || explicitTriangles_.empty() || !taken_.empty() || flow_ ||
+      !flow.trianglesOnly())
+    return false;
+  flowSlots_.assign(explicitTriangles_.size(), {-1, -1, -1});
+  for (size_t k = 0; k < m.membranes.size(); ++k) {
+    const auto& e = m.membranes[k];
+    if (e.set != flow.set()) continue;
+    for (int i = 0; i < 3; ++i) flowSlots_[slot_[k]][i] = flow.slotOf(e.nodes[i]);
+  }
+  // The missing lanes of the last batch are not the canopy's.
+  constexpr size_t kLanes = kernels::kTriangleLanes;
+  flowLanes_.assign(triangleLanes_.size(), {});
+  for (size_t b = 0; b < flowLanes_.size(); ++b)
+    for (size_t l = 0; l < kLanes; ++l) {
+      const size_t k = b * kLanes + l;
+      const bool in = k < flowSlots_.size() && flowSlots_[k][0] >= 0;
+      flowLanes_[b].inFlow[l] = in ? -1 : 0;
+      for (int i = 0; i < 3; ++i)
+        flowLanes_[b].record[i][l] = in ? CanopyFlowTerm::kNodeSumsStride * flowSlots_[k][i] : 0;
+    }
+  flow_ = &flow;
+  flow.takeFaces();
+  return true;
+}
+
 TakenFaces MembraneTerm::takeFaceLoads() {
   const Model& m = *m_;
   if (m.massDamping != 0.0 || explicitTriangles_.empty()) return nullptr;
@@ -280,13 +390,16 @@ void MembraneTerm::addStiffnessBound(const Eigen::VectorXd& x, double /*t*/,
 }
 
 // A triangle is the unit; a quad, which the explicit step takes one at a time, costs 5; a face
-// load taken (P2), a pressure or a drag, kTakenFaceCost (Term::assemblyCost).
+// load taken (P2), a pressure or a drag, kTakenFaceCost; the airflow's (FL13) kTakenFlowCost
+// (Term::assemblyCost).
 double MembraneTerm::assemblyCost() const {
   double tri = 0.0, quad = 0.0;
   for (const auto& e : m_->membranes) (e.numNodes == 3 ? tri : quad) += 1.0;
   double taken = static_cast<double>(takenDrags_);
   for (long n : takenPerPressure_) taken += static_cast<double>(n);
-  return tri + 5.0 * quad + kTakenFaceCost * taken;
+  double flow = 0.0;
+  for (const auto& slots : flowSlots_) flow += slots[0] >= 0 ? 1.0 : 0.0;
+  return tri + 5.0 * quad + kTakenFaceCost * taken + kTakenFlowCost * flow;
 }
 
 void MembraneTerm::addCouplings(std::vector<std::vector<int>>& cliques) const {

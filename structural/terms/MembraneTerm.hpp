@@ -3,6 +3,7 @@
 // with the tension-field model where its set asks for it; keeps each element's last wrinkling
 // state.
 #include <array>
+#include <cstdint>
 #include <vector>
 
 #include "assembly/Term.hpp"
@@ -14,6 +15,8 @@
 #include "terms/FaceLoadFusion.hpp"
 
 namespace chute {
+
+class CanopyFlowTerm;
 
 class MembraneTerm final : public Term {
  public:
@@ -51,6 +54,11 @@ class MembraneTerm final : public Term {
   // such triangles, or with mass damping (the explicit step's triangles are then not taken apart
   // from the element path).
   TakenFaces takeFaceLoads();
+  // FL13: takes the airflow's loads of a canopy whose faces are all triangles, to add to their
+  // forces on the explicit step's evaluations (CanopyFlowTerm::beginTakenPass, finishTakenPass).
+  // One canopy, and none where face loads were taken (P2), or with mass damping; false: left to
+  // the airflow's term.
+  bool takeCanopyFlow(CanopyFlowTerm& flow);
   // Elements around a node, for stress probes.
   std::vector<int> elementsAt(int node) const;
 
@@ -97,6 +105,12 @@ class MembraneTerm final : public Term {
   kernels::TriangleFaceLoadParameters takenParameters(size_t triangle) const;
   void makeExplicitTriangles();
   void assembleExplicitTriangles(const EvalPoint& p, SystemAssembler& out);
+  // FL13: the canopy whose airflow's loads were taken; per explicit triangle its nodes' slots in
+  // that term ({-1, ...}: not the canopy's); per batch, the canopy's lanes and their slots.
+  CanopyFlowTerm* flow_ = nullptr;
+  std::vector<std::array<int, 3>> flowSlots_;
+  std::vector<kernels::TriangleFlowBatch> flowLanes_;
+  void assembleTrianglesWithFlow(const EvalPoint& p, SystemAssembler& out);
   // Per element, each node's share of its mass, rho t0 int N_i dA: the weight, made once when the
   // model has gravity (empty without).
   std::vector<std::array<double, 4>> massShare_;

@@ -51,6 +51,8 @@ TermList::TermList(const Model& model, TermOptions options,
   }
   for (size_t f = 0; f < model.canopyFlows.size(); ++f) {
     auto t = std::make_unique<CanopyFlowTerm>(model, static_cast<int>(f));
+    // FL13: the explicit step's airflow's loads in the membranes' pass (one canopy).
+    if (membranes_ && options.takeCanopyFlow) membranes_->takeCanopyFlow(*t);
     canopyFlows_.push_back(t.get());
     terms_.push_back(std::move(t));
   }

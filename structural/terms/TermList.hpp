@@ -22,6 +22,9 @@ class ContactTerm;
 // The choices the terms are built with (from the case's [solver] table).
 struct TermOptions {
   SliderSearch search = SliderSearch::MaterialCoordinate;
+  // FL13: the membranes' pass takes a canopy's airflow's loads where it can (off: each term its
+  // own, the reference the tests compare it with).
+  bool takeCanopyFlow = true;
   TermOptions() = default;
   TermOptions(SliderSearch s) : search(s) {}  // NOLINT: implicit, the one choice there is
 };
