@@ -54,29 +54,50 @@ StructuralSystem::StructuralSystem(const Model& model, TermOptions options,
 // giving that thread less assembly to make up for it was measured slower on the C-9 (the second
 // thread then waits).
 void StructuralSystem::splitAssembly() {
-  std::vector<std::pair<double, Term*>> movable;
+  // A term that assembles in halves is two items of half its cost; if both land in one part it
+  // stays whole there.
+  struct Item {
+    double cost;
+    Term* term;
+    int half;  // -1: whole
+  };
+  std::vector<Item> movable;
   double first = 0.0;
   for (const auto& t : terms_) {
-    if (t->assemblesApart())
-      movable.emplace_back(t->assemblyCost(), t.get());
-    else
+    if (!t->assemblesApart()) {
       first += t->assemblyCost();
-  }
-  std::stable_sort(movable.begin(), movable.end(),
-                   [](const auto& a, const auto& b) { return a.first > b.first; });
-  double second = 0.0;
-  std::vector<const Term*> toSecond;
-  for (const auto& [cost, t] : movable) {
-    if (second <= first) {
-      second += cost;
-      toSecond.push_back(t);
+    } else if (t->assemblesInHalves() && !halved_) {
+      movable.push_back({0.5 * t->assemblyCost(), t.get(), 0});
+      movable.push_back({0.5 * t->assemblyCost(), t.get(), 1});
     } else {
-      first += cost;
+      movable.push_back({t->assemblyCost(), t.get(), -1});
     }
   }
+  std::stable_sort(movable.begin(), movable.end(),
+                   [](const Item& a, const Item& b) { return a.cost > b.cost; });
+  double second = 0.0;
+  std::vector<const Term*> toSecond, toFirst;
+  for (const Item& item : movable) {
+    if (second <= first) {
+      second += item.cost;
+      toSecond.push_back(item.term);
+    } else {
+      first += item.cost;
+      toFirst.push_back(item.term);
+    }
+  }
+  auto in = [](const std::vector<const Term*>& v, const Term* t) {
+    return std::find(v.begin(), v.end(), t) != v.end();
+  };
   for (const auto& t : terms_) {
-    const bool moved = std::find(toSecond.begin(), toSecond.end(), t.get()) != toSecond.end();
-    (moved ? secondPart_ : firstPart_).push_back(t.get());
+    const bool inSecond = in(toSecond, t.get()), inFirst = in(toFirst, t.get());
+    if (inSecond && inFirst) {  // one half in each part
+      halved_ = t.get();
+      firstPart_.push_back(t.get());
+      secondPart_.push_back(t.get());
+    } else {
+      (inSecond ? secondPart_ : firstPart_).push_back(t.get());
+    }
   }
   if (secondPart_.empty()) return;
   secondAssembler_.buildPattern({});  // assemble() gives it the first's pattern when built
@@ -159,13 +180,18 @@ void StructuralSystem::assemble(const EvalPoint& at, bool wantMatrix,
   // part into its own vector (the parts may run on two threads).
   const bool capture = captureLoads_ && !wantMatrix && p.explicitStep > 0.0;
   capturedLoadsT_ = std::numeric_limits<double>::quiet_NaN();
-  auto assemblePart = [&](const auto& part, SystemAssembler& out, Eigen::VectorXd& loads) {
+  // half: which half of halved_ the part assembles (the first's 0, the second's 1).
+  auto assemblePart = [&](const auto& part, SystemAssembler& out, Eigen::VectorXd& loads,
+                          int half) {
     if (capture) loads.setZero(3 * model_->numNodes());
     out.captureFusedLoads(capture ? &loads : nullptr);
     for (const auto& t : part) {
       const bool loadTerm = capture && t->doesExternalWork();
       if (loadTerm) out.captureAllDofs(&loads);
-      t->assemble(p, out);
+      if (&*t == halved_)
+        halved_->assembleHalf(p, out, half);
+      else
+        t->assemble(p, out);
       if (loadTerm) out.captureAllDofs(nullptr);
     }
     out.captureFusedLoads(nullptr);
@@ -176,7 +202,7 @@ void StructuralSystem::assemble(const EvalPoint& at, bool wantMatrix,
     capturedLoadsT_ = p.t;
   };
   if (secondPart_.empty()) {
-    assemblePart(terms_, assembler_, partLoads_[0]);
+    assemblePart(terms_, assembler_, partLoads_[0], 0);
     if (alongside) alongside();
     keepLoads();
     return;
@@ -190,13 +216,23 @@ void StructuralSystem::assemble(const EvalPoint& at, bool wantMatrix,
   };
   runner_->run(
       [&] {
-        assemblePart(firstPart_, assembler_, partLoads_[0]);
+        assemblePart(firstPart_, assembler_, partLoads_[0], 0);
         then();
       },
       [&] {
-        assemblePart(secondPart_, secondAssembler_, partLoads_[1]);
+        assemblePart(secondPart_, secondAssembler_, partLoads_[1], 1);
         then();
       });
+  if (halved_) {
+    halved_->afterHalves(p);
+    auto part = [&](SystemAssembler& out, Eigen::VectorXd& loads, int half) {
+      out.captureFusedLoads(capture ? &loads : nullptr);
+      halved_->afterHalvesPart(p, out, half);
+      out.captureFusedLoads(nullptr);
+    };
+    runTwo([&] { part(assembler_, partLoads_[0], 0); },
+           [&] { part(secondAssembler_, partLoads_[1], 1); });
+  }
   assembler_.accumulate(secondAssembler_);
   keepLoads();
 }
@@ -315,7 +351,8 @@ EnergyBreakdown StructuralSystem::energyOnTwoThreads(const Eigen::VectorXd& x,
         for (auto* term : firstPart_) term->addEnergy(x, v, t, a);
       },
       [&] {
-        for (auto* term : secondPart_) term->addEnergy(x, v, t, b);
+        for (auto* term : secondPart_)
+          if (term != halved_) term->addEnergy(x, v, t, b);  // counted once, in the first
       });
   a.kinetic += b.kinetic, a.strain += b.strain, a.gravity += b.gravity, a.supplied += b.supplied;
   return a;

@@ -174,6 +174,7 @@ class StructuralSystem {
   // run gives the same bits with one thread or two.
   void splitAssembly();
   std::vector<Term*> firstPart_, secondPart_;
+  Term* halved_ = nullptr;  // in both parts, each assembling half (Term::assemblesInHalves)
   SystemAssembler secondAssembler_;
   std::unique_ptr<TwoPartRunner> runner_;  // only with a second part
   Timings timings_;

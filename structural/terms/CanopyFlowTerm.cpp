@@ -354,18 +354,15 @@ bool CanopyFlowTerm::trianglesOnly() const {
   return true;
 }
 
-kernels::TriangleFlowParameters CanopyFlowTerm::beginTakenPass(const EvalPoint& p) const {
-  passState_ = flowState(p.v);
-  passGauge_ = startGauge();
-  nodeSums_.assign(nodes_.size(), NodeSums{Vec3::Zero(), 0.0, Vec3::Zero(), 0.0});
-  const kernels::CanopyFlowState& s = passState_;
+kernels::TriangleFlowParameters CanopyFlowTerm::takenParameters(const EvalPoint& p) const {
+  const kernels::CanopyFlowState s = flowState(p.v);
   kernels::TriangleFlowParameters q;
   for (int c = 0; c < 3; ++c)
     q.flowDirection[c] = s.flowDirection[c], q.canopyVelocity[c] = s.canopyVelocity[c];
   q.dynamicPressure = s.dynamicPressure;
   q.baseCoefficient = s.baseCoefficient;
   q.normalDrag = s.normalDrag;
-  q.clothGauge = passGauge_;
+  q.clothGauge = startGauge();
   const kernels::ClothPermeability& law = def_->cloth;
   q.permeable = law.permeable();
   q.viscous = law.viscous, q.inertial = law.inertial, q.perViscous = law.perViscous;
@@ -374,12 +371,40 @@ kernels::TriangleFlowParameters CanopyFlowTerm::beginTakenPass(const EvalPoint& 
   return q;
 }
 
+double* CanopyFlowTerm::takenRecords(int half) const {
+  std::vector<NodeSums>& records = half == 0 ? nodeSums_ : secondHalf_;
+  records.assign(nodes_.size(), NodeSums{Vec3::Zero(), 0.0, Vec3::Zero(), 0.0});
+  return records.data()->area.data();
+}
+
 void CanopyFlowTerm::finishTakenPass(const EvalPoint& p, const FaceSums& sums,
                                      SystemAssembler& out) {
   if (sums.area > 0.0)
     for (NodeSums& n : nodeSums_) n.share /= sums.area;
-  keepStepEvaluation(p, complete(p.stepPositions(), sums, passState_, passGauge_, &out,
-                                 p.loadFactor, p.explicitStep));
+  const kernels::CanopyFlowState s = flowState(p.v);
+  keepStepEvaluation(p, complete(p.stepPositions(), sums, s, startGauge(), &out, p.loadFactor,
+                                 p.explicitStep, true));
+}
+
+void CanopyFlowTerm::finishTakenSums(const EvalPoint& p, const FaceSums& sums) {
+  const kernels::CanopyFlowState s = flowState(p.v);
+  const Evaluation e = complete(p.stepPositions(), sums, s, startGauge(), nullptr, p.loadFactor,
+                                p.explicitStep, true);
+  keepStepEvaluation(p, e);
+  halves_ = {e.figures.insideGauge, p.loadFactor, sums.area, s.canopyVelocity};
+}
+
+void CanopyFlowTerm::finishTakenNodes(SystemAssembler& out, int half) {
+  // Each half of the nodes: its two records added, its share over the whole area, its loads.
+  const size_t n = nodes_.size(), begin = half == 0 ? 0 : n / 2, end = half == 0 ? n / 2 : n;
+  const double perArea = halves_.area > 0.0 ? 1.0 / halves_.area : 1.0;
+  for (size_t i = begin; i < end; ++i) {
+    NodeSums& sum = nodeSums_[i];
+    sum.area += secondHalf_[i].area;
+    sum.share = halves_.area > 0.0 ? (sum.share + secondHalf_[i].share) * perArea
+                                   : sum.share + secondHalf_[i].share;
+  }
+  addNodeLoads(out, begin, end, halves_.insideGauge, halves_.loadFactor, halves_.canopyVelocity);
 }
 
 CanopyFlowTerm::Figures CanopyFlowTerm::figuresAt(const Eigen::VectorXd& x,
@@ -455,13 +480,33 @@ CanopyFlowTerm::Evaluation CanopyFlowTerm::evaluate(const Eigen::VectorXd& x,
   const bool permeable = def_->cloth.permeable();
   const FaceSums sums =
       out ? facePass<true>(x, v, s, gauge, permeable) : facePass<false>(x, v, s, gauge, permeable);
-  return complete(x, sums, s, gauge, out, loadFactor, stepDt);
+  return complete(x, sums, s, gauge, out, loadFactor, stepDt, out != nullptr);
+}
+
+void CanopyFlowTerm::addNodeLoads(SystemAssembler& out, size_t begin, size_t end, double p,
+                                  double loadFactor, const Vec3& canopyVelocity) const {
+  // FL8's inside pressure, and FL10: air newly set moving with the canopy is brought from rest
+  // (in the air) to the canopy's velocity: the force -dm_a/dt (v_c - w) while the apparent mass
+  // grows (air shed as it shrinks leaves with the canopy's velocity), shared as the inertia is.
+  if (taken_ && !(massRate_ > 0.0)) {
+    // The membranes' pass made the faces' loads (FL13), and no air is being entrained: the inside
+    // pressure's part alone (the same values as the general loop's with no push and no force).
+    for (size_t i = begin; i < end; ++i)
+      out.add<1>({nodes_[i]}, Vec3(loadFactor * -(p * nodeSums_[i].area)), nullptr);
+    return;
+  }
+  const Vec3 push =
+      massRate_ > 0.0 ? Vec3(massRate_ * (canopyVelocity - m_->air.wind)) : Vec3::Zero();
+  for (size_t i = begin; i < end; ++i) {
+    const NodeSums& n = nodeSums_[i];
+    out.add<1>({nodes_[i]}, Vec3(loadFactor * (n.share * push - p * n.area - n.force)), nullptr);
+  }
 }
 
 CanopyFlowTerm::Evaluation CanopyFlowTerm::complete(const Eigen::VectorXd& x, const FaceSums& sums,
                                                     kernels::CanopyFlowState s, double gauge,
                                                     SystemAssembler* out, double loadFactor,
-                                                    double stepDt) const {
+                                                    double stepDt, bool loads) const {
   const Model& m = *m_;
   const double rho = m.air.density;
   const Vec3 canopyVelocity = s.canopyVelocity;
@@ -494,24 +539,8 @@ CanopyFlowTerm::Evaluation CanopyFlowTerm::complete(const Eigen::VectorXd& x, co
   s.insideGauge =
       kernels::capturedAirPressure(e.capturedMass, volume, m.air.pressure, rho, def_->gamma) -
       m.air.pressure;
-  // FL8's inside pressure, and FL10: air newly set moving with the canopy is brought from rest
-  // (in the air) to the canopy's velocity: the force -dm_a/dt (v_c - w) while the apparent mass
-  // grows (air shed as it shrinks leaves with the canopy's velocity), shared as the inertia is.
-  if (out && taken_ && !(massRate_ > 0.0)) {
-    // The membranes' pass made the faces' loads (FL13), and no air is being entrained: the inside
-    // pressure's part alone (the same values as the general loop's with no push and no force).
-    const double p = s.insideGauge;
-    for (size_t i = 0; i < nodes_.size(); ++i)
-      out->add<1>({nodes_[i]}, Vec3(loadFactor * -(p * nodeSums_[i].area)), nullptr);
-  } else if (out) {
-    const Vec3 push =
-        massRate_ > 0.0 ? Vec3(massRate_ * (canopyVelocity - m.air.wind)) : Vec3::Zero();
-    for (size_t i = 0; i < nodes_.size(); ++i) {
-      const NodeSums& n = nodeSums_[i];
-      out->add<1>({nodes_[i]},
-                  Vec3(loadFactor * (n.share * push - s.insideGauge * n.area - n.force)), nullptr);
-    }
-  }
+  // FL8's inside pressure, and FL10, per node: here, or by the caller (finishTakenNodes).
+  if (out) addNodeLoads(*out, 0, nodes_.size(), s.insideGauge, loadFactor, canopyVelocity);
   // What probes and the summary report of this evaluation.
   Figures& fig = e.figures;
   const double p = s.insideGauge;
@@ -526,7 +555,7 @@ CanopyFlowTerm::Evaluation CanopyFlowTerm::complete(const Eigen::VectorXd& x, co
   fig.capturedMass = e.capturedMass;
   fig.flowDirection = s.flowDirection;
   fig.axis = axis;
-  if (!out) {  // the figures only (the reach is a pass over the nodes no load needs)
+  if (!loads) {  // the figures only (the reach is a pass over the nodes no load needs)
     const double r = reach(x);
     fig.projectedArea = std::numbers::pi * r * r;
   }

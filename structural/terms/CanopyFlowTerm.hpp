@@ -64,12 +64,12 @@ class CanopyFlowTerm final : public Term {
   double nominalArea() const;
 
   // FL13: the membrane term takes the faces' loads on the explicit step's forces
-  // (FaceLoadFusion.hpp fusedFaceLoads), when every face is a triangle: beginTakenPass gives the
-  // canopy-wide state for kernels::triangleFlowLoad, the membranes' pass adds each triangle's sums
-  // (addTakenFace, at the term's node slots: slotOf), and finishTakenPass makes the rest of the
-  // evaluation (the openings, the captured air's update, the inside pressure's and the entrained
-  // air's loads per node into out) as assemble would have. assemble then adds nothing on those
-  // evaluations.
+  // (FaceLoadFusion.hpp fusedFaceLoads), when every face is a triangle: takenParameters gives the
+  // canopy-wide state for kernels::triangleFlowLoad, the membranes' pass (whole, or in two halves
+  // at once) adds each triangle's shares to the per-node records of takenRecords (at the term's
+  // node slots: slotOf; each half its own), and finishTakenPass makes the rest of the evaluation
+  // (the openings, the captured air's update, the inside pressure's and the entrained air's loads
+  // per node into out) as assemble would have. assemble then adds nothing on those evaluations.
   bool trianglesOnly() const;
   void takeFaces() { taken_ = true; }
   int slotOf(int node) const { return slot_[node]; }
@@ -77,19 +77,17 @@ class CanopyFlowTerm final : public Term {
     double volume = 0.0, area = 0.0;
     double cloth = 0.0, dCloth = 0.0;  // FL6's outflow and its derivative in the inside pressure
   };
-  kernels::TriangleFlowParameters beginTakenPass(const EvalPoint& p) const;
-  void addTakenFace(const std::array<int, 3>& slots, const double* nodeArea, double share) const {
-    for (int slot : slots) {
-      NodeSums& n = nodeSums_[slot];
-      for (int c = 0; c < 3; ++c) n.area[c] += nodeArea[c];
-      n.share += share;
-    }
-  }
-  void finishTakenPass(const EvalPoint& p, const FaceSums& sums, SystemAssembler& out);
-  // The per-node records the four-lane kernel adds to (kernels::TriangleFlowBatch): at slot s,
-  // nodeSumsData() + kNodeSumsStride s, A / 3 then |A| / 3.
+  kernels::TriangleFlowParameters takenParameters(const EvalPoint& p) const;
+  // The records of half 0 or 1, zeroed: at slot s, the returned + kNodeSumsStride s, A / 3 then
+  // |A| / 3 (kernels::TriangleFlowBatch).
   static constexpr int kNodeSumsStride = 8;
-  double* nodeSumsData() const { return nodeSums_.data()->area.data(); }
+  double* takenRecords(int half) const;
+  void finishTakenPass(const EvalPoint& p, const FaceSums& sums, SystemAssembler& out);
+  // After a pass in two halves: the evaluation from both halves' sums (on one thread), then each
+  // half of the nodes' records merged and their loads added (half 0 and 1, on either thread, at
+  // once: each writes its own nodes).
+  void finishTakenSums(const EvalPoint& p, const FaceSums& sums);
+  void finishTakenNodes(SystemAssembler& out, int half);
 
  private:
   struct Loop {
@@ -147,8 +145,14 @@ class CanopyFlowTerm final : public Term {
   // the faces (sums; per-node sums in nodeSums_ when out is given).
   kernels::CanopyFlowState flowState(const Eigen::VectorXd& v) const;
   double startGauge() const;
+  // loads: an evaluation for the loads (out: where the per-node ones go, or nullptr to add them
+  // later with addNodeLoads); otherwise the figures alone.
   Evaluation complete(const Eigen::VectorXd& x, const FaceSums& sums, kernels::CanopyFlowState s,
-                      double gauge, SystemAssembler* out, double loadFactor, double stepDt) const;
+                      double gauge, SystemAssembler* out, double loadFactor, double stepDt,
+                      bool loads) const;
+  // FL8's inside pressure p and FL10's entrained air on nodes [begin, end) (their slots).
+  void addNodeLoads(SystemAssembler& out, size_t begin, size_t end, double p, double loadFactor,
+                    const Eigen::Vector3d& canopyVelocity) const;
   // An explicit step's evaluation at p.t: its captured air and face data kept for the commit.
   void keepStepEvaluation(const EvalPoint& p, const Evaluation& e);
 
@@ -180,9 +184,11 @@ class CanopyFlowTerm final : public Term {
   // time (committed with that step only).
   double trialMass_ = 0.0, trialTime_ = -1.0;
   bool taken_ = false;  // FL13
-  // Between beginTakenPass and finishTakenPass: the canopy-wide state and the start's gauge.
-  mutable kernels::CanopyFlowState passState_;
-  mutable double passGauge_ = 0.0;
+  // Between finishTakenSums and finishTakenNodes.
+  struct Halves {
+    double insideGauge = 0.0, loadFactor = 1.0, area = 0.0;
+    Eigen::Vector3d canopyVelocity = Eigen::Vector3d::Zero();
+  } halves_;
   // Scratch of the last evaluation (its one pass over the faces serves the volume, the cloth,
   // the loads and the commit): per node, the volume, and the time of the explicit step's end
   // whose positions they belong to (NaN: none).
@@ -193,6 +199,7 @@ class CanopyFlowTerm final : public Term {
     double unused;          // one cache line per node
   };
   mutable std::vector<NodeSums> nodeSums_;
+  mutable std::vector<NodeSums> secondHalf_;  // the second half's records (FL13)
   static_assert(sizeof(Eigen::Vector3d) == 3 * sizeof(double) &&
                 sizeof(NodeSums) == kNodeSumsStride * sizeof(double));
   mutable double scratchVolume_ = 0.0;

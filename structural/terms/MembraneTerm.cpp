@@ -103,29 +103,32 @@ void MembraneTerm::makeExplicitTriangles() {
 // states_: elementStates() makes them, with the principal values, from the assembly's positions
 // when output asks (writing a state per triangle touched a cache line of states_ each, 2 % of the
 // generated 12k C-9's step, perf).
-void MembraneTerm::assembleExplicitTriangles(const EvalPoint& p, SystemAssembler& out) {
+void MembraneTerm::assembleExplicitTriangles(const EvalPoint& p, SystemAssembler& out, size_t b0,
+                                             size_t b1, int half) {
   constexpr int kLanes = kernels::kTriangleLanes;
   const double* x = p.x.data();
   const double* v = p.v.data();
   const bool weighed = !massShare_.empty();
   const size_t count = explicitTriangles_.size();
-  // P2: the face loads taken, at this evaluation's time and load factor (PressureTerm's and
-  // FaceDragTerm's products); also kept over all dofs where the energy balance asks.
   if (flow_ && fusedFaceLoads(p, out)) {
-    assembleTrianglesWithFlow(p, out);
+    assembleTrianglesWithFlow(p, out, b0, b1, half);
     return;
   }
+  // P2: the face loads taken, at this evaluation's time and load factor (PressureTerm's and
+  // FaceDragTerm's products); also kept over all dofs where the energy balance asks.
   const bool loads = !taken_.empty() && fusedFaceLoads(p, out);
   Eigen::VectorXd* captured = loads ? out.fusedLoads() : nullptr;
   if (loads) {
-    // Counted as PressureTerm counts (not while a pressure is zero) and FaceDragTerm does.
-    for (size_t i = 0; i < pressureNow_.size(); ++i) {
-      pressureNow_[i] = p.loadFactor * m_->pressures[i].at(p.t);
-      if (pressureNow_[i] != 0.0) out.work().pressure += takenPerPressure_[i];
+    // Counted as PressureTerm counts (not while a pressure is zero) and FaceDragTerm does, once.
+    std::vector<double>& pressureNow = pressureNow_[half];
+    std::vector<double>& dragNow = dragNow_[half];
+    for (size_t i = 0; i < pressureNow.size(); ++i) {
+      pressureNow[i] = p.loadFactor * m_->pressures[i].at(p.t);
+      if (pressureNow[i] != 0.0 && half == 0) out.work().pressure += takenPerPressure_[i];
     }
-    for (size_t i = 0; i < dragNow_.size(); ++i)
-      dragNow_[i] = m_->faceDrags[i].coefficient * p.loadFactor;
-    out.work().faceDrag += takenDrags_;
+    for (size_t i = 0; i < dragNow.size(); ++i)
+      dragNow[i] = m_->faceDrags[i].coefficient * p.loadFactor;
+    if (half == 0) out.work().faceDrag += takenDrags_;
   }
   auto capture = [&](const std::array<int, 3>& nodes, const double* f) {
     for (int i = 0; i < 3; ++i)
@@ -136,7 +139,7 @@ void MembraneTerm::assembleExplicitTriangles(const EvalPoint& p, SystemAssembler
     // for each, was slower than this (chute's step on the generated C-9 113 ns per triangle
     // against 100). The same bits (each lane is membraneTriangleForce's, and
     // triangleFaceLoad's).
-    for (size_t k = 0; k < count; ++k) {
+    for (size_t k = b0 * kLanes; k < std::min(count, b1 * kLanes); ++k) {
       const ExplicitTriangle& t = explicitTriangles_[k];
       Eigen::Matrix<double, 9, 1> r;
       kernels::membraneTriangleForce(x + 3 * t.nodes[0], x + 3 * t.nodes[1], x + 3 * t.nodes[2],
@@ -145,7 +148,7 @@ void MembraneTerm::assembleExplicitTriangles(const EvalPoint& p, SystemAssembler
         double f[3];
         kernels::triangleFaceLoad(x + 3 * t.nodes[0], x + 3 * t.nodes[1], x + 3 * t.nodes[2],
                                   v + 3 * t.nodes[0], v + 3 * t.nodes[1], v + 3 * t.nodes[2],
-                                  takenParameters(k), f);
+                                  takenParameters(k, half), f);
         for (int i = 0; i < 3; ++i)
           for (int c = 0; c < 3; ++c) r[3 * i + c] += f[c];
         if (captured) capture(t.nodes, f);
@@ -159,7 +162,7 @@ void MembraneTerm::assembleExplicitTriangles(const EvalPoint& p, SystemAssembler
   // loads at every triangle cost 11 % more instructions without any (callgrind, generated 12k C-9).
   auto batches = [&](auto withLoads) {
     constexpr bool kLoads = decltype(withLoads)::value;
-    for (size_t b = 0; b < triangleLanes_.size(); ++b) {
+    for (size_t b = b0; b < b1; ++b) {
       const size_t first = b * kLanes;
       const int lanes = static_cast<int>(std::min<size_t>(kLanes, count - first));
       kernels::TriangleLaneVectors fs;  // with the face loads added where taken
@@ -168,8 +171,8 @@ void MembraneTerm::assembleExplicitTriangles(const EvalPoint& p, SystemAssembler
         kernels::TriangleFaceLoadLanes& q = takenLanes_[b];
         for (int l = 0; l < kLanes; ++l) {  // the missing lanes repeat the last triangle
           const TakenLoad& tl = taken_[std::min(first + l, count - 1)];
-          q.pressure[l] = takenPressure(tl);
-          q.drag[l] = takenDrag(tl);
+          q.pressure[l] = takenPressure(tl, half);
+          q.drag[l] = takenDrag(tl, half);
         }
         kernels::membraneTriangleForcesAndLoads(x, v, triangleLanes_[b], q, fs, f);
       } else {
@@ -197,11 +200,11 @@ void MembraneTerm::assembleExplicitTriangles(const EvalPoint& p, SystemAssembler
     batches(std::false_type{});
 }
 
-kernels::TriangleFaceLoadParameters MembraneTerm::takenParameters(size_t triangle) const {
+kernels::TriangleFaceLoadParameters MembraneTerm::takenParameters(size_t triangle, int half) const {
   const TakenLoad& tl = taken_[triangle];
   kernels::TriangleFaceLoadParameters q;
-  q.pressure = takenPressure(tl);
-  q.drag = takenDrag(tl);
+  q.pressure = takenPressure(tl, half);
+  q.drag = takenDrag(tl, half);
   if (tl.drag >= 0) {
     const FaceDragLoadDef& d = m_->faceDrags[tl.drag];
     for (int c = 0; c < 3; ++c) q.wind[c] = d.wind[c];
@@ -210,24 +213,27 @@ kernels::TriangleFaceLoadParameters MembraneTerm::takenParameters(size_t triangl
   return q;
 }
 
-void MembraneTerm::assembleTrianglesWithFlow(const EvalPoint& p, SystemAssembler& out) {
+void MembraneTerm::assembleTrianglesWithFlow(const EvalPoint& p, SystemAssembler& out, size_t b0,
+                                             size_t b1, int half) {
   constexpr int kLanes = kernels::kTriangleLanes;
   const double* x = p.x.data();
   const double* v = p.v.data();
   const bool weighed = !massShare_.empty();
   const size_t count = explicitTriangles_.size();
-  const kernels::TriangleFlowParameters q = flow_->beginTakenPass(p);
+  const kernels::TriangleFlowParameters q = flow_->takenParameters(p);
+  double* records = flow_->takenRecords(half);
   Eigen::VectorXd* captured = out.fusedLoads();  // the energy balance's loads, when kept
   auto capture = [&](const std::array<int, 3>& nodes, const double* load) {
     for (int i = 0; i < 3; ++i)
       for (int c = 0; c < 3; ++c) (*captured)[3 * nodes[i] + c] += load[c];
   };
   // The canopy's sums lane by lane, triangle k in lane k mod 4 whichever path runs (the same
-  // bits), added up at the end.
-  kernels::TriangleFlowAccumulators acc;
+  // bits), added up once the faces are done (finishFlow).
+  kernels::TriangleFlowAccumulators& acc = flowSums_[half];
+  acc = kernels::TriangleFlowAccumulators{};
   if (!kernels::useAvx2()) {
     // One at a time (as assembleExplicitTriangles, for the same reason): the lanes' bits.
-    for (size_t k = 0; k < count; ++k) {
+    for (size_t k = b0 * kLanes; k < std::min(count, b1 * kLanes); ++k) {
       const ExplicitTriangle& t = explicitTriangles_[k];
       const double* x0 = x + 3 * t.nodes[0];
       const double* x1 = x + 3 * t.nodes[1];
@@ -244,44 +250,51 @@ void MembraneTerm::assembleTrianglesWithFlow(const EvalPoint& p, SystemAssembler
         const size_t lane = k % kLanes;
         acc.volume[lane] += o.volume, acc.area[lane] += o.area;
         acc.cloth[lane] += o.cloth, acc.dCloth[lane] += o.dCloth;
-        flow_->addTakenFace(flowSlots_[k], o.nodeArea, o.share);
+        for (int slot : flowSlots_[k]) {
+          double* record = records + CanopyFlowTerm::kNodeSumsStride * slot;
+          for (int c = 0; c < 3; ++c) record[c] += o.nodeArea[c];
+          record[3] += o.share;
+        }
         if (captured) capture(t.nodes, f);
       }
       if (weighed) addWeight<3>(t.share.data(), p.loadFactor, r);
       out.add<3>(t.nodes, r, nullptr);
     }
-  } else {
-    double* sums = flow_->nodeSumsData();
-    for (size_t b = 0; b < triangleLanes_.size(); ++b) {
-      const size_t first = b * kLanes;
-      const int lanes = static_cast<int>(std::min<size_t>(kLanes, count - first));
-      kernels::TriangleLaneVectors fs;
-      double f[3][kLanes];
-      kernels::membraneTriangleForcesAndFlow(x, v, triangleLanes_[b], flowLanes_[b], q, fs, f, acc,
-                                             sums);
-      for (int l = 0; l < lanes; ++l) {
-        const ExplicitTriangle& t = explicitTriangles_[first + l];
-        Eigen::Matrix<double, 9, 1> r;
-        for (int i = 0; i < 3; ++i)
-          for (int c = 0; c < 3; ++c) r[3 * i + c] = fs.v[i][c][l];
-        if (captured && flowLanes_[b].inFlow[l]) {
-          const double load[3] = {f[0][l], f[1][l], f[2][l]};
-          capture(t.nodes, load);
-        }
-        if (weighed) addWeight<3>(t.share.data(), p.loadFactor, r);
-        out.add<3>(t.nodes, r, nullptr);
+    return;
+  }
+  for (size_t b = b0; b < b1; ++b) {
+    const size_t first = b * kLanes;
+    const int lanes = static_cast<int>(std::min<size_t>(kLanes, count - first));
+    kernels::TriangleLaneVectors fs;
+    double f[3][kLanes];
+    kernels::membraneTriangleForcesAndFlow(x, v, triangleLanes_[b], flowLanes_[b], q, fs, f, acc,
+                                           records);
+    for (int l = 0; l < lanes; ++l) {
+      const ExplicitTriangle& t = explicitTriangles_[first + l];
+      Eigen::Matrix<double, 9, 1> r;
+      for (int i = 0; i < 3; ++i)
+        for (int c = 0; c < 3; ++c) r[3 * i + c] = fs.v[i][c][l];
+      if (captured && flowLanes_[b].inFlow[l]) {
+        const double load[3] = {f[0][l], f[1][l], f[2][l]};
+        capture(t.nodes, load);
       }
+      if (weighed) addWeight<3>(t.share.data(), p.loadFactor, r);
+      out.add<3>(t.nodes, r, nullptr);
     }
   }
-  auto total = [](const double(&lane)[kLanes]) {
-    return ((lane[0] + lane[1]) + lane[2]) + lane[3];
+}
+
+CanopyFlowTerm::FaceSums MembraneTerm::flowSums(bool halves) const {
+  constexpr int kLanes = kernels::kTriangleLanes;
+  auto total = [&](auto member) {
+    auto lanes = [&](const kernels::TriangleFlowAccumulators& a) {
+      const double(&lane)[kLanes] = a.*member;
+      return ((lane[0] + lane[1]) + lane[2]) + lane[3];
+    };
+    return halves ? lanes(flowSums_[0]) + lanes(flowSums_[1]) : lanes(flowSums_[0]);
   };
-  const CanopyFlowTerm::FaceSums faceSums{total(acc.volume), total(acc.area), total(acc.cloth),
-                                          total(acc.dCloth)};
-  // The rest of the airflow's evaluation (its per-node loads kept as the face loads are).
-  if (captured) out.captureAllDofs(captured);
-  flow_->finishTakenPass(p, faceSums, out);
-  if (captured) out.captureAllDofs(nullptr);
+  using A = kernels::TriangleFlowAccumulators;
+  return {total(&A::volume), total(&A::area), total(&A::cloth), total(&A::dCloth)};
 }
 
 bool MembraneTerm::takeCanopyFlow(CanopyFlowTerm& flow) {
@@ -346,15 +359,17 @@ TakenFaces MembraneTerm::takeFaceLoads() {
   takenPerPressure_.assign(m.pressures.size(), 0);
   for (const TakenLoad& tl : taken_)
     if (tl.pressure >= 0) ++takenPerPressure_[tl.pressure];
-  pressureNow_.assign(m.pressures.size(), 0.0);
-  dragNow_.assign(m.faceDrags.size(), 0.0);
+  for (int half = 0; half < 2; ++half) {
+    pressureNow_[half].assign(m.pressures.size(), 0.0);
+    dragNow_[half].assign(m.faceDrags.size(), 0.0);
+  }
   // The lanes' winds and steady parts (the missing lanes of the last batch: its last triangle's).
   constexpr size_t kLanes = kernels::kTriangleLanes;
   takenLanes_.assign(triangleLanes_.size(), kernels::TriangleFaceLoadLanes{});
   for (size_t b = 0; b < takenLanes_.size(); ++b)
     for (size_t l = 0; l < kLanes; ++l) {
       const kernels::TriangleFaceLoadParameters q =
-          takenParameters(std::min(b * kLanes + l, taken_.size() - 1));
+          takenParameters(std::min(b * kLanes + l, taken_.size() - 1), 0);
       for (int c = 0; c < 3; ++c) takenLanes_[b].wind[c][l] = q.wind[c];
       takenLanes_[b].steady[l] = q.steady;
     }
@@ -499,16 +514,26 @@ void MembraneTerm::assembleInternalForce(int k, const kernels::MembraneReference
   out.add<N>(nodeIds<N>(e), r, nullptr);
 }
 
+bool MembraneTerm::explicitPath(const EvalPoint& p, const SystemAssembler& out) const {
+  // No Jacobian, a = 0 and no mass damping: only the internal force f(x) and the weight (what
+  // assembleElement gives then, without its other branches).
+  return !out.wantMatrix() && !p.xStart && (!p.inertia || p.zeroAcceleration) &&
+         m_->massDamping == 0.0;
+}
+
 void MembraneTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
   lastX_ = p.x;
   principalsStale_ = true;
-  // The explicit step's evaluation (EX2): no Jacobian, a = 0 and no mass damping, so only the
-  // internal force f(x) and the weight (what assembleElement gives then, without its other
-  // branches).
-  if (!out.wantMatrix() && !p.xStart && (!p.inertia || p.zeroAcceleration) &&
-      m_->massDamping == 0.0) {
-    assembleExplicitTriangles(p, out);
+  if (explicitPath(p, out)) {
+    assembleExplicitTriangles(p, out, 0, triangleLanes_.size(), 0);
     for (int k : quads_) assembleInternalForce<4>(k, refs4_[slot_[k]], p, out);
+    if (flow_ && fusedFaceLoads(p, out)) {
+      // The rest of the airflow's evaluation (its per-node loads kept as the face loads are).
+      Eigen::VectorXd* captured = out.fusedLoads();
+      if (captured) out.captureAllDofs(captured);
+      flow_->finishTakenPass(p, flowSums(false), out);
+      if (captured) out.captureAllDofs(nullptr);
+    }
     out.work().membrane += static_cast<long>(refs3_.size());
     return;
   }
@@ -518,6 +543,38 @@ void MembraneTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
     else
       assembleElement<4>(static_cast<int>(k), refs4_[slot_[k]], p, out);
   }
+}
+
+void MembraneTerm::assembleHalf(const EvalPoint& p, SystemAssembler& out, int half) {
+  if (half == 0) flowHalves_ = flow_ && explicitPath(p, out) && fusedFaceLoads(p, out);
+  if (!explicitPath(p, out)) {
+    if (half == 0) assemble(p, out);
+    return;
+  }
+  // Half of the batches each (the triangles' state and scratch of each half its own).
+  const size_t batches = triangleLanes_.size(), middle = (batches + 1) / 2;
+  if (half == 0) {
+    lastX_ = p.x;
+    principalsStale_ = true;
+    assembleExplicitTriangles(p, out, 0, middle, 0);
+    out.work().membrane += static_cast<long>(refs3_.size());
+  } else {
+    assembleExplicitTriangles(p, out, middle, batches, 1);
+    for (int k : quads_) assembleInternalForce<4>(k, refs4_[slot_[k]], p, out);
+  }
+}
+
+void MembraneTerm::afterHalves(const EvalPoint& p) {
+  if (flowHalves_) flow_->finishTakenSums(p, flowSums(true));
+}
+
+void MembraneTerm::afterHalvesPart(const EvalPoint& /*p*/, SystemAssembler& out, int half) {
+  if (!flowHalves_) return;
+  // The airflow's per-node loads, half of the nodes each (kept as the face loads are).
+  Eigen::VectorXd* captured = out.fusedLoads();
+  if (captured) out.captureAllDofs(captured);
+  flow_->finishTakenNodes(out, half);
+  if (captured) out.captureAllDofs(nullptr);
 }
 
 const std::vector<MembraneTerm::ElementState>& MembraneTerm::elementStates() const {

@@ -12,11 +12,10 @@
 #include "kernels/StiffnessBound.hpp"
 #include "kernels/TriangleFaceLoads.hpp"
 #include "model/Model.hpp"
+#include "terms/CanopyFlowTerm.hpp"
 #include "terms/FaceLoadFusion.hpp"
 
 namespace chute {
-
-class CanopyFlowTerm;
 
 class MembraneTerm final : public Term {
  public:
@@ -48,6 +47,12 @@ class MembraneTerm final : public Term {
                          std::vector<double>& S) const override;
   double assemblyCost() const override;
   bool assemblesApart() const override { return true; }
+  // The explicit step's triangles in two halves of their batches (the quads with the second);
+  // every other evaluation whole in the first half.
+  bool assemblesInHalves() const override { return true; }
+  void assembleHalf(const EvalPoint& p, SystemAssembler& out, int half) override;
+  void afterHalves(const EvalPoint& p) override;
+  void afterHalvesPart(const EvalPoint& p, SystemAssembler& out, int half) override;
   // P2: takes the pressure and face drag of the triangles whose set has at most one of each (and
   // one at least), to add to their forces on the explicit step's evaluations (fusedFaceLoads());
   // the pressure and face-drag terms are given the faces taken, to leave out then. None without
@@ -55,7 +60,7 @@ class MembraneTerm final : public Term {
   // from the element path).
   TakenFaces takeFaceLoads();
   // FL13: takes the airflow's loads of a canopy whose faces are all triangles, to add to their
-  // forces on the explicit step's evaluations (CanopyFlowTerm::beginTakenPass, finishTakenPass).
+  // forces on the explicit step's evaluations (CanopyFlowTerm::takenParameters, finishTaken*).
   // One canopy, and none where face loads were taken (P2), or with mass damping; false: left to
   // the airflow's term.
   bool takeCanopyFlow(CanopyFlowTerm& flow);
@@ -94,23 +99,34 @@ class MembraneTerm final : public Term {
   };
   std::vector<TakenLoad> taken_;
   std::vector<kernels::TriangleFaceLoadLanes> takenLanes_;
-  std::vector<double> pressureNow_, dragNow_;
-  long takenDrags_ = 0;                 // faces with a drag taken
-  std::vector<long> takenPerPressure_;  // faces per pressure taken
+  std::vector<double> pressureNow_[2], dragNow_[2];  // per half (assembleHalf; whole: 0)
+  long takenDrags_ = 0;                              // faces with a drag taken
+  std::vector<long> takenPerPressure_;               // faces per pressure taken
   // What a taken load carries at the evaluation (0 where it has none), and all of a triangle's.
-  double takenPressure(const TakenLoad& tl) const {
-    return tl.pressure >= 0 ? pressureNow_[tl.pressure] * tl.pressureFactor : 0.0;
+  double takenPressure(const TakenLoad& tl, int half) const {
+    return tl.pressure >= 0 ? pressureNow_[half][tl.pressure] * tl.pressureFactor : 0.0;
   }
-  double takenDrag(const TakenLoad& tl) const { return tl.drag >= 0 ? dragNow_[tl.drag] : 0.0; }
-  kernels::TriangleFaceLoadParameters takenParameters(size_t triangle) const;
+  double takenDrag(const TakenLoad& tl, int half) const {
+    return tl.drag >= 0 ? dragNow_[half][tl.drag] : 0.0;
+  }
+  kernels::TriangleFaceLoadParameters takenParameters(size_t triangle, int half) const;
   void makeExplicitTriangles();
-  void assembleExplicitTriangles(const EvalPoint& p, SystemAssembler& out);
+  // The explicit step's evaluation (EX2: residual only, a = 0, no mass damping).
+  bool explicitPath(const EvalPoint& p, const SystemAssembler& out) const;
+  // Its triangles of batches [b0, b1) into out, with the scratch of `half` (0: the whole pass).
+  void assembleExplicitTriangles(const EvalPoint& p, SystemAssembler& out, size_t b0, size_t b1,
+                                 int half);
   // FL13: the canopy whose airflow's loads were taken; per explicit triangle its nodes' slots in
   // that term ({-1, ...}: not the canopy's); per batch, the canopy's lanes and their slots.
   CanopyFlowTerm* flow_ = nullptr;
   std::vector<std::array<int, 3>> flowSlots_;
   std::vector<kernels::TriangleFlowBatch> flowLanes_;
-  void assembleTrianglesWithFlow(const EvalPoint& p, SystemAssembler& out);
+  kernels::TriangleFlowAccumulators flowSums_[2];  // per half: the canopy's sums, lane by lane
+  void assembleTrianglesWithFlow(const EvalPoint& p, SystemAssembler& out, size_t b0, size_t b1,
+                                 int half);
+  // The airflow's faces' sums once they are done (the whole pass's, or both halves').
+  CanopyFlowTerm::FaceSums flowSums(bool halves) const;
+  bool flowHalves_ = false;  // the last halves' evaluation took the airflow's loads (half 0 sets)
   // Per element, each node's share of its mass, rho t0 int N_i dA: the weight, made once when the
   // model has gravity (empty without).
   std::vector<std::array<double, 4>> massShare_;
