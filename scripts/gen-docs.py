@@ -38,6 +38,7 @@ VERIFICATION = [
     ("test_coupling", "the coupling interface: tangents, case-file vs coupled pressure, implicit vs monolithic"),
     ("test_parachute_mesh", "the generated parachute: areas, lengths, groups, stress-free starts"),
     ("test_generated_flight", "generated parachute cases fly unchanged: completion, skirt radius"),
+    ("test_triangle_flow_loads", "the airflow's face law in the membranes' pass (FL13) against the airflow term's, four at a time bit for bit"),
     ("test_mesh_import", "gmsh import: groups, round trip, errors"),
     ("test_bad_input", "bad input: one clear line and exit status 2 for each kind"),
     ("test_stress", "stability stress suite (short versions)"),
@@ -75,6 +76,8 @@ MD_PAGES = [
     ("face_loads_in_membrane_pass.md",
      "Face loads in the membranes' pass, and two threads in the caches, one sitting"),
     ("c9_slider_roundoff_band.md", "The C-9 slider case: what round-off alone moves (`bench/speed/roundoff_band.py`)"),
+    ("flight_in_membrane_pass.md",
+     "The airflow's loads in the membranes' pass, and the membranes in two halves, one sitting"),
 ]
 
 
@@ -170,8 +173,10 @@ per scene from costs per element measured on the C-9 slider case (one thread, re
 units of the explicit membrane triangle: pressure face 0.42, face-drag face 0.72 (a load the
 membranes' pass takes, P2: 0.23 added to the membranes), line element 0.7,
 line-drag segment 0.7, sliding element 0.9 and 8 more per slider, quad 5; the airflow's face 1.3,
-measured on the generated C-9 in free flight; largest first, each to the lighter part, a tie to
-the second), never from timings, the thread count or the instruction set. Over 0.5 s of the C-9
+measured on the generated C-9 in free flight, or 0.85 added to the membranes where their pass
+takes it, FL13; largest first, each to the lighter part, a tie to the second; the membranes as
+two halves of their cost, halved where the halves land in different parts), never from timings,
+the thread count or the instruction set. Over 0.5 s of the C-9
 slider case on one thread the two parts take 0.31 s and 0.32 s; the costs used before (line drag
 at 0.4 where its kernel, since made shorter, cost 0.85; sliding groups and line drag held on the
 first) gave the first 0.49 s of 0.87 s. The second part's residual and matrix are added to the
@@ -232,9 +237,9 @@ wrinkling, pressure, face drag: gather, compute, scatter; built for the baseline
 and chute's whole explicit step (every term, lines included, the update, the energy balance, the
 stable step), CPU per triangle, one thread.
 [bench/results/lean_canopy_step.md](../bench/results/lean_canopy_step.md) (below): chute's step
-is 1.87-2.04 times the lean loop at 3.4k-24.5k triangles (1.95 at 12k and at 24k; a second
-sitting 1.91 and 1.87; the target is 2.0), 78-82 ns per triangle and step against 99-110 at the
-start of the day. Without AVX2 (`CHUTE_SIMD=baseline`,
+is 1.60-1.79 times the lean loop at 3.4k-24.5k triangles (1.73 at 12k, 1.60 at 24k; the target
+is 2.0), 70-72 ns per triangle and step, since the airflow's loads joined the membranes' pass
+(below; 1.87-2.04 and 78-82 ns before it, 99-110 ns at the start of an earlier day). Without AVX2 (`CHUTE_SIMD=baseline`,
 [bench/results/lean_canopy_step_baseline.md](../bench/results/lean_canopy_step_baseline.md)):
 2.18-2.29, 88-92 ns. The lean loop's own time moves by up to 15 % from run to run on this shared
 machine (40-47 ns), the ratio with it.
@@ -248,12 +253,10 @@ line drag with one square root and one division on its path (it had two roots an
 waiting on one another) and face drag with none (g from the unnormalised area vector); the
 explicit cable's fast path kept with gravity (the general path had cost three times as much in
 free flight); the airflow's face passes multiplying by reciprocals where they divided by
-constants. What is left on the 12k mesh, one thread (perf): the airflow's two passes over the
-faces (28 %: volume, mean velocity, area shares, cloth flow, face pressures), the membranes
-(21 %: the four-lane kernel 13 %, the gather of its results and the scatter 8 %), the update
-(5 %), the energy balance (3 %), the moving mass and the stable step (3 % each). Tried and not
-kept: the airflow's passes four faces at a time (bit for bit the scalar ones, and no faster:
-gathering six node vectors per face into lanes cost what the arithmetic saved). Fewer steps:
+constants; the airflow's loads in the membranes' own pass (below). Tried and not kept: the
+airflow's passes four faces at a time on their own (bit for bit the scalar ones, and no faster:
+gathering six node vectors per face into lanes cost what the arithmetic saved; inside the
+membranes' kernel the positions are gathered already). Fewer steps:
 `solver.mass_scaling_quantile` (docs/explicit.md, selective mass scaling): on this parachute the
 least nodal step is 0.66-0.68 of the 1 % quantile, and scaling the 1 % that set it takes 1.4x
 fewer steps.
@@ -291,6 +294,34 @@ velocities too, and the first thread's update waits on the cache lines it shares
 one thread is now the faster (1.61-1.62 s of wall time per simulated second against 1.68-1.71 s
 on two; bench/results/face_loads_in_membrane_pass.md); the generated 12k C-9 in free flight still
 runs 1.43x faster on two.
+
+## The airflow's loads in the membranes' pass, and the membranes in two halves
+
+The airflow's loads (docs/flight.md, FL1-FL12) first lost their second pass over the faces: the
+canopy's velocity (FL1) is its nodes' velocities weighted by their area shares at the step's
+start, and the cloth's outflow is linearised about the step's start pressure (FL9), so every
+face's loads are made in the pass that makes its area vector. Then, on explicit steps, a canopy
+of triangles has them made inside the membranes' four-lane kernel (docs/formulation.md FL13,
+`membraneTriangleForcesAndFlow`, `triangleFlowLoad` its one-at-a-time twin, each lane its bits):
+the face law at the ambient inside pressure added to the triangle's forces, the volume, area and
+cloth outflow summed lane by lane, and each node's shares of the area vectors and area added to
+the airflow term's per-node records; the term then finds the captured air's update and adds the
+inside pressure per node. On `cases/c9_flight.toml` (bench/flight/cost.sh, one sitting) the
+airflow's step costs 1.553x the instructions of a constant-pressure step at the start of the day,
+1.429x with one pass, 1.263x with the loads in the membranes' pass, 1.273x with that pass in two
+halves (below; the criterion of docs/flight.md is 1.2x).
+
+The canopy's loads and membranes were then one term, on one thread of two: the membranes' pass is
+made in two halves of its batches, one in each of the assembly's parts, when the split puts them
+there (`Term::assemblesInHalves`), and the airflow's per-node work after it in two halves of the
+nodes. Every number is the same on one thread or two. The two halves' lane sums must not share
+a cache line: while they did, both threads adding to it at every batch made two threads slower
+than one at 24k triangles. Generated 12k C-9 in free flight
+(bench/results/flight_in_membrane_pass.md, wall medians of 9 pairs): one thread 0.892x the start
+of the day, two threads 0.944x; two threads are 1.32x one (1.43x before: one thread gained more).
+At 24k: 58.8 s and 42.6 s of wall time per simulated second on one and two threads (65.7 s and
+44.8 s at the start). The C-9 slider case: one thread 0.998x, two threads 0.960x, both about
+1.62 s of wall time per simulated second.
 """
 
 

@@ -249,13 +249,15 @@ class Term {
   // Whether assemble() may also be made in two halves, one in each of the assembly's two parts
   // (StructuralSystem::splitAssembly): assembleHalf(p, out, 0) and (p, out, 1), at once on two
   // threads or one after the other, each into its part's assembler, writing only data of its own
-  // half; then, once both are done, afterHalves(p) on the first thread, and afterHalvesPart(p,
-  // out, half) for each half again with its part's assembler (at once or one after the other).
+  // half, after beforeHalves(p, out) on the first thread with the first part's assembler; then,
+  // once both are done, afterHalves(p) on the first thread, and afterHalvesPart(p, out, half) for
+  // each half again with its part's assembler (at once or one after the other).
   // Together what assemble() gives, to round-off. Only for a term that assemblesApart.
   virtual bool assemblesInHalves() const { return false; }
   virtual void assembleHalf(const EvalPoint& p, SystemAssembler& out, int half) {
     if (half == 0) assemble(p, out);
   }
+  virtual void beforeHalves(const EvalPoint& /*p*/, const SystemAssembler& /*out*/) {}
   virtual void afterHalves(const EvalPoint& /*p*/) {}
   virtual void afterHalvesPart(const EvalPoint& /*p*/, SystemAssembler& /*out*/, int /*half*/) {}
 

@@ -209,6 +209,7 @@ void StructuralSystem::assemble(const EvalPoint& at, bool wantMatrix,
   }
   if (wantMatrix && !secondAssembler_.hasPattern()) secondAssembler_.sharePatternOf(assembler_);
   secondAssembler_.begin(wantMatrix);
+  if (halved_) halved_->beforeHalves(p, assembler_);
   // alongside() on whichever thread finishes its part first (the other one's part is the longer).
   std::atomic<bool> taken{false};
   auto then = [&] {

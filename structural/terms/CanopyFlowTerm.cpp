@@ -354,15 +354,17 @@ bool CanopyFlowTerm::trianglesOnly() const {
   return true;
 }
 
-kernels::TriangleFlowParameters CanopyFlowTerm::takenParameters(const EvalPoint& p) const {
-  const kernels::CanopyFlowState s = flowState(p.v);
+kernels::TriangleFlowParameters CanopyFlowTerm::takenParameters(const EvalPoint& p) {
+  pass_.state = flowState(p.v);
+  pass_.gauge = startGauge();
+  const kernels::CanopyFlowState& s = pass_.state;
   kernels::TriangleFlowParameters q;
   for (int c = 0; c < 3; ++c)
     q.flowDirection[c] = s.flowDirection[c], q.canopyVelocity[c] = s.canopyVelocity[c];
   q.dynamicPressure = s.dynamicPressure;
   q.baseCoefficient = s.baseCoefficient;
   q.normalDrag = s.normalDrag;
-  q.clothGauge = startGauge();
+  q.clothGauge = pass_.gauge;
   const kernels::ClothPermeability& law = def_->cloth;
   q.permeable = law.permeable();
   q.viscous = law.viscous, q.inertial = law.inertial, q.perViscous = law.perViscous;
@@ -381,17 +383,15 @@ void CanopyFlowTerm::finishTakenPass(const EvalPoint& p, const FaceSums& sums,
                                      SystemAssembler& out) {
   if (sums.area > 0.0)
     for (NodeSums& n : nodeSums_) n.share /= sums.area;
-  const kernels::CanopyFlowState s = flowState(p.v);
-  keepStepEvaluation(p, complete(p.stepPositions(), sums, s, startGauge(), &out, p.loadFactor,
-                                 p.explicitStep, true));
+  keepStepEvaluation(p, complete(p.stepPositions(), sums, pass_.state, pass_.gauge, &out,
+                                 p.loadFactor, p.explicitStep, true));
 }
 
 void CanopyFlowTerm::finishTakenSums(const EvalPoint& p, const FaceSums& sums) {
-  const kernels::CanopyFlowState s = flowState(p.v);
-  const Evaluation e = complete(p.stepPositions(), sums, s, startGauge(), nullptr, p.loadFactor,
-                                p.explicitStep, true);
+  const Evaluation e = complete(p.stepPositions(), sums, pass_.state, pass_.gauge, nullptr,
+                                p.loadFactor, p.explicitStep, true);
   keepStepEvaluation(p, e);
-  halves_ = {e.figures.insideGauge, p.loadFactor, sums.area, s.canopyVelocity};
+  halves_ = {e.figures.insideGauge, p.loadFactor, sums.area, pass_.state.canopyVelocity};
 }
 
 void CanopyFlowTerm::finishTakenNodes(SystemAssembler& out, int half) {

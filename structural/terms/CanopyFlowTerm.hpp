@@ -77,7 +77,8 @@ class CanopyFlowTerm final : public Term {
     double volume = 0.0, area = 0.0;
     double cloth = 0.0, dCloth = 0.0;  // FL6's outflow and its derivative in the inside pressure
   };
-  kernels::TriangleFlowParameters takenParameters(const EvalPoint& p) const;
+  // (Kept for finishTakenPass / finishTakenSums.)
+  kernels::TriangleFlowParameters takenParameters(const EvalPoint& p);
   // The records of half 0 or 1, zeroed: at slot s, the returned + kNodeSumsStride s, A / 3 then
   // |A| / 3 (kernels::TriangleFlowBatch).
   static constexpr int kNodeSumsStride = 8;
@@ -184,6 +185,11 @@ class CanopyFlowTerm final : public Term {
   // time (committed with that step only).
   double trialMass_ = 0.0, trialTime_ = -1.0;
   bool taken_ = false;  // FL13
+  // From takenParameters to the finish: the canopy-wide state and the start's gauge.
+  struct Pass {
+    kernels::CanopyFlowState state;
+    double gauge = 0.0;
+  } pass_;
   // Between finishTakenSums and finishTakenNodes.
   struct Halves {
     double insideGauge = 0.0, loadFactor = 1.0, area = 0.0;

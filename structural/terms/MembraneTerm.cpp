@@ -220,7 +220,9 @@ void MembraneTerm::assembleTrianglesWithFlow(const EvalPoint& p, SystemAssembler
   const double* v = p.v.data();
   const bool weighed = !massShare_.empty();
   const size_t count = explicitTriangles_.size();
-  const kernels::TriangleFlowParameters q = flow_->takenParameters(p);
+  // The whole pass makes the airflow's parameters; the halves have them (beforeHalves).
+  if (!flowHalves_) flowParameters_ = flow_->takenParameters(p);
+  const kernels::TriangleFlowParameters& q = flowParameters_;
   double* records = flow_->takenRecords(half);
   Eigen::VectorXd* captured = out.fusedLoads();  // the energy balance's loads, when kept
   auto capture = [&](const std::array<int, 3>& nodes, const double* load) {
@@ -229,8 +231,14 @@ void MembraneTerm::assembleTrianglesWithFlow(const EvalPoint& p, SystemAssembler
   };
   // The canopy's sums lane by lane, triangle k in lane k mod 4 whichever path runs (the same
   // bits), added up once the faces are done (finishFlow).
-  kernels::TriangleFlowAccumulators& acc = flowSums_[half];
-  acc = kernels::TriangleFlowAccumulators{};
+  // On the stack while the pass runs, kept at its end: the two halves' members share a cache
+  // line, and both threads adding to it at every batch made two threads slower than one.
+  kernels::TriangleFlowAccumulators acc;
+  struct Keep {
+    kernels::TriangleFlowAccumulators& to;
+    const kernels::TriangleFlowAccumulators& from;
+    ~Keep() { to = from; }
+  } keep{flowSums_[half], acc};
   if (!kernels::useAvx2()) {
     // One at a time (as assembleExplicitTriangles, for the same reason): the lanes' bits.
     for (size_t k = b0 * kLanes; k < std::min(count, b1 * kLanes); ++k) {
@@ -546,7 +554,6 @@ void MembraneTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
 }
 
 void MembraneTerm::assembleHalf(const EvalPoint& p, SystemAssembler& out, int half) {
-  if (half == 0) flowHalves_ = flow_ && explicitPath(p, out) && fusedFaceLoads(p, out);
   if (!explicitPath(p, out)) {
     if (half == 0) assemble(p, out);
     return;
@@ -562,6 +569,11 @@ void MembraneTerm::assembleHalf(const EvalPoint& p, SystemAssembler& out, int ha
     assembleExplicitTriangles(p, out, middle, batches, 1);
     for (int k : quads_) assembleInternalForce<4>(k, refs4_[slot_[k]], p, out);
   }
+}
+
+void MembraneTerm::beforeHalves(const EvalPoint& p, const SystemAssembler& out) {
+  flowHalves_ = flow_ && explicitPath(p, out) && fusedFaceLoads(p, out);
+  if (flowHalves_) flowParameters_ = flow_->takenParameters(p);  // both halves read them
 }
 
 void MembraneTerm::afterHalves(const EvalPoint& p) {

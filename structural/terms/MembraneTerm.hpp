@@ -51,6 +51,7 @@ class MembraneTerm final : public Term {
   // every other evaluation whole in the first half.
   bool assemblesInHalves() const override { return true; }
   void assembleHalf(const EvalPoint& p, SystemAssembler& out, int half) override;
+  void beforeHalves(const EvalPoint& p, const SystemAssembler& out) override;
   void afterHalves(const EvalPoint& p) override;
   void afterHalvesPart(const EvalPoint& p, SystemAssembler& out, int half) override;
   // P2: takes the pressure and face drag of the triangles whose set has at most one of each (and
@@ -126,7 +127,9 @@ class MembraneTerm final : public Term {
                                  int half);
   // The airflow's faces' sums once they are done (the whole pass's, or both halves').
   CanopyFlowTerm::FaceSums flowSums(bool halves) const;
-  bool flowHalves_ = false;  // the last halves' evaluation took the airflow's loads (half 0 sets)
+  // The halves' evaluation takes the airflow's loads, with these parameters (beforeHalves).
+  bool flowHalves_ = false;
+  kernels::TriangleFlowParameters flowParameters_;
   // Per element, each node's share of its mass, rho t0 int N_i dA: the weight, made once when the
   // model has gravity (empty without).
   std::vector<std::array<double, 4>> massShare_;
