@@ -384,12 +384,12 @@ void CanopyFlowTerm::finishTakenPass(const EvalPoint& p, const FaceSums& sums,
   if (sums.area > 0.0)
     for (NodeSums& n : nodeSums_) n.share /= sums.area;
   keepStepEvaluation(p, complete(p.stepPositions(), sums, pass_.state, pass_.gauge, &out,
-                                 p.loadFactor, p.explicitStep, true));
+                                 p.loadFactor, p.explicitStep, true, true));
 }
 
 void CanopyFlowTerm::finishTakenSums(const EvalPoint& p, const FaceSums& sums) {
   const Evaluation e = complete(p.stepPositions(), sums, pass_.state, pass_.gauge, nullptr,
-                                p.loadFactor, p.explicitStep, true);
+                                p.loadFactor, p.explicitStep, true, true);
   keepStepEvaluation(p, e);
   halves_ = {e.figures.insideGauge, p.loadFactor, sums.area, pass_.state.canopyVelocity};
 }
@@ -404,7 +404,8 @@ void CanopyFlowTerm::finishTakenNodes(SystemAssembler& out, int half) {
     sum.share = halves_.area > 0.0 ? (sum.share + secondHalf_[i].share) * perArea
                                    : sum.share + secondHalf_[i].share;
   }
-  addNodeLoads(out, begin, end, halves_.insideGauge, halves_.loadFactor, halves_.canopyVelocity);
+  addNodeLoads(out, begin, end, halves_.insideGauge, halves_.loadFactor, halves_.canopyVelocity,
+               true);
 }
 
 CanopyFlowTerm::Figures CanopyFlowTerm::figuresAt(const Eigen::VectorXd& x,
@@ -480,15 +481,16 @@ CanopyFlowTerm::Evaluation CanopyFlowTerm::evaluate(const Eigen::VectorXd& x,
   const bool permeable = def_->cloth.permeable();
   const FaceSums sums =
       out ? facePass<true>(x, v, s, gauge, permeable) : facePass<false>(x, v, s, gauge, permeable);
-  return complete(x, sums, s, gauge, out, loadFactor, stepDt, out != nullptr);
+  return complete(x, sums, s, gauge, out, loadFactor, stepDt, out != nullptr, false);
 }
 
 void CanopyFlowTerm::addNodeLoads(SystemAssembler& out, size_t begin, size_t end, double p,
-                                  double loadFactor, const Vec3& canopyVelocity) const {
+                                  double loadFactor, const Vec3& canopyVelocity,
+                                  bool facesTaken) const {
   // FL8's inside pressure, and FL10: air newly set moving with the canopy is brought from rest
   // (in the air) to the canopy's velocity: the force -dm_a/dt (v_c - w) while the apparent mass
   // grows (air shed as it shrinks leaves with the canopy's velocity), shared as the inertia is.
-  if (taken_ && !(massRate_ > 0.0)) {
+  if (facesTaken && !(massRate_ > 0.0)) {
     // The membranes' pass made the faces' loads (FL13), and no air is being entrained: the inside
     // pressure's part alone (the same values as the general loop's with no push and no force).
     for (size_t i = begin; i < end; ++i)
@@ -506,7 +508,8 @@ void CanopyFlowTerm::addNodeLoads(SystemAssembler& out, size_t begin, size_t end
 CanopyFlowTerm::Evaluation CanopyFlowTerm::complete(const Eigen::VectorXd& x, const FaceSums& sums,
                                                     kernels::CanopyFlowState s, double gauge,
                                                     SystemAssembler* out, double loadFactor,
-                                                    double stepDt, bool loads) const {
+                                                    double stepDt, bool loads,
+                                                    bool facesTaken) const {
   const Model& m = *m_;
   const double rho = m.air.density;
   const Vec3 canopyVelocity = s.canopyVelocity;
@@ -540,7 +543,8 @@ CanopyFlowTerm::Evaluation CanopyFlowTerm::complete(const Eigen::VectorXd& x, co
       kernels::capturedAirPressure(e.capturedMass, volume, m.air.pressure, rho, def_->gamma) -
       m.air.pressure;
   // FL8's inside pressure, and FL10, per node: here, or by the caller (finishTakenNodes).
-  if (out) addNodeLoads(*out, 0, nodes_.size(), s.insideGauge, loadFactor, canopyVelocity);
+  if (out)
+    addNodeLoads(*out, 0, nodes_.size(), s.insideGauge, loadFactor, canopyVelocity, facesTaken);
   // What probes and the summary report of this evaluation.
   Figures& fig = e.figures;
   const double p = s.insideGauge;

@@ -147,13 +147,15 @@ class CanopyFlowTerm final : public Term {
   kernels::CanopyFlowState flowState(const Eigen::VectorXd& v) const;
   double startGauge() const;
   // loads: an evaluation for the loads (out: where the per-node ones go, or nullptr to add them
-  // later with addNodeLoads); otherwise the figures alone.
+  // later with addNodeLoads); otherwise the figures alone. facesTaken: the membranes' pass made
+  // the faces' loads (FL13), which the records then do not hold.
   Evaluation complete(const Eigen::VectorXd& x, const FaceSums& sums, kernels::CanopyFlowState s,
                       double gauge, SystemAssembler* out, double loadFactor, double stepDt,
-                      bool loads) const;
-  // FL8's inside pressure p and FL10's entrained air on nodes [begin, end) (their slots).
+                      bool loads, bool facesTaken) const;
+  // FL8's inside pressure p and FL10's entrained air on nodes [begin, end) (their slots), and
+  // the faces' loads the records hold unless facesTaken.
   void addNodeLoads(SystemAssembler& out, size_t begin, size_t end, double p, double loadFactor,
-                    const Eigen::Vector3d& canopyVelocity) const;
+                    const Eigen::Vector3d& canopyVelocity, bool facesTaken) const;
   // An explicit step's evaluation at p.t: its captured air and face data kept for the commit.
   void keepStepEvaluation(const EvalPoint& p, const Evaluation& e);
 
