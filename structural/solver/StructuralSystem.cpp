@@ -59,7 +59,6 @@ void StructuralSystem::splitAssembly() {
   struct Item {
     double cost;
     Term* term;
-    int half;  // -1: whole
   };
   std::vector<Item> movable;
   double first = 0.0;
@@ -67,10 +66,10 @@ void StructuralSystem::splitAssembly() {
     if (!t->assemblesApart()) {
       first += t->assemblyCost();
     } else if (t->assemblesInHalves() && !halved_) {
-      movable.push_back({0.5 * t->assemblyCost(), t.get(), 0});
-      movable.push_back({0.5 * t->assemblyCost(), t.get(), 1});
+      movable.push_back({0.5 * t->assemblyCost(), t.get()});
+      movable.push_back({0.5 * t->assemblyCost(), t.get()});
     } else {
-      movable.push_back({t->assemblyCost(), t.get(), -1});
+      movable.push_back({t->assemblyCost(), t.get()});
     }
   }
   std::stable_sort(movable.begin(), movable.end(),

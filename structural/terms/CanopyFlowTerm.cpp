@@ -189,22 +189,12 @@ Vec3 CanopyFlowTerm::loopArea(const Loop& l, const Eigen::VectorXd& x) const {
 }
 
 CanopyFlowTerm::Geometry CanopyFlowTerm::geometry(const Eigen::VectorXd& x) const {
+  // The evaluations' pass over the faces in still air, its sums alone (start-up and commits that
+  // follow no explicit step's evaluation).
+  const FaceSums sums =
+      facePass<false>(x, Eigen::VectorXd::Zero(x.size()), kernels::CanopyFlowState{}, 0.0, false);
   Geometry g;
-  double volume = 0.0, area = 0.0;
-  for (const FaceNodes& fn : faceNodes_) {
-    const Vec3 x0 = at(x, fn.node[0]), x1 = at(x, fn.node[1]), x2 = at(x, fn.node[2]);
-    Vec3 A;
-    if (fn.size == 3) {
-      A = 0.5 * (x1 - x0).cross(x2 - x0);
-      volume += (x0 + x1 + x2).dot(A) * (1.0 / 9.0);  // tetraVolume(x0, x1, x2): centroid . A / 3
-    } else {
-      const Vec3 x3 = at(x, fn.node[3]);
-      A = 0.5 * (x2 - x0).cross(x3 - x1);  // the exact area vector of a bilinear quad
-      volume += kernels::tetraVolume(x0, x1, x2) + kernels::tetraVolume(x0, x2, x3);
-    }
-    area += A.norm();
-  }
-  g.volume = volume, g.area = area;
+  g.volume = sums.volume, g.area = sums.area;
   closeOpenings(x, g);
   return g;
 }

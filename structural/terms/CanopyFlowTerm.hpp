@@ -77,7 +77,7 @@ class CanopyFlowTerm final : public Term {
     double volume = 0.0, area = 0.0;
     double cloth = 0.0, dCloth = 0.0;  // FL6's outflow and its derivative in the inside pressure
   };
-  // (Kept for finishTakenPass / finishTakenSums.)
+  // Also keeps the canopy-wide state and the start's gauge for finishTakenPass / finishTakenSums.
   kernels::TriangleFlowParameters takenParameters(const EvalPoint& p);
   // The records of half 0 or 1, zeroed: at slot s, the returned + kNodeSumsStride s, A / 3 then
   // |A| / 3 (kernels::TriangleFlowBatch).

@@ -130,10 +130,6 @@ void MembraneTerm::assembleExplicitTriangles(const EvalPoint& p, SystemAssembler
       dragNow[i] = m_->faceDrags[i].coefficient * p.loadFactor;
     if (half == 0) out.work().faceDrag += takenDrags_;
   }
-  auto capture = [&](const std::array<int, 3>& nodes, const double* f) {
-    for (int i = 0; i < 3; ++i)
-      for (int c = 0; c < 3; ++c) (*captured)[3 * nodes[i] + c] += f[c];
-  };
   if (!kernels::useAvx2()) {
     // Without AVX2 one at a time: the baseline copy of the four-lane kernel, two SSE2 operations
     // for each, was slower than this (chute's step on the generated C-9 113 ns per triangle
@@ -144,17 +140,15 @@ void MembraneTerm::assembleExplicitTriangles(const EvalPoint& p, SystemAssembler
       Eigen::Matrix<double, 9, 1> r;
       kernels::membraneTriangleForce(x + 3 * t.nodes[0], x + 3 * t.nodes[1], x + 3 * t.nodes[2],
                                      t.force, r.data());
+      double f[3];
       if (loads) {
-        double f[3];
         kernels::triangleFaceLoad(x + 3 * t.nodes[0], x + 3 * t.nodes[1], x + 3 * t.nodes[2],
                                   v + 3 * t.nodes[0], v + 3 * t.nodes[1], v + 3 * t.nodes[2],
                                   takenParameters(k, half), f);
         for (int i = 0; i < 3; ++i)
           for (int c = 0; c < 3; ++c) r[3 * i + c] += f[c];
-        if (captured) capture(t.nodes, f);
       }
-      if (weighed) addWeight<3>(t.share.data(), p.loadFactor, r);
-      out.add<3>(t.nodes, r, nullptr);
+      scatterTriangle(t, r, loads ? f : nullptr, captured, weighed, p.loadFactor, out);
     }
     return;
   }
@@ -178,20 +172,9 @@ void MembraneTerm::assembleExplicitTriangles(const EvalPoint& p, SystemAssembler
       } else {
         kernels::membraneTriangleForces(x, triangleLanes_[b], fs, nullptr);  // states: see above
       }
-      for (int l = 0; l < lanes; ++l) {
-        const ExplicitTriangle& t = explicitTriangles_[first + l];
-        Eigen::Matrix<double, 9, 1> r;
-        for (int i = 0; i < 3; ++i)
-          for (int c = 0; c < 3; ++c) r[3 * i + c] = fs.v[i][c][l];
-        if constexpr (kLoads) {
-          if (captured) {
-            const double fl[3] = {f[0][l], f[1][l], f[2][l]};
-            capture(t.nodes, fl);
-          }
-        }
-        if (weighed) addWeight<3>(t.share.data(), p.loadFactor, r);
-        out.add<3>(t.nodes, r, nullptr);
-      }
+      for (int l = 0; l < lanes; ++l)
+        scatterLane(fs, f, l, explicitTriangles_[first + l], kLoads, captured, weighed,
+                    p.loadFactor, out);
     }
   };
   if (loads)
@@ -225,20 +208,11 @@ void MembraneTerm::assembleTrianglesWithFlow(const EvalPoint& p, SystemAssembler
   const kernels::TriangleFlowParameters& q = flowParameters_;
   double* records = flow_->takenRecords(half);
   Eigen::VectorXd* captured = out.fusedLoads();  // the energy balance's loads, when kept
-  auto capture = [&](const std::array<int, 3>& nodes, const double* load) {
-    for (int i = 0; i < 3; ++i)
-      for (int c = 0; c < 3; ++c) (*captured)[3 * nodes[i] + c] += load[c];
-  };
   // The canopy's sums lane by lane, triangle k in lane k mod 4 whichever path runs (the same
-  // bits), added up once the faces are done (finishFlow).
-  // On the stack while the pass runs, kept at its end: the two halves' members share a cache
-  // line, and both threads adding to it at every batch made two threads slower than one.
+  // bits), added up once the faces are done (flowSums). On the stack while the pass runs, kept
+  // at its end: the two halves' members share a cache line, and both threads adding to it at
+  // every batch made two threads slower than one.
   kernels::TriangleFlowAccumulators acc;
-  struct Keep {
-    kernels::TriangleFlowAccumulators& to;
-    const kernels::TriangleFlowAccumulators& from;
-    ~Keep() { to = from; }
-  } keep{flowSums_[half], acc};
   if (!kernels::useAvx2()) {
     // One at a time (as assembleExplicitTriangles, for the same reason): the lanes' bits.
     for (size_t k = b0 * kLanes; k < std::min(count, b1 * kLanes); ++k) {
@@ -248,8 +222,9 @@ void MembraneTerm::assembleTrianglesWithFlow(const EvalPoint& p, SystemAssembler
       const double* x2 = x + 3 * t.nodes[2];
       Eigen::Matrix<double, 9, 1> r;
       kernels::membraneTriangleForce(x0, x1, x2, t.force, r.data());
-      if (flowSlots_[k][0] >= 0) {
-        double f[3];
+      const bool inFlow = flowSlots_[k][0] >= 0;
+      double f[3];
+      if (inFlow) {
         kernels::TriangleFlowSums o;
         kernels::triangleFlowLoad(x0, x1, x2, v + 3 * t.nodes[0], v + 3 * t.nodes[1],
                                   v + 3 * t.nodes[2], q, f, o);
@@ -263,33 +238,23 @@ void MembraneTerm::assembleTrianglesWithFlow(const EvalPoint& p, SystemAssembler
           for (int c = 0; c < 3; ++c) record[c] += o.nodeArea[c];
           record[3] += o.share;
         }
-        if (captured) capture(t.nodes, f);
       }
-      if (weighed) addWeight<3>(t.share.data(), p.loadFactor, r);
-      out.add<3>(t.nodes, r, nullptr);
+      scatterTriangle(t, r, inFlow ? f : nullptr, captured, weighed, p.loadFactor, out);
     }
-    return;
-  }
-  for (size_t b = b0; b < b1; ++b) {
-    const size_t first = b * kLanes;
-    const int lanes = static_cast<int>(std::min<size_t>(kLanes, count - first));
-    kernels::TriangleLaneVectors fs;
-    double f[3][kLanes];
-    kernels::membraneTriangleForcesAndFlow(x, v, triangleLanes_[b], flowLanes_[b], q, fs, f, acc,
-                                           records);
-    for (int l = 0; l < lanes; ++l) {
-      const ExplicitTriangle& t = explicitTriangles_[first + l];
-      Eigen::Matrix<double, 9, 1> r;
-      for (int i = 0; i < 3; ++i)
-        for (int c = 0; c < 3; ++c) r[3 * i + c] = fs.v[i][c][l];
-      if (captured && flowLanes_[b].inFlow[l]) {
-        const double load[3] = {f[0][l], f[1][l], f[2][l]};
-        capture(t.nodes, load);
-      }
-      if (weighed) addWeight<3>(t.share.data(), p.loadFactor, r);
-      out.add<3>(t.nodes, r, nullptr);
+  } else {
+    for (size_t b = b0; b < b1; ++b) {
+      const size_t first = b * kLanes;
+      const int lanes = static_cast<int>(std::min<size_t>(kLanes, count - first));
+      kernels::TriangleLaneVectors fs;
+      double f[3][kLanes];
+      kernels::membraneTriangleForcesAndFlow(x, v, triangleLanes_[b], flowLanes_[b], q, fs, f, acc,
+                                             records);
+      for (int l = 0; l < lanes; ++l)
+        scatterLane(fs, f, l, explicitTriangles_[first + l], flowLanes_[b].inFlow[l] != 0, captured,
+                    weighed, p.loadFactor, out);
     }
   }
+  flowSums_[half] = acc;
 }
 
 CanopyFlowTerm::FaceSums MembraneTerm::flowSums(bool halves) const {

@@ -143,6 +143,36 @@ class MembraneTerm final : public Term {
                                         Eigen::Matrix<double, 3 * N, 1>& r) const {
     for (int i = 0; i < N; ++i) r.template segment<3>(3 * i) -= loadFactor * share[i] * m_->gravity;
   }
+  // A triangle's forces r (its face load f, when it has one, already in them) with its weight
+  // to the assembler, and f kept over all dofs where the energy balance asks (captured). Inlined:
+  // every explicit triangle at every step.
+  [[gnu::always_inline]] void scatterTriangle(const ExplicitTriangle& t,
+                                              Eigen::Matrix<double, 9, 1>& r, const double* f,
+                                              Eigen::VectorXd* captured, bool weighed,
+                                              double loadFactor, SystemAssembler& out) const {
+    if (captured && f)
+      for (int i = 0; i < 3; ++i)
+        for (int c = 0; c < 3; ++c) (*captured)[3 * t.nodes[i] + c] += f[c];
+    if (weighed) addWeight<3>(t.share.data(), loadFactor, r);
+    out.add<3>(t.nodes, r, nullptr);
+  }
+  // The same for lane l of a batch: its forces fs, its face load f (withLoad: it has one).
+  [[gnu::always_inline]] void scatterLane(const kernels::TriangleLaneVectors& fs,
+                                          const double (&f)[3][kernels::kTriangleLanes], int l,
+                                          const ExplicitTriangle& t, bool withLoad,
+                                          Eigen::VectorXd* captured, bool weighed,
+                                          double loadFactor, SystemAssembler& out) const {
+    Eigen::Matrix<double, 9, 1> r;
+    for (int i = 0; i < 3; ++i)
+      for (int c = 0; c < 3; ++c) r[3 * i + c] = fs.v[i][c][l];
+    double load[3];
+    const double* kept = nullptr;  // f is read only where there is a load to keep
+    if (captured && withLoad) {
+      for (int c = 0; c < 3; ++c) load[c] = f[c][l];
+      kept = load;
+    }
+    scatterTriangle(t, r, kept, captured, weighed, loadFactor, out);
+  }
   const Model* m_;
   std::vector<int> slot_;  // per element: index into refs3_ or refs4_
   std::vector<kernels::MembraneReference<3>> refs3_;
