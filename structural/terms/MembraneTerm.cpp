@@ -250,8 +250,8 @@ void MembraneTerm::assembleTrianglesWithFlow(const EvalPoint& p, SystemAssembler
       kernels::membraneTriangleForcesAndFlow(x, v, triangleLanes_[b], flowLanes_[b], q, fs, f, acc,
                                              records);
       for (int l = 0; l < lanes; ++l)
-        scatterLane(fs, f, l, explicitTriangles_[first + l], flowLanes_[b].inFlow[l] != 0, captured,
-                    weighed, p.loadFactor, out);
+        scatterLane(fs, f, l, explicitTriangles_[first + l],
+                    captured && flowLanes_[b].inFlow[l] != 0, captured, weighed, p.loadFactor, out);
     }
   }
   flowSums_[half] = acc;
