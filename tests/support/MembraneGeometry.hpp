@@ -1,6 +1,7 @@
 #pragma once
 // Shared by the membrane-face kernel tests: reference triangles and quads, their homogeneous
-// stretches with a random rotation and perturbation, and stacking of nodal coordinates.
+// stretches with a random rotation and perturbation, random vectors, and stacking of nodal
+// coordinates.
 #include <Eigen/Geometry>
 #include <array>
 #include <random>
@@ -13,6 +14,12 @@ using Mat3 = Eigen::Matrix3d;
 inline Mat3 randomRotation(std::mt19937& rng) {
   std::normal_distribution<double> n(0, 1);
   return Eigen::Quaterniond(n(rng), n(rng), n(rng), n(rng)).normalized().toRotationMatrix();
+}
+
+// A vector of independent components uniform in [-size, size] (velocities, winds).
+inline Vec3 randomVector(std::mt19937& rng, double size) {
+  std::uniform_real_distribution<double> u(-size, size);
+  return Vec3(u(rng), u(rng), u(rng));
 }
 
 template <int N>

@@ -24,15 +24,11 @@
 
 using namespace chute::kernels;
 using chute::testing::deformed;
+using chute::testing::randomVector;
 
 namespace {
 
 const MembraneMaterial kFabric{4.32e6, 0.3, 5e-4, 1.6};
-
-Vec3 randomVector(std::mt19937& rng, double size) {
-  std::uniform_real_distribution<double> u(-size, size);
-  return Vec3(u(rng), u(rng), u(rng));
-}
 
 TriangleFaceLoadParameters randomLoads(std::mt19937& rng, int kind) {
   std::uniform_real_distribution<double> u(0.0, 1.0);

@@ -25,15 +25,11 @@
 
 using namespace chute::kernels;
 using chute::testing::deformed;
+using chute::testing::randomVector;
 
 namespace {
 
 const MembraneMaterial kFabric{4.32e6, 0.3, 5e-4, 1.6};
-
-Vec3 randomVector(std::mt19937& rng, double size) {
-  std::uniform_real_distribution<double> u(-size, size);
-  return Vec3(u(rng), u(rng), u(rng));
-}
 
 // A canopy-wide state; cloth 0: impermeable, 1: linear, 2: with an inertial part.
 TriangleFlowParameters randomFlow(std::mt19937& rng, int cloth) {
