@@ -110,6 +110,18 @@ class SystemAssembler {
       for (int i = 0; i < N; ++i) full_->segment<3>(3 * nodes[i]) += r;
   }
 
+  // The residual r(i) at node nodes[i] for each i in [begin, end) (residual only): add<1> node
+  // after node, the same sums, with the test for capturing all dofs made once for the run instead
+  // of at every node (a term's per-node loads: the airflow's inside pressure at every canopy node
+  // of every step). r is called exactly once per node, in order.
+  template <class R>
+  void addPerNode(const int* nodes, size_t begin, size_t end, R&& r) {
+    if (full_)
+      addPerNodeTo<true>(nodes, begin, end, r);
+    else
+      addPerNodeTo<false>(nodes, begin, end, r);
+  }
+
   // A coupling the pattern lacks (a term that did not declare its cliques): a programming
   // error, reported rather than written to the wrong entry.
   [[noreturn]] static void outsidePattern(int row, int col) {
@@ -136,6 +148,27 @@ class SystemAssembler {
 
  private:
   void ensurePattern();
+  template <bool Full, class R>
+  void addPerNodeTo(const int* nodes, size_t begin, size_t end, R& r) {
+    // Loaded once: the compiler reloads members through this at every node otherwise.
+    double* residual = residual_.data();
+    double* full = Full ? full_->data() : nullptr;
+    const int* freeNodeEq = dofs_->freeNodeEqs();
+    for (size_t i = begin; i < end; ++i) {
+      const int n = nodes[i];
+      const Eigen::Vector3d f = r(i);
+      if constexpr (Full)
+        for (int k = 0; k < 3; ++k) full[3 * n + k] += f[k];
+      if (const int e = freeNodeEq[n]; e >= 0) {
+        residual[e] += f[0];
+        residual[e + 1] += f[1];
+        residual[e + 2] += f[2];
+        continue;
+      }
+      for (int k = 0; k < 3; ++k)
+        if (const int e = dofs_->eq(n, k); e >= 0) residual[e] += f[k];
+    }
+  }
 
   const DofMap* dofs_;
   std::vector<std::vector<int>> cliques_;  // until the pattern is built

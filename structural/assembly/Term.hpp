@@ -218,6 +218,18 @@ class Term {
   // positions (EvalPoint::inertiaOf with movingMassOnly, which only they honour) and that of the
   // others once (EX2).
   virtual bool massMovesWithPositions() const { return false; }
+  // Whether the term's lumped mass changes only when it commits, not with the positions (the air
+  // moving with a canopy, docs/flight.md FL11): the explicit path re-forms it wherever it forms a
+  // new lumped mass, from committedNodalMass, with no positions of its own to compare and no
+  // assembly. It is per node: the same mass on each of a node's dofs, and never negative.
+  virtual bool massChangesAtCommit() const { return false; }
+  // The nodes that mass sits on (fixed for the run), and each one's mass as last committed,
+  // written to mass[i] for committedMassNodes()[i].
+  virtual const std::vector<int>& committedMassNodes() const {
+    static const std::vector<int> none;
+    return none;
+  }
+  virtual void committedNodalMass(double* /*mass*/) const {}
   // Adds to S, per node, the row sum of this term's stiffness at positions x and time t that
   // bounds the explicit step's highest frequency, omega^2 <= max_i S_i / m_i (EX5-EX6); free[i]
   // says whether node i has a free dof (rows of fixed nodes are not part of the free system).

@@ -198,6 +198,7 @@ class DofMap {
   // The first of a node's three consecutive equations when all three of its dofs are free, else
   // -1: one look-up per node instead of three for the assembly's scatter.
   int freeNodeEq(int node) const { return freeNodeEq_[node]; }
+  const int* freeNodeEqs() const { return freeNodeEq_.data(); }  // all of them, by node
   // The free dofs as runs of consecutive dofs with consecutive equations, in order: loops over
   // the free dofs without a test per dof (the explicit step's update of every dof).
   struct FreeRun {

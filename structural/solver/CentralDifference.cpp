@@ -57,8 +57,14 @@ CentralDifference::CentralDifference(StructuralSystem& sys, ExplicitSettings set
   sys.prepareFor(IntegrationTraits{true, false});
   massAssembler_.buildPattern({});
   movingMassAssembler_.buildPattern({});
-  for (const auto& t : sys.terms())
-    (t->massMovesWithPositions() ? movingMassTerms_ : fixedMassTerms_).push_back(t.get());
+  for (const auto& t : sys.terms()) {
+    if (t->massMovesWithPositions())
+      movingMassTerms_.push_back(t.get());
+    else if (t->massChangesAtCommit())
+      committedMass_.push_back(CommittedMass{t.get(), {}, {}});
+    else
+      fixedMassTerms_.push_back(t.get());
+  }
   {
     std::vector<char> touched(sys.dofs().numDofs() / 3, 0);
     for (auto* t : movingMassTerms_) markCoupledNodes(*t, touched);
@@ -71,6 +77,29 @@ CentralDifference::CentralDifference(StructuralSystem& sys, ExplicitSettings set
     // copy a vectorised pass, cheaper than one through the list.
     if (2 * movingMassDofs_.size() > static_cast<size_t>(sys.dofs().numDofs()))
       movingMassDofs_.clear(), wholeKey_ = true;
+    // Where each committed mass goes (CommittedMass): set where it is the equation's first
+    // varying mass, added where a moving mass or an earlier term's is there before it.
+    std::vector<char> reached(sys.dofs().numDofs(), 0), moving(sys.dofs().numDofs(), 0);
+    for (int e : movingMassEqs_) reached[e] = moving[e] = 1;
+    for (CommittedMass& c : committedMass_) {
+      const std::vector<int>& nodes = c.term->committedMassNodes();
+      for (size_t i = 0; i < nodes.size(); ++i) {
+        const int n = nodes[i], first = sys.dofs().freeNodeEq(n), index = static_cast<int>(i);
+        if (first >= 0 && !reached[first] && !reached[first + 1] && !reached[first + 2]) {
+          c.setNodes.emplace_back(first, index);
+          continue;
+        }
+        for (int k = 0; k < 3; ++k)
+          if (const int e = sys.dofs().eq(n, k); e >= 0)
+            c.equations.push_back(CommittedMass::Equation{e, index, reached[e] != 0});
+      }
+      for (const auto& [first, index] : c.setNodes)
+        for (int k = 0; k < 3; ++k) reached[first + k] = 1;
+      for (const auto& eq : c.equations) reached[eq.eq] = 1;
+      committedNodeMass_.resize(std::max(committedNodeMass_.size(), nodes.size()));
+    }
+    for (int e = 0; e < static_cast<int>(reached.size()); ++e)
+      if (reached[e] && !moving[e]) committedMassEqs_.push_back(e);
   }
   const Model& m = sys.model();
   freeNode_.assign(m.numNodes(), 0);
@@ -177,6 +206,7 @@ const Eigen::VectorXd& CentralDifference::lumpedMass(const Eigen::VectorXd& x, d
     cachedMass_ = massBase_;
     std::vector<char> moving(massBase_.size(), 0);
     for (int e : movingMassEqs_) moving[e] = 1;
+    for (int e : committedMassEqs_) moving[e] = 1;
     basePositive_ = true;
     for (long e = 0; e < massBase_.size(); ++e)
       if (!moving[e] && !(massBase_[e] > 0.0)) basePositive_ = false;
@@ -211,6 +241,28 @@ const Eigen::VectorXd& CentralDifference::lumpedMass(const Eigen::VectorXd& x, d
       }
       movingPositive_ = positive;
     }
+    if (!committedMass_.empty()) {
+      // The masses that change at commit, as last committed: no assembly (their per-node values
+      // straight to their equations), the same sums as the moving mass's (base + mass).
+      bool positive = true;
+      double* mass = cachedMass_.data();
+      const double* base = massBase_.data();
+      const double* nodeMass = committedNodeMass_.data();
+      for (const CommittedMass& c : committedMass_) {
+        c.term->committedNodalMass(committedNodeMass_.data());
+        for (const auto& [first, index] : c.setNodes) {
+          const double m = nodeMass[index];
+          const double m0 = base[first] + m, m1 = base[first + 1] + m, m2 = base[first + 2] + m;
+          mass[first] = m0, mass[first + 1] = m1, mass[first + 2] = m2;
+          positive &= (m0 > 0.0) & (m1 > 0.0) & (m2 > 0.0);
+        }
+        for (const auto& eq : c.equations) {
+          mass[eq.eq] = (eq.add ? mass[eq.eq] : base[eq.eq]) + nodeMass[eq.node];
+          positive &= mass[eq.eq] > 0.0;
+        }
+      }
+      committedPositive_ = positive;
+    }
     if (wholeKey_) {
       cachedX_ = x;
     } else {
@@ -220,7 +272,8 @@ const Eigen::VectorXd& CentralDifference::lumpedMass(const Eigen::VectorXd& x, d
     }
     cachedT_ = t;
     cacheValid_ = true;
-    if (check && !(basePositive_ && movingPositive_)) refuseMassless(cachedMass_);
+    if (check && !(basePositive_ && movingPositive_ && committedPositive_))
+      refuseMassless(cachedMass_);
   }
   return cachedMass_;
 }

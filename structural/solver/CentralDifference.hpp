@@ -99,15 +99,33 @@ class CentralDifference final : public TimeIntegrator {
   // the only ones it clears and reads (SystemAssembler::beginOn).
   SystemAssembler movingMassAssembler_;
   std::vector<int> movingMassEqs_;
+  // The terms whose mass changes at commit (Term::massChangesAtCommit), each with where its nodes'
+  // masses go: a node whose three dofs are free and on which no varying mass comes before, its
+  // first equation (each of the three set to the base plus its mass); any other free equation
+  // with its node's index, set so or, where a moving mass or an earlier term's is before it,
+  // added to what is there.
+  struct CommittedMass {
+    struct Equation {
+      int eq, node;
+      bool add;
+    };
+    Term* term;
+    std::vector<std::pair<int, int>> setNodes;  // (first equation, node index)
+    std::vector<Equation> equations;
+  };
+  std::vector<CommittedMass> committedMass_;
+  std::vector<double> committedNodeMass_;  // one term's nodal masses, as it writes them
+  std::vector<int> committedMassEqs_;      // every equation those terms' masses reach
   // fixedMass_ + addedEq_, formed when either changes, and whether it is positive on every
   // equation outside movingMassEqs_.
   Eigen::VectorXd massBase_;
   bool massBaseStale_ = true, basePositive_ = false;
-  bool movingPositive_ = true;  // every moving-mass equation's mass positive at the cached x
-  Eigen::VectorXd fixedMass_;   // of the terms whose mass does not move, at fixedMassCuts_
-  int fixedMassCuts_ = -1;      // number of cut line sets fixedMass_ was computed with
-  Eigen::VectorXd x0_;          // the start positions
-  Eigen::VectorXd addedEq_;     // mass scaling, per equation
+  bool movingPositive_ = true;     // every moving-mass equation's mass positive at the cached x
+  bool committedPositive_ = true;  // every equation a committed mass reaches positive
+  Eigen::VectorXd fixedMass_;      // of the terms whose mass does not move, at fixedMassCuts_
+  int fixedMassCuts_ = -1;         // number of cut line sets fixedMass_ was computed with
+  Eigen::VectorXd x0_;             // the start positions
+  Eigen::VectorXd addedEq_;        // mass scaling, per equation
   // From the stiffness bounds S and nodal masses at the start: StableStepRecord::nodalSteps
   // (returns the free nodes' own steps, sorted), and EX8's added mass for settings_.targetStep.
   std::vector<double> recordNodalSteps(const std::vector<double>& S,

@@ -207,8 +207,9 @@ void CanopyFlowTerm::closeOpenings(const Eigen::VectorXd& x, Geometry& g) const 
     for (int node : l.nodes) c += at(x, node);
     c /= n;
     Vec3 A = Vec3::Zero();
-    for (size_t i = 0; i < l.nodes.size(); ++i) {
-      int a = l.nodes[i], b = l.nodes[(i + 1) % l.nodes.size()];
+    const size_t count = l.nodes.size();
+    for (size_t i = 0; i < count; ++i) {
+      int a = l.nodes[i], b = l.nodes[i + 1 < count ? i + 1 : 0];
       if (l.sign < 0.0) std::swap(a, b);
       A += 0.5 * (at(x, a) - c).cross(at(x, b) - c);
       g.volume += kernels::tetraVolume(c, at(x, a), at(x, b));
@@ -313,22 +314,19 @@ void CanopyFlowTerm::addCouplings(std::vector<std::vector<int>>& cliques) const 
 }
 
 void CanopyFlowTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
-  if (!p.inertia) return;  // a load of motion: dynamics only
-  if (p.inertiaOnly) {
-    // FL11: the captured air moves with the canopy, each node carrying its area's share, both as
-    // committed (lagged one step, as the mass; it may run alongside the step's assembly).
-    for (size_t i = 0; i < nodes_.size(); ++i) {
-      const int n = nodes_[i];
-      out.add<1>({n}, inertiaMass_ * committedShares_[i] * p.a.segment<3>(3 * n), nullptr);
-    }
-    return;
-  }
+  if (!p.inertia || p.inertiaOnly) return;  // a load of motion: dynamics only; its mass below
   // Loads, not stiffness: at the step's own positions whatever stiffness damping shifts (EX7).
   // An explicit step's forces take the captured air at the step's end (FL9): its update is made
   // here, on trial, and committed with the step.
   // Taken, the membranes' pass made them (finishTakenPass).
   if (taken_ && fusedFaceLoads(p, out)) return;
   keepStepEvaluation(p, evaluate(p.stepPositions(), p.v, &out, p.loadFactor, p.explicitStep));
+}
+
+void CanopyFlowTerm::committedNodalMass(double* mass) const {
+  // FL11: the captured air moves with the canopy, each node carrying its area's share, both as
+  // committed (lagged one step; the explicit step forms it alongside its assembly).
+  for (size_t i = 0; i < nodes_.size(); ++i) mass[i] = inertiaMass_ * committedShares_[i];
 }
 
 void CanopyFlowTerm::keepStepEvaluation(const EvalPoint& p, const Evaluation& e) {
@@ -365,7 +363,10 @@ kernels::TriangleFlowParameters CanopyFlowTerm::takenParameters(const EvalPoint&
 
 double* CanopyFlowTerm::takenRecords(int half) const {
   std::vector<NodeSums>& records = half == 0 ? nodeSums_ : secondHalf_;
-  records.assign(nodes_.size(), NodeSums{Vec3::Zero(), 0.0, Vec3::Zero(), 0.0});
+  // The pass adds A / 3 and |A| / 3 (area, share): only they start from zero. The faces' loads
+  // are the membranes' (FL13): the records' force is neither written nor read on this path.
+  records.resize(nodes_.size());
+  for (NodeSums& n : records) n.area.setZero(), n.share = 0.0;
   return records.data()->area.data();
 }
 
@@ -385,17 +386,30 @@ void CanopyFlowTerm::finishTakenSums(const EvalPoint& p, const FaceSums& sums) {
 }
 
 void CanopyFlowTerm::finishTakenNodes(SystemAssembler& out, int half) {
-  // Each half of the nodes: its two records added, its share over the whole area, its loads.
+  // Each half of the nodes: its two records added, its share over the whole area, its loads, in
+  // one pass (addNodeLoads' on the records once added).
   const size_t n = nodes_.size(), begin = half == 0 ? 0 : n / 2, end = half == 0 ? n / 2 : n;
   const double perArea = halves_.area > 0.0 ? 1.0 / halves_.area : 1.0;
-  for (size_t i = begin; i < end; ++i) {
-    NodeSums& sum = nodeSums_[i];
-    sum.area += secondHalf_[i].area;
-    sum.share = halves_.area > 0.0 ? (sum.share + secondHalf_[i].share) * perArea
-                                   : sum.share + secondHalf_[i].share;
+  const bool normalise = halves_.area > 0.0;
+  NodeSums* sums = nodeSums_.data();
+  const NodeSums* second = secondHalf_.data();
+  auto merge = [=](size_t i) -> NodeSums& {
+    NodeSums& sum = sums[i];
+    sum.area += second[i].area;
+    sum.share = normalise ? (sum.share + second[i].share) * perArea : sum.share + second[i].share;
+    return sum;
+  };
+  const double p = halves_.insideGauge, loadFactor = halves_.loadFactor;
+  if (!(massRate_ > 0.0)) {
+    out.addPerNode(nodes_.data(), begin, end,
+                   [&](size_t i) { return Vec3(loadFactor * -(p * merge(i).area)); });
+    return;
   }
-  addNodeLoads(out, begin, end, halves_.insideGauge, halves_.loadFactor, halves_.canopyVelocity,
-               true);
+  const Vec3 push = entrainmentPush(halves_.canopyVelocity);
+  out.addPerNode(nodes_.data(), begin, end, [&](size_t i) {
+    const NodeSums& s = merge(i);
+    return Vec3(loadFactor * (s.share * push - p * s.area));
+  });
 }
 
 CanopyFlowTerm::Figures CanopyFlowTerm::figuresAt(const Eigen::VectorXd& x,
@@ -437,9 +451,15 @@ kernels::CanopyFlowState CanopyFlowTerm::flowState(const Eigen::VectorXd& v) con
   const double rho = m_->air.density;
   // FL1: the relative flow of the canopy as a whole; the canopy's velocity the mean of its
   // nodes' by their shares of its area at the step's start.
-  Vec3 canopyVelocity = Vec3::Zero();
+  // By component in locals, the same sums (an Eigen 3-vector accumulated through the loop was
+  // stored and reloaded at every node).
+  double cv[3] = {0.0, 0.0, 0.0};
+  const double* vd = v.data();
+  const double* share = committedShares_.data();
+  const int* node = nodes_.data();
   for (size_t i = 0; i < nodes_.size(); ++i)
-    canopyVelocity += committedShares_[i] * at(v, nodes_[i]);
+    for (int c = 0; c < 3; ++c) cv[c] += share[i] * vd[3 * node[i] + c];
+  const Vec3 canopyVelocity(cv[0], cv[1], cv[2]);
   const Vec3 U = m_->air.wind - canopyVelocity;
   const double speed = U.norm();
   kernels::CanopyFlowState s;
@@ -474,6 +494,10 @@ CanopyFlowTerm::Evaluation CanopyFlowTerm::evaluate(const Eigen::VectorXd& x,
   return complete(x, sums, s, gauge, out, loadFactor, stepDt, out != nullptr, false);
 }
 
+Vec3 CanopyFlowTerm::entrainmentPush(const Vec3& canopyVelocity) const {
+  return massRate_ > 0.0 ? Vec3(massRate_ * (canopyVelocity - m_->air.wind)) : Vec3::Zero();
+}
+
 void CanopyFlowTerm::addNodeLoads(SystemAssembler& out, size_t begin, size_t end, double p,
                                   double loadFactor, const Vec3& canopyVelocity,
                                   bool facesTaken) const {
@@ -483,16 +507,24 @@ void CanopyFlowTerm::addNodeLoads(SystemAssembler& out, size_t begin, size_t end
   if (facesTaken && !(massRate_ > 0.0)) {
     // The membranes' pass made the faces' loads (FL13), and no air is being entrained: the inside
     // pressure's part alone (the same values as the general loop's with no push and no force).
-    for (size_t i = begin; i < end; ++i)
-      out.add<1>({nodes_[i]}, Vec3(loadFactor * -(p * nodeSums_[i].area)), nullptr);
+    const NodeSums* sums = nodeSums_.data();
+    out.addPerNode(nodes_.data(), begin, end,
+                   [=](size_t i) { return Vec3(loadFactor * -(p * sums[i].area)); });
     return;
   }
-  const Vec3 push =
-      massRate_ > 0.0 ? Vec3(massRate_ * (canopyVelocity - m_->air.wind)) : Vec3::Zero();
-  for (size_t i = begin; i < end; ++i) {
-    const NodeSums& n = nodeSums_[i];
-    out.add<1>({nodes_[i]}, Vec3(loadFactor * (n.share * push - p * n.area - n.force)), nullptr);
+  const Vec3 push = entrainmentPush(canopyVelocity);
+  const NodeSums* sums = nodeSums_.data();
+  // With the faces taken, the records hold no force (the same values as subtracting a zero one).
+  if (facesTaken) {
+    out.addPerNode(nodes_.data(), begin, end, [=](size_t i) {
+      return Vec3(loadFactor * (sums[i].share * push - p * sums[i].area));
+    });
+    return;
   }
+  out.addPerNode(nodes_.data(), begin, end, [=](size_t i) {
+    const NodeSums& n = sums[i];
+    return Vec3(loadFactor * (n.share * push - p * n.area - n.force));
+  });
 }
 
 CanopyFlowTerm::Evaluation CanopyFlowTerm::complete(const Eigen::VectorXd& x, const FaceSums& sums,
@@ -602,18 +634,25 @@ void CanopyFlowTerm::commit(const CommitPoint& c) {
   const double volume = evaluatedHere ? scratchVolume_ : geometry(c.x).volume;
   inertiaMass_ = apparentMassOfVolume(volume) + captured_;
   massRate_ = c.dt > 0.0 ? (inertiaMass_ - before) / c.dt : 0.0;
-  std::vector<double> made;
-  if (!evaluatedHere) made = areaShares(c.x);
-  auto share = [&](size_t i) { return evaluatedHere ? nodeSums_[i].share : made[i]; };
-  if (c.v) {
-    // The nodes' apparent masses change from m_a s_i to m_a' s_i' at the velocities they have.
+  // The new shares committed, and the kinetic energy the nodes' apparent masses gain in changing
+  // from m_a s_i to m_a' s_i' at the velocities they have, in one pass.
+  auto commitShares = [&](auto share) {
     double gained = 0.0;
-    for (size_t i = 0; i < nodes_.size(); ++i)
-      gained += (inertiaMass_ * share(i) - before * committedShares_[i]) *
-                at(*c.v, nodes_[i]).squaredNorm();
-    supplied_ += 0.5 * gained;
+    for (size_t i = 0; i < nodes_.size(); ++i) {
+      const double s = share(i);
+      if (c.v)
+        gained +=
+            (inertiaMass_ * s - before * committedShares_[i]) * at(*c.v, nodes_[i]).squaredNorm();
+      committedShares_[i] = s;
+    }
+    if (c.v) supplied_ += 0.5 * gained;
+  };
+  if (evaluatedHere) {
+    commitShares([&](size_t i) { return nodeSums_[i].share; });
+  } else {
+    const std::vector<double> made = areaShares(c.x);
+    commitShares([&](size_t i) { return made[i]; });
   }
-  for (size_t i = 0; i < nodes_.size(); ++i) committedShares_[i] = share(i);
   committedVolume_ = volume;
 }
 

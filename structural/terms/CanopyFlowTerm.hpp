@@ -29,7 +29,10 @@ class CanopyFlowTerm final : public Term {
   // brought in with it (EnergyBreakdown::supplied, FL12).
   void addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v, double t,
                  EnergyBreakdown& e) const override;
-  bool massMovesWithPositions() const override { return true; }
+  // FL11: the air's mass moves with the canopy's nodes by the shares committed with the step.
+  bool massChangesAtCommit() const override { return true; }
+  const std::vector<int>& committedMassNodes() const override { return nodes_; }
+  void committedNodalMass(double* mass) const override;
   // FL12: the captured air is a gas spring over the whole canopy, K = (gamma p / V) a a^T.
   double frequencySquaredBound(const Eigen::VectorXd& x, double t,
                                const std::vector<double>& nodalMass) const override;
@@ -156,6 +159,8 @@ class CanopyFlowTerm final : public Term {
   // the faces' loads the records hold unless facesTaken.
   void addNodeLoads(SystemAssembler& out, size_t begin, size_t end, double p, double loadFactor,
                     const Eigen::Vector3d& canopyVelocity, bool facesTaken) const;
+  // FL10's force per unit share on the air being entrained (zero while none is).
+  Eigen::Vector3d entrainmentPush(const Eigen::Vector3d& canopyVelocity) const;
   // An explicit step's evaluation at p.t: its captured air and face data kept for the commit.
   void keepStepEvaluation(const EvalPoint& p, const Evaluation& e);
 
