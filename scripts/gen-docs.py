@@ -78,6 +78,7 @@ MD_PAGES = [
     ("c9_slider_roundoff_band.md", "The C-9 slider case: what round-off alone moves (`bench/speed/roundoff_band.py`)"),
     ("flight_in_membrane_pass.md",
      "The airflow's loads in the membranes' pass, and the membranes in two halves, one sitting"),
+    ("flight_per_node_work.md", "The airflow's per-node work in an explicit step, one sitting"),
 ]
 
 
@@ -322,6 +323,16 @@ of the day, two threads 0.944x; two threads are 1.32x one (1.43x before: one thr
 At 24k: 58.8 s and 42.6 s of wall time per simulated second on one and two threads (65.7 s and
 44.8 s at the start). The C-9 slider case: one thread 0.998x, two threads 0.960x, both about
 1.62 s of wall time per simulated second.
+
+What the airflow's loads then still cost was mostly per node, not per face: its air's mass (FL11)
+is a mass that changes at commit (`Term::massChangesAtCommit`, EX2), formed with each lumped mass
+from the term's per-node values straight to their equations, where as a mass that moved with the
+positions it took an inertia-only assembly, a clearing of its equations and a comparison and copy
+of every position at every step; the halves' node records are merged and loaded in one pass
+(`SystemAssembler::addPerNode`). Same bits. On `cases/c9_flight.toml` the airflow's step costs
+1.198x the instructions of the constant-pressure step (1.277x before; the criterion 1.2x); the
+generated 12k C-9 in free flight runs in 0.925x (one thread) and 0.929x (two) of its wall time
+before (bench/results/flight_per_node_work.md).
 """
 
 
