@@ -42,6 +42,17 @@ void SystemAssembler::begin(bool wantMatrix) {
   if (wantMatrix) std::fill(matrix_.valuePtr(), matrix_.valuePtr() + matrix_.nonZeros(), 0.0);
 }
 
+void SystemAssembler::beginWithoutClearing(bool wantMatrix) {
+  if (wantMatrix) ensurePattern();
+  wantMatrix_ = wantMatrix;
+  if (wantMatrix) std::fill(matrix_.valuePtr(), matrix_.valuePtr() + matrix_.nonZeros(), 0.0);
+}
+
+void SystemAssembler::accumulateWork(SystemAssembler& other) {
+  work_ += other.work_;
+  other.work_ = WorkCounters{};
+}
+
 void SystemAssembler::beginOn(const std::vector<int>& eqs) {
   wantMatrix_ = false;
   if (residual_.size() != dofs_->numEquations()) residual_.setZero(dofs_->numEquations());

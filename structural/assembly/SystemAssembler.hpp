@@ -30,6 +30,17 @@ class SystemAssembler {
   bool hasPattern() const { return patternBuilt_; }
 
   void begin(bool wantMatrix);
+  // begin() in two: the mode first, the residual's clearing later (by the thread that then
+  // assembles into it: the clearing of each part's residual on its own thread).
+  void beginWithoutClearing(bool wantMatrix);
+  void clearResidual() { residual_.setZero(); }
+  // The second part's residual added to this one's over equations [begin, end) (accumulate's
+  // residual sum in pieces, which may run at once on different threads), and its work counters,
+  // which it clears (accumulateWork: once, after the pieces).
+  void accumulateResidual(const SystemAssembler& other, int begin, int end) {
+    residual_.segment(begin, end - begin) += other.residual_.segment(begin, end - begin);
+  }
+  void accumulateWork(SystemAssembler& other);
   // A residual-only begin() for terms that write only to the equations eqs (those of their
   // couplings' nodes, addCouplings): only those entries are cleared, the others are zero from the
   // first begin and stay so. For an assembler used only by such terms (the explicit step's

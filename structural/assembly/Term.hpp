@@ -272,6 +272,12 @@ class Term {
   virtual void beforeHalves(const EvalPoint& /*p*/, const SystemAssembler& /*out*/) {}
   virtual void afterHalves(const EvalPoint& /*p*/) {}
   virtual void afterHalvesPart(const EvalPoint& /*p*/, SystemAssembler& /*out*/, int /*half*/) {}
+  // addEnergy in the same two halves (the energy balance's evaluation on two threads): each
+  // half's sums added to e; together addEnergy's, to round-off.
+  virtual void addEnergyHalf(const Eigen::VectorXd& x, const Eigen::VectorXd& v, double t,
+                             EnergyBreakdown& e, int half) const {
+    if (half == 0) addEnergy(x, v, t, e);
+  }
 
   // ---- history (model/History.hpp) ----
   // commit(): the converged step becomes the state later steps start from; revert(): the trial

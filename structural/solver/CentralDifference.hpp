@@ -26,6 +26,10 @@ struct ExplicitSettings {
   // > 0: the target is safety x this quantile of the free nodes' own stable steps at the start
   // (EX8): the nodes below it, that fraction of them, get mass.
   double massScalingQuantile = 0.0;
+  // From this many dofs the step's passes over all dofs (EX1's prediction and update, EX7's
+  // shifted positions) run in halves on the assembly's two threads, the same values: below it a
+  // hand-over to the second thread costs more than the half pass it saves.
+  int halvesFromDofs = 6000;
 };
 
 // Free dofs without mass: central differences cannot move them (M^-1). Names the nodes.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <stdexcept>
 #include <string>
 
 namespace chute {
@@ -160,7 +161,44 @@ void StructuralSystem::assemble(const EvalPoint& p, bool wantMatrix) {
 
 void StructuralSystem::assemble(const EvalPoint& at, bool wantMatrix,
                                 const std::function<void()>& alongside) {
+  assembleParts(at, wantMatrix, alongside, false);
+}
+
+void StructuralSystem::assembleForHalves(const EvalPoint& at,
+                                         const std::function<void()>& alongside) {
+  assembleParts(at, false, alongside, true);
+}
+
+void StructuralSystem::residualNotSummed() {
+  throw std::logic_error(
+      "StructuralSystem: the residual was read before useResidualInHalves summed its parts");
+}
+
+void StructuralSystem::inHalves(int n, const std::function<void(int, int)>& use) {
+  const int half = n / 2;
+  runTwo([&] { use(0, half); }, [&] { use(half, n); });
+}
+
+void StructuralSystem::useResidualInHalves(const std::function<void(int, int)>& use) {
+  const int n = numEquations(), half = n / 2;
+  if (!sumPending_) {
+    inHalves(n, use);
+    return;
+  }
+  // Each half summed where it is used: its second part's residual added just before.
+  auto piece = [&](int begin, int end) {
+    assembler_.accumulateResidual(secondAssembler_, begin, end);
+    use(begin, end);
+  };
+  runTwo([&] { piece(0, half); }, [&] { piece(half, n); });
+  assembler_.accumulateWork(secondAssembler_);
+  sumPending_ = false;
+}
+
+void StructuralSystem::assembleParts(const EvalPoint& at, bool wantMatrix,
+                                     const std::function<void()>& alongside, bool forHalves) {
   ScopedTimer timer(timings_.assembly);
+  sumPending_ = false;
   ++timings_.assemblies;
   // Couplings that move (contact pairs): a pattern that no longer covers them is built again
   // before the next matrix (and the linear solver analyses it afresh).
@@ -174,7 +212,12 @@ void StructuralSystem::assemble(const EvalPoint& at, bool wantMatrix,
     if (!secondPart_.empty()) secondAssembler_.buildPattern({});
     patternStale_ = false;
   }
-  assembler_.begin(wantMatrix);
+  // For halves with two parts, each part's residual is cleared on its thread (below).
+  const bool split = forHalves && !wantMatrix && !secondPart_.empty();
+  if (split)
+    assembler_.beginWithoutClearing(false);
+  else
+    assembler_.begin(wantMatrix);
   // captureStepLoads: the terms doing external work also add their residual over all dofs, each
   // part into its own vector (the parts may run on two threads).
   const bool capture = captureLoads_ && !wantMatrix && p.explicitStep > 0.0;
@@ -207,7 +250,10 @@ void StructuralSystem::assemble(const EvalPoint& at, bool wantMatrix,
     return;
   }
   if (wantMatrix && !secondAssembler_.hasPattern()) secondAssembler_.sharePatternOf(assembler_);
-  secondAssembler_.begin(wantMatrix);
+  if (split)
+    secondAssembler_.beginWithoutClearing(false);
+  else
+    secondAssembler_.begin(wantMatrix);
   if (halved_) halved_->beforeHalves(p, assembler_);
   // alongside() on whichever thread finishes its part first (the other one's part is the longer).
   std::atomic<bool> taken{false};
@@ -216,10 +262,12 @@ void StructuralSystem::assemble(const EvalPoint& at, bool wantMatrix,
   };
   runner_->run(
       [&] {
+        if (split) assembler_.clearResidual();
         assemblePart(firstPart_, assembler_, partLoads_[0], 0);
         then();
       },
       [&] {
+        if (split) secondAssembler_.clearResidual();
         assemblePart(secondPart_, secondAssembler_, partLoads_[1], 1);
         then();
       });
@@ -233,7 +281,10 @@ void StructuralSystem::assemble(const EvalPoint& at, bool wantMatrix,
     runTwo([&] { part(assembler_, partLoads_[0], 0); },
            [&] { part(secondAssembler_, partLoads_[1], 1); });
   }
-  assembler_.accumulate(secondAssembler_);
+  if (split)
+    sumPending_ = true;  // useResidualInHalves sums them
+  else
+    assembler_.accumulate(secondAssembler_);
   keepLoads();
 }
 
@@ -346,13 +397,21 @@ EnergyBreakdown StructuralSystem::energyOnTwoThreads(const Eigen::VectorXd& x,
   if (secondPart_.empty()) return energy(x, v, t);
   ++energyEvaluations_;
   EnergyBreakdown a, b;
+  // The halved term's energy in its two halves, one in each part (as its assembly).
   runTwo(
       [&] {
-        for (auto* term : firstPart_) term->addEnergy(x, v, t, a);
+        for (auto* term : firstPart_)
+          if (term == halved_)
+            term->addEnergyHalf(x, v, t, a, 0);
+          else
+            term->addEnergy(x, v, t, a);
       },
       [&] {
         for (auto* term : secondPart_)
-          if (term != halved_) term->addEnergy(x, v, t, b);  // counted once, in the first
+          if (term == halved_)
+            term->addEnergyHalf(x, v, t, b, 1);
+          else
+            term->addEnergy(x, v, t, b);
       });
   a.kinetic += b.kinetic, a.strain += b.strain, a.gravity += b.gravity, a.supplied += b.supplied;
   return a;

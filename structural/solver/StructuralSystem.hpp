@@ -60,6 +60,20 @@ class StructuralSystem {
   // touches (the explicit step's lumped mass of the sliding elements, EX2), so that the same bits
   // come out on whichever thread it runs.
   void assemble(const EvalPoint& p, bool wantMatrix, const std::function<void()>& alongside);
+  // The explicit step's assembly (residual only) whose residual is used in halves of the
+  // equations, one on each thread: each part's residual is cleared on its own thread, and the
+  // two parts' sum is left to useResidualInHalves, which makes it half by half just before each
+  // half is used (no pass over all equations of its own). residual() is not to be read between.
+  void assembleForHalves(const EvalPoint& p, const std::function<void()>& alongside);
+  // use(begin, end) over equations [0, n/2) here and [n/2, n) on the second thread (one after the
+  // other without one), each half of the residual complete when it is called. use must touch only
+  // what belongs to its equations.
+  void useResidualInHalves(const std::function<void(int, int)>& use);
+  // The residual as use() may read it, over its own equations only.
+  const Eigen::VectorXd& residualInHalves() const { return assembler_.residual(); }
+  // first(begin, end), second(begin, end) over halves of [0, n) on the two threads (one after
+  // the other without a second): the explicit step's passes over all dofs.
+  void inHalves(int n, const std::function<void(int, int)>& use);
   // While on, every residual-only assembly of an explicit step (EvalPoint::explicitStep > 0) also
   // sums the residual of the terms that do external work over all dofs, kept with the step's end
   // time: the loads the step applied, which the energy balance's work takes at its window's end
@@ -81,7 +95,10 @@ class StructuralSystem {
   // touch each other's data (the energy balance's load residual and energy), whose results are
   // the same bits either way.
   void runTwo(const std::function<void()>& first, const std::function<void()>& second);
-  const Eigen::VectorXd& residual() const { return assembler_.residual(); }
+  const Eigen::VectorXd& residual() const {
+    if (sumPending_) residualNotSummed();
+    return assembler_.residual();
+  }
   const SparseMatrix& matrix() const { return assembler_.matrix(); }
   bool symmetric() const;
   // The terms' event sources taken together (assembly/EventSource.hpp): the least fraction,
@@ -173,8 +190,12 @@ class StructuralSystem {
   // added to the first. The split depends on the scene only, never on the thread count, so a
   // run gives the same bits with one thread or two.
   void splitAssembly();
+  [[noreturn]] static void residualNotSummed();
   std::vector<Term*> firstPart_, secondPart_;
-  Term* halved_ = nullptr;  // in both parts, each assembling half (Term::assemblesInHalves)
+  Term* halved_ = nullptr;   // in both parts, each assembling half (Term::assemblesInHalves)
+  bool sumPending_ = false;  // assembleForHalves left the parts' residuals to be summed
+  void assembleParts(const EvalPoint& p, bool wantMatrix, const std::function<void()>& alongside,
+                     bool forHalves);
   SystemAssembler secondAssembler_;
   std::unique_ptr<TwoPartRunner> runner_;  // only with a second part
   Timings timings_;

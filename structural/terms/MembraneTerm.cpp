@@ -525,8 +525,11 @@ void MembraneTerm::assembleHalf(const EvalPoint& p, SystemAssembler& out, int ha
   }
   // Half of the batches each (the triangles' state and scratch of each half its own).
   const size_t batches = triangleLanes_.size(), middle = (batches + 1) / 2;
+  // The positions kept for the element states (elementStates), each half copying half of them
+  // (lastX_ sized in beforeHalves).
+  const long n = p.x.size(), from = half == 0 ? 0 : n / 2, to = half == 0 ? n / 2 : n;
+  lastX_.segment(from, to - from) = p.x.segment(from, to - from);
   if (half == 0) {
-    lastX_ = p.x;
     principalsStale_ = true;
     assembleExplicitTriangles(p, out, 0, middle, 0);
     out.work().membrane += static_cast<long>(refs3_.size());
@@ -537,6 +540,7 @@ void MembraneTerm::assembleHalf(const EvalPoint& p, SystemAssembler& out, int ha
 }
 
 void MembraneTerm::beforeHalves(const EvalPoint& p, const SystemAssembler& out) {
+  if (lastX_.size() != p.x.size()) lastX_.resize(p.x.size());
   flowHalves_ = flow_ && explicitPath(p, out) && fusedFaceLoads(p, out);
   if (flowHalves_) flowParameters_ = flow_->takenParameters(p);  // both halves read them
 }
@@ -578,6 +582,20 @@ const std::vector<MembraneTerm::ElementState>& MembraneTerm::elementStates() con
 
 void MembraneTerm::addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v, double,
                              EnergyBreakdown& en) const {
+  addEnergyOver(x, v, 0, m_->membranes.size(), en);
+}
+
+void MembraneTerm::addEnergyHalf(const Eigen::VectorXd& x, const Eigen::VectorXd& v, double,
+                                 EnergyBreakdown& en, int half) const {
+  const size_t n = m_->membranes.size(), middle = n / 2;
+  if (half == 0)
+    addEnergyOver(x, v, 0, middle, en);
+  else
+    addEnergyOver(x, v, middle, n, en);
+}
+
+void MembraneTerm::addEnergyOver(const Eigen::VectorXd& x, const Eigen::VectorXd& v, size_t begin,
+                                 size_t end, EnergyBreakdown& en) const {
   auto one = [&](const auto& ref, const MembraneElement& e, auto nodesTag) {
     constexpr int N = decltype(nodesTag)::value;
     const auto& mat = m_->membraneMaterials[e.material];
@@ -600,7 +618,7 @@ void MembraneTerm::addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
       en.gravity -= share[i] * m_->gravity.dot(x.segment<3>(3 * e.nodes[i]));
   };
   const bool lumped = m_->massKind == kernels::MassKind::Lumped;
-  for (size_t k = 0; k < m_->membranes.size(); ++k) {
+  for (size_t k = begin; k < end; ++k) {
     const auto& e = m_->membranes[k];
     if (e.numNodes == 4) {
       one(refs4_[slot_[k]], e, std::integral_constant<int, 4>{});

@@ -26,6 +26,9 @@ class MembraneTerm final : public Term {
   void assemble(const EvalPoint& p, SystemAssembler& out) override;
   void addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v, double t,
                  EnergyBreakdown& e) const override;
+  // Elements [0, n/2) and [n/2, n): the halves of the energy balance's evaluation.
+  void addEnergyHalf(const Eigen::VectorXd& x, const Eigen::VectorXd& v, double t,
+                     EnergyBreakdown& e, int half) const override;
   // Wrinkling state and principal stresses / strains of each element at the last assembly.
   struct ElementState {
     kernels::WrinkleState state = kernels::WrinkleState::Taut;
@@ -183,6 +186,8 @@ class MembraneTerm final : public Term {
   void makeBound() const;
   // Positions of the last assembly, and whether states_' principal values are still to be
   // computed from them.
+  void addEnergyOver(const Eigen::VectorXd& x, const Eigen::VectorXd& v, size_t begin, size_t end,
+                     EnergyBreakdown& e) const;
   Eigen::VectorXd lastX_;
   mutable bool principalsStale_ = false;
 };
