@@ -77,29 +77,38 @@ CentralDifference::CentralDifference(StructuralSystem& sys, ExplicitSettings set
     // copy a vectorised pass, cheaper than one through the list.
     if (2 * movingMassDofs_.size() > static_cast<size_t>(sys.dofs().numDofs()))
       movingMassDofs_.clear(), wholeKey_ = true;
-    // Where each committed mass goes (CommittedMass): set where it is the equation's first
-    // varying mass, added where a moving mass or an earlier term's is there before it.
-    std::vector<char> reached(sys.dofs().numDofs(), 0), moving(sys.dofs().numDofs(), 0);
-    for (int e : movingMassEqs_) reached[e] = moving[e] = 1;
+    // Where each committed mass goes (CommittedMass). An equation with one varying mass, a
+    // committed one: set to the base plus it. An equation with more (a moving mass and a
+    // committed one, two committed ones): its varying masses summed first, in the terms' order,
+    // and the base added last, the sums the moving mass's assembly made when it held them all.
+    const int numEq = sys.numEquations();
+    std::vector<int> sources(numEq, 0);
+    std::vector<char> moving(numEq, 0);
+    for (int e : movingMassEqs_) moving[e] = 1, sources[e] = 1;
+    for (const CommittedMass& c : committedMass_)
+      for (int n : c.term->committedMassNodes())
+        for (int k = 0; k < 3; ++k)
+          if (const int e = sys.dofs().eq(n, k); e >= 0) ++sources[e];
     for (CommittedMass& c : committedMass_) {
       const std::vector<int>& nodes = c.term->committedMassNodes();
       for (size_t i = 0; i < nodes.size(); ++i) {
         const int n = nodes[i], first = sys.dofs().freeNodeEq(n), index = static_cast<int>(i);
-        if (first >= 0 && !reached[first] && !reached[first + 1] && !reached[first + 2]) {
+        if (first >= 0 && sources[first] == 1 && sources[first + 1] == 1 &&
+            sources[first + 2] == 1) {
           c.setNodes.emplace_back(first, index);
           continue;
         }
         for (int k = 0; k < 3; ++k)
           if (const int e = sys.dofs().eq(n, k); e >= 0)
-            c.equations.push_back(CommittedMass::Equation{e, index, reached[e] != 0});
+            c.equations.push_back(CommittedMass::Equation{e, index, sources[e] > 1});
       }
-      for (const auto& [first, index] : c.setNodes)
-        for (int k = 0; k < 3; ++k) reached[first + k] = 1;
-      for (const auto& eq : c.equations) reached[eq.eq] = 1;
       committedNodeMass_.resize(std::max(committedNodeMass_.size(), nodes.size()));
     }
-    for (int e = 0; e < static_cast<int>(reached.size()); ++e)
-      if (reached[e] && !moving[e]) committedMassEqs_.push_back(e);
+    for (int e = 0; e < numEq; ++e) {
+      if (sources[e] > 1) sharedMassEqs_.emplace_back(e, moving[e] != 0);
+      if (sources[e] > 0 && !moving[e]) committedMassEqs_.push_back(e);
+    }
+    if (!sharedMassEqs_.empty()) varyingMass_.setZero(numEq);
   }
   const Model& m = sys.model();
   freeNode_.assign(m.numNodes(), 0);
@@ -248,6 +257,9 @@ const Eigen::VectorXd& CentralDifference::lumpedMass(const Eigen::VectorXd& x, d
       double* mass = cachedMass_.data();
       const double* base = massBase_.data();
       const double* nodeMass = committedNodeMass_.data();
+      double* varying = varyingMass_.data();
+      for (const auto& [e, fromMoving] : sharedMassEqs_)
+        varying[e] = fromMoving ? movingMassAssembler_.residual()[e] : 0.0;
       for (const CommittedMass& c : committedMass_) {
         c.term->committedNodalMass(committedNodeMass_.data());
         for (const auto& [first, index] : c.setNodes) {
@@ -257,9 +269,17 @@ const Eigen::VectorXd& CentralDifference::lumpedMass(const Eigen::VectorXd& x, d
           positive &= (m0 > 0.0) & (m1 > 0.0) & (m2 > 0.0);
         }
         for (const auto& eq : c.equations) {
-          mass[eq.eq] = (eq.add ? mass[eq.eq] : base[eq.eq]) + nodeMass[eq.node];
+          if (eq.shared) {
+            varying[eq.eq] += nodeMass[eq.node];
+            continue;
+          }
+          mass[eq.eq] = base[eq.eq] + nodeMass[eq.node];
           positive &= mass[eq.eq] > 0.0;
         }
+      }
+      for (const auto& [e, fromMoving] : sharedMassEqs_) {
+        mass[e] = base[e] + varying[e];
+        positive &= mass[e] > 0.0;
       }
       committedPositive_ = positive;
     }

@@ -104,14 +104,14 @@ class CentralDifference final : public TimeIntegrator {
   SystemAssembler movingMassAssembler_;
   std::vector<int> movingMassEqs_;
   // The terms whose mass changes at commit (Term::massChangesAtCommit), each with where its nodes'
-  // masses go: a node whose three dofs are free and on which no varying mass comes before, its
-  // first equation (each of the three set to the base plus its mass); any other free equation
-  // with its node's index, set so or, where a moving mass or an earlier term's is before it,
-  // added to what is there.
+  // masses go: a node whose three dofs carry no other varying mass, its first equation (each of
+  // the three set to the base plus its mass); any other free equation with its node's index, set
+  // so, or, shared with a moving mass or another committed one, summed with them first
+  // (sharedMassEqs_, varyingMass_) and the base added last: the old assembly's sums, bit for bit.
   struct CommittedMass {
     struct Equation {
       int eq, node;
-      bool add;
+      bool shared;
     };
     Term* term;
     std::vector<std::pair<int, int>> setNodes;  // (first equation, node index)
@@ -120,6 +120,9 @@ class CentralDifference final : public TimeIntegrator {
   std::vector<CommittedMass> committedMass_;
   std::vector<double> committedNodeMass_;  // one term's nodal masses, as it writes them
   std::vector<int> committedMassEqs_;      // every equation those terms' masses reach
+  // The equations with more than one varying mass, each with whether a moving mass is one.
+  std::vector<std::pair<int, bool>> sharedMassEqs_;
+  Eigen::VectorXd varyingMass_;  // their varying masses' sums, by equation
   // fixedMass_ + addedEq_, formed when either changes, and whether it is positive on every
   // equation outside movingMassEqs_.
   Eigen::VectorXd massBase_;

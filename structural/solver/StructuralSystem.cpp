@@ -214,6 +214,7 @@ void StructuralSystem::assembleParts(const EvalPoint& at, bool wantMatrix,
   }
   // For halves with two parts, each part's residual is cleared on its thread (below).
   const bool split = forHalves && !wantMatrix && !secondPart_.empty();
+  sumPending_ = split;  // from here: the residual is read only once useResidualInHalves summed it
   if (split)
     assembler_.beginWithoutClearing(false);
   else
@@ -281,10 +282,7 @@ void StructuralSystem::assembleParts(const EvalPoint& at, bool wantMatrix,
     runTwo([&] { part(assembler_, partLoads_[0], 0); },
            [&] { part(secondAssembler_, partLoads_[1], 1); });
   }
-  if (split)
-    sumPending_ = true;  // useResidualInHalves sums them
-  else
-    assembler_.accumulate(secondAssembler_);
+  if (!split) assembler_.accumulate(secondAssembler_);  // else useResidualInHalves sums them
   keepLoads();
 }
 

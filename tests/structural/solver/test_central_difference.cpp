@@ -154,11 +154,12 @@ struct CommittedMass final : Term {
 }  // namespace
 
 // EX2's lumped mass with masses that change at commit (the air moving with a canopy, FL11): on
-// each of its nodes' free dofs, the fixed mass (here the chain's), then any moving mass, then the
-// committed masses in term order; formed anew after a commit. Nodes 1-4 of a chain of four bars
-// (node 0 fixed, node 4 fixed in y): node 1 has one committed mass, node 2 also a moving one,
-// node 3 the moving one and two committed ones, node 4 the second committed one on its two free
-// dofs. Each acceleration is -1 over exactly that sum, before and after the masses change.
+// each of its nodes' free dofs, the fixed mass (here the chain's) plus the sum of the varying
+// masses (any moving mass, then the committed masses in term order); formed anew after a commit.
+// Nodes 1-4 of a chain of four bars (node 0 fixed, node 4 fixed in y): node 1 has one committed
+// mass, node 2 also a moving one, node 3 the moving one and two committed ones, node 4 the second
+// committed one on its two free dofs. Each acceleration is -1 over exactly that sum, before and
+// after the masses change.
 TEST(CentralDifference, MassesThatChangeAtCommitJoinTheLumpedMass) {
   Model m = chainOfBars(4);
   m.constraint[0].fixed = {true, true, true};
@@ -174,12 +175,14 @@ TEST(CentralDifference, MassesThatChangeAtCommitJoinTheLumpedMass) {
   StructuralSystem sys(m, TermOptions{}, std::move(extra));
   CentralDifference cd(sys, ExplicitSettings{0.9, 0.0, 0.0}, 1e-6);
   const double bar = kBarRho * kBarArea * kBar;  // the chain's lumped mass: half a bar per end
+  // The varying masses summed first in the terms' order (moving, first, second), the base last:
+  // the sums of one assembly of all varying masses.
   auto expected = [&](int node, double f, double g) {
-    double mass = node == 4 ? 0.5 * bar : bar;
-    if (node == 2 || node == 3) mass += moving;
-    if (node >= 1 && node <= 3) mass += f * first[node - 1];
-    if (node >= 3) mass += g * second[node - 3];
-    return mass;
+    double varying = 0.0;
+    if (node == 2 || node == 3) varying += moving;
+    if (node >= 1 && node <= 3) varying += f * first[node - 1];
+    if (node >= 3) varying += g * second[node - 3];
+    return (node == 4 ? 0.5 * bar : bar) + varying;
   };
   StructuralState s = sys.initialState();
   int checked = 0;
