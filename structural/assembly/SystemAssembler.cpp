@@ -36,10 +36,8 @@ void SystemAssembler::sharePatternOf(const SystemAssembler& other) {
 }
 
 void SystemAssembler::begin(bool wantMatrix) {
-  if (wantMatrix) ensurePattern();
-  wantMatrix_ = wantMatrix;
-  residual_.setZero();
-  if (wantMatrix) std::fill(matrix_.valuePtr(), matrix_.valuePtr() + matrix_.nonZeros(), 0.0);
+  beginWithoutClearing(wantMatrix);
+  clearResidual();
 }
 
 void SystemAssembler::beginWithoutClearing(bool wantMatrix) {
@@ -66,8 +64,7 @@ void SystemAssembler::accumulate(SystemAssembler& other) {
     const double* w = other.matrix_.valuePtr();
     for (long k = 0; k < matrix_.nonZeros(); ++k) v[k] += w[k];
   }
-  work_ += other.work_;
-  other.work_ = WorkCounters{};
+  accumulateWork(other);
 }
 
 }  // namespace chute

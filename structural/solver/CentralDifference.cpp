@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <map>
 #include <sstream>
@@ -455,14 +456,16 @@ NewtonReport CentralDifference::advance(StructuralState& s, double dt) {
   // forces are evaluated with (EX2, below): the forward-Euler prediction v_n + dt a_n.
   // A large system's passes over all dofs in halves, one on each thread (the same values).
   const bool halves = nd >= settings_.halvesFromDofs && sys_->numEquations() >= 2;
-  auto predictOver = [&](int b, int e) {
+  auto overDofs = [&](const std::function<void(int, int)>& pass) {
+    if (halves)
+      sys_->inHalves(nd, pass);
+    else
+      pass(0, nd);
+  };
+  overDofs([&](int b, int e) {
     predict(e - b, dt, s.x.data() + b, s.v.data() + b, s.a.data() + b, vHalf_.data() + b,
             n.x.data() + b, vStar_.data() + b);
-  };
-  if (halves)
-    sys_->inHalves(nd, predictOver);
-  else
-    predictOver(0, nd);
+  });
   sys_->prescribeMotion(n);
   // EX3: hand-over checked every step. A driven slider is handed over where its path passes a
   // node; a free slider whose part to an end node turns round over the step has passed that
@@ -481,13 +484,9 @@ NewtonReport CentralDifference::advance(StructuralState& s, double dt) {
   if (damped) {
     if (xEval_.size() != nd) xEval_.resize(nd);
     const double beta = settings_.stiffnessDamping;
-    auto shift = [&](int b, int e) {
+    overDofs([&](int b, int e) {
       xEval_.segment(b, e - b) = n.x.segment(b, e - b) + beta * vStar_.segment(b, e - b);
-    };
-    if (halves)
-      sys_->inHalves(nd, shift);
-    else
-      shift(0, nd);
+    });
   }
   // EX2: the forces at a = 0; the step's length for RG8.
   const EvalPoint p =
@@ -519,30 +518,26 @@ NewtonReport CentralDifference::advance(StructuralState& s, double dt) {
   // consecutive equations (the constrained dofs' are prescribed).
   // With it, in the same pass, whether the new state is finite (x 0 is NaN for an infinite or
   // NaN entry): the free dofs here, the constrained ones after.
-  double nonFinite = 0.0;
-  if (halves) {
-    // Over the runs' parts in each half of the equations, each half's residual summed from the
-    // assembly's two parts just before (useResidualInHalves).
-    double part[2] = {0.0, 0.0};
-    sys_->useResidualInHalves([&](int b, int e) {
-      const double* r = sys_->residualInHalves().data();
-      double sum = 0.0;
-      for (const auto& run : dofs.freeRuns()) {
-        const int from = std::max(run.eq, b), to = std::min(run.eq + run.count, e);
-        if (from >= to) continue;
-        const int d = run.dof + (from - run.eq);
-        sum += correct(to - from, 0.5 * dt, r + from, mass->data() + from, vHalf_.data() + d,
-                       n.x.data() + d, n.a.data() + d, n.v.data() + d);
-      }
-      part[b == 0 ? 0 : 1] = sum;
-    });
-    nonFinite = part[0] + part[1];
-  } else {
-    for (const auto& run : dofs.freeRuns())
-      nonFinite += correct(run.count, 0.5 * dt, sys_->residual().data() + run.eq,
-                           mass->data() + run.eq, vHalf_.data() + run.dof, n.x.data() + run.dof,
-                           n.a.data() + run.dof, n.v.data() + run.dof);
-  }
+  // Over the runs' parts in equations [b, e); in halves, each half's residual summed from the
+  // assembly's two parts just before (useResidualInHalves).
+  double part[2] = {0.0, 0.0};
+  auto correctOver = [&](int b, int e) {
+    const double* r = sys_->residualInHalves().data();
+    double sum = 0.0;
+    for (const auto& run : dofs.freeRuns()) {
+      const int from = std::max(run.eq, b), to = std::min(run.eq + run.count, e);
+      if (from >= to) continue;
+      const int d = run.dof + (from - run.eq);
+      sum += correct(to - from, 0.5 * dt, r + from, mass->data() + from, vHalf_.data() + d,
+                     n.x.data() + d, n.a.data() + d, n.v.data() + d);
+    }
+    part[b == 0 ? 0 : 1] = sum;
+  };
+  if (halves)
+    sys_->useResidualInHalves(correctOver);
+  else
+    correctOver(0, sys_->numEquations());
+  double nonFinite = part[0] + part[1];
   for (int d : sys_->constrainedDofs()) nonFinite += n.x[d] * 0.0 + n.v[d] * 0.0 + n.a[d] * 0.0;
   rep.iterations = 0;
   if (!(nonFinite == 0.0)) {

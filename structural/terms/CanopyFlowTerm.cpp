@@ -385,31 +385,61 @@ void CanopyFlowTerm::finishTakenSums(const EvalPoint& p, const FaceSums& sums) {
   halves_ = {e.figures.insideGauge, p.loadFactor, sums.area, pass_.state.canopyVelocity};
 }
 
+template <class Record>
+void CanopyFlowTerm::addNodeLoadsOf(SystemAssembler& out, size_t begin, size_t end, double p,
+                                    double loadFactor, const Vec3& canopyVelocity, bool facesTaken,
+                                    Record record) const {
+  // FL8's inside pressure, and FL10: air newly set moving with the canopy is brought from rest
+  // (in the air) to the canopy's velocity: the force -dm_a/dt (v_c - w) while the apparent mass
+  // grows (air shed as it shrinks leaves with the canopy's velocity), shared as the inertia is.
+  // record(i) is called once per node.
+  if (facesTaken && !(massRate_ > 0.0)) {
+    // The membranes' pass made the faces' loads (FL13), and no air is being entrained: the inside
+    // pressure's part alone (the same values as the general loop's with no push and no force).
+    out.addPerNode(nodes_.data(), begin, end,
+                   [&](size_t i) { return Vec3(loadFactor * -(p * record(i).area)); });
+    return;
+  }
+  const Vec3 push =
+      massRate_ > 0.0 ? Vec3(massRate_ * (canopyVelocity - m_->air.wind)) : Vec3::Zero();
+  // With the faces taken, the records hold no force (the same values as subtracting a zero one).
+  if (facesTaken) {
+    out.addPerNode(nodes_.data(), begin, end, [&](size_t i) {
+      const NodeSums& n = record(i);
+      return Vec3(loadFactor * (n.share * push - p * n.area));
+    });
+    return;
+  }
+  out.addPerNode(nodes_.data(), begin, end, [&](size_t i) {
+    const NodeSums& n = record(i);
+    return Vec3(loadFactor * (n.share * push - p * n.area - n.force));
+  });
+}
+
+void CanopyFlowTerm::addNodeLoads(SystemAssembler& out, size_t begin, size_t end, double p,
+                                  double loadFactor, const Vec3& canopyVelocity,
+                                  bool facesTaken) const {
+  const NodeSums* sums = nodeSums_.data();
+  addNodeLoadsOf(out, begin, end, p, loadFactor, canopyVelocity, facesTaken,
+                 [=](size_t i) -> const NodeSums& { return sums[i]; });
+}
+
 void CanopyFlowTerm::finishTakenNodes(SystemAssembler& out, int half) {
   // Each half of the nodes: its two records added, its share over the whole area, its loads, in
-  // one pass (addNodeLoads' on the records once added).
+  // one pass (the records merged as the loads read them).
   const size_t n = nodes_.size(), begin = half == 0 ? 0 : n / 2, end = half == 0 ? n / 2 : n;
   const double perArea = halves_.area > 0.0 ? 1.0 / halves_.area : 1.0;
   const bool normalise = halves_.area > 0.0;
   NodeSums* sums = nodeSums_.data();
   const NodeSums* second = secondHalf_.data();
-  auto merge = [=](size_t i) -> NodeSums& {
-    NodeSums& sum = sums[i];
-    sum.area += second[i].area;
-    sum.share = normalise ? (sum.share + second[i].share) * perArea : sum.share + second[i].share;
-    return sum;
-  };
-  const double p = halves_.insideGauge, loadFactor = halves_.loadFactor;
-  if (!(massRate_ > 0.0)) {
-    out.addPerNode(nodes_.data(), begin, end,
-                   [&](size_t i) { return Vec3(loadFactor * -(p * merge(i).area)); });
-    return;
-  }
-  const Vec3 push = entrainmentPush(halves_.canopyVelocity);
-  out.addPerNode(nodes_.data(), begin, end, [&](size_t i) {
-    const NodeSums& s = merge(i);
-    return Vec3(loadFactor * (s.share * push - p * s.area));
-  });
+  addNodeLoadsOf(out, begin, end, halves_.insideGauge, halves_.loadFactor, halves_.canopyVelocity,
+                 true, [=](size_t i) -> const NodeSums& {
+                   NodeSums& sum = sums[i];
+                   sum.area += second[i].area;
+                   sum.share = normalise ? (sum.share + second[i].share) * perArea
+                                         : sum.share + second[i].share;
+                   return sum;
+                 });
 }
 
 CanopyFlowTerm::Figures CanopyFlowTerm::figuresAt(const Eigen::VectorXd& x,
@@ -492,39 +522,6 @@ CanopyFlowTerm::Evaluation CanopyFlowTerm::evaluate(const Eigen::VectorXd& x,
   const FaceSums sums =
       out ? facePass<true>(x, v, s, gauge, permeable) : facePass<false>(x, v, s, gauge, permeable);
   return complete(x, sums, s, gauge, out, loadFactor, stepDt, out != nullptr, false);
-}
-
-Vec3 CanopyFlowTerm::entrainmentPush(const Vec3& canopyVelocity) const {
-  return massRate_ > 0.0 ? Vec3(massRate_ * (canopyVelocity - m_->air.wind)) : Vec3::Zero();
-}
-
-void CanopyFlowTerm::addNodeLoads(SystemAssembler& out, size_t begin, size_t end, double p,
-                                  double loadFactor, const Vec3& canopyVelocity,
-                                  bool facesTaken) const {
-  // FL8's inside pressure, and FL10: air newly set moving with the canopy is brought from rest
-  // (in the air) to the canopy's velocity: the force -dm_a/dt (v_c - w) while the apparent mass
-  // grows (air shed as it shrinks leaves with the canopy's velocity), shared as the inertia is.
-  if (facesTaken && !(massRate_ > 0.0)) {
-    // The membranes' pass made the faces' loads (FL13), and no air is being entrained: the inside
-    // pressure's part alone (the same values as the general loop's with no push and no force).
-    const NodeSums* sums = nodeSums_.data();
-    out.addPerNode(nodes_.data(), begin, end,
-                   [=](size_t i) { return Vec3(loadFactor * -(p * sums[i].area)); });
-    return;
-  }
-  const Vec3 push = entrainmentPush(canopyVelocity);
-  const NodeSums* sums = nodeSums_.data();
-  // With the faces taken, the records hold no force (the same values as subtracting a zero one).
-  if (facesTaken) {
-    out.addPerNode(nodes_.data(), begin, end, [=](size_t i) {
-      return Vec3(loadFactor * (sums[i].share * push - p * sums[i].area));
-    });
-    return;
-  }
-  out.addPerNode(nodes_.data(), begin, end, [=](size_t i) {
-    const NodeSums& n = sums[i];
-    return Vec3(loadFactor * (n.share * push - p * n.area - n.force));
-  });
 }
 
 CanopyFlowTerm::Evaluation CanopyFlowTerm::complete(const Eigen::VectorXd& x, const FaceSums& sums,

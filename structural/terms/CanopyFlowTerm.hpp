@@ -159,8 +159,10 @@ class CanopyFlowTerm final : public Term {
   // the faces' loads the records hold unless facesTaken.
   void addNodeLoads(SystemAssembler& out, size_t begin, size_t end, double p, double loadFactor,
                     const Eigen::Vector3d& canopyVelocity, bool facesTaken) const;
-  // FL10's force per unit share on the air being entrained (zero while none is).
-  Eigen::Vector3d entrainmentPush(const Eigen::Vector3d& canopyVelocity) const;
+  // addNodeLoads with node i's records as record(i) gives them (the halves': merged as read).
+  template <class Record>
+  void addNodeLoadsOf(SystemAssembler& out, size_t begin, size_t end, double p, double loadFactor,
+                      const Eigen::Vector3d& canopyVelocity, bool facesTaken, Record record) const;
   // An explicit step's evaluation at p.t: its captured air and face data kept for the commit.
   void keepStepEvaluation(const EvalPoint& p, const Evaluation& e);
 
