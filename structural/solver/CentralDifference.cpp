@@ -366,10 +366,12 @@ double CentralDifference::chooseStep(double lastStep, const Eigen::VectorXd& x, 
   const double maxStep = maxStep_;
   const Eigen::VectorXd& massEq = lumpedMass(x, t);
   std::vector<double> S;
-  if (boundAheadT_ == t && boundAheadX_.size() == x.size() && boundAheadX_ == x)
+  if (boundAheadT_ == t && boundAheadX_.size() == x.size() && boundAheadX_ == x) {
     S = std::move(boundAhead_);  // made alongside the last step's assembly at this (x, t)
-  else
+    sys_->addStateStiffnessBound(x, t, S);
+  } else {
     S = sys_->stiffnessBound(x, t);
+  }
   boundAheadT_ = -1.0;
   const auto mass = nodalMass(massEq);
   auto est = chute::stableStep(S, mass, freeNode_);
@@ -413,8 +415,7 @@ StepResult CentralDifference::step(StructuralState& s, double stop, StepCounters
     s.control.dt = chooseStep(s.control.dt, s.x, s.t);
   // The next step estimates (if this one is accepted and counted): its bound from this step's
   // end, alongside this step's assembly.
-  boundAheadWanted_ =
-      (counters.steps + 1) % kStableStepEvery == 0 && sys_->stiffnessBoundOfPositions();
+  boundAheadWanted_ = (counters.steps + 1) % kStableStepEvery == 0;
   StepResult result;
   const double h = std::min(s.control.dt, stop - s.t);
   result.reachesStop = h == stop - s.t;
@@ -501,7 +502,7 @@ NewtonReport CentralDifference::advance(StructuralState& s, double dt) {
     auto alongside = [&] {
       mass = &lumpedMass(n.x, n.t);
       if (boundAheadWanted_) {
-        boundAhead_ = sys_->stiffnessBound(n.x, n.t);
+        boundAhead_ = sys_->positionStiffnessBound(n.x, n.t);
         boundAheadX_ = n.x;
         boundAheadT_ = n.t;
       }

@@ -29,7 +29,7 @@ struct ExplicitSettings {
   // From this many dofs the step's passes over all dofs (EX1's prediction and update, EX7's
   // shifted positions) run in halves on the assembly's two threads, the same values: below it a
   // hand-over to the second thread costs more than the half pass it saves.
-  int halvesFromDofs = 6000;
+  int halvesFromDofs = 2000;
 };
 
 // Free dofs without mass: central differences cannot move them (M^-1). Names the nodes.
@@ -154,10 +154,11 @@ class CentralDifference final : public TimeIntegrator {
   Eigen::VectorXd zeroDofs_, onesDofs_;
   StructuralState next_;
   Eigen::VectorXd vHalf_, vStar_, xEval_;  // advance's v_{n+1/2}, v*, x + beta v*
-  // The stiffness bound at a step's end positions, made alongside its assembly when the next
-  // step estimates its step and every term's bound is a function of the positions and time
-  // (StructuralSystem::stiffnessBoundOfPositions): the same function at the same (x, t), so the
-  // same bits, off the step's serial part on two threads. Used by chooseStep at that (x, t).
+  // The bound of the terms whose stiffness bound is a function of the positions and time
+  // (StructuralSystem::positionStiffnessBound) at a step's end positions, made alongside its
+  // assembly when the next step estimates its step: the same function at the same (x, t), so the
+  // same bits, off the step's serial part on two threads. chooseStep adds the bounds of the terms
+  // that read their state (sliding groups, contact) at that (x, t).
   bool boundAheadWanted_ = false;
   std::vector<double> boundAhead_;
   Eigen::VectorXd boundAheadX_;

@@ -26,7 +26,6 @@ StructuralSystem::StructuralSystem(const Model& model, TermOptions options,
       }
     }
     if (t->dynamicCouplings()) dynamicCouplings_.push_back(t.get());
-    boundOfPositions_ = boundOfPositions_ && t->stiffnessBoundOfPositions();
   }
 
   for (int n = 0; n < model.numNodes(); ++n)
@@ -123,9 +122,23 @@ void StructuralSystem::prepareFor(const IntegrationTraits& traits) {
 }
 
 std::vector<double> StructuralSystem::stiffnessBound(const Eigen::VectorXd& x, double t) const {
-  std::vector<double> S(model_->numNodes(), 0.0);
-  for (const auto& term : terms_) term->addStiffnessBound(x, t, freeNode_, S);
+  std::vector<double> S = positionStiffnessBound(x, t);
+  addStateStiffnessBound(x, t, S);
   return S;
+}
+
+std::vector<double> StructuralSystem::positionStiffnessBound(const Eigen::VectorXd& x,
+                                                             double t) const {
+  std::vector<double> S(model_->numNodes(), 0.0);
+  for (const auto& term : terms_)
+    if (term->stiffnessBoundOfPositions()) term->addStiffnessBound(x, t, freeNode_, S);
+  return S;
+}
+
+void StructuralSystem::addStateStiffnessBound(const Eigen::VectorXd& x, double t,
+                                              std::vector<double>& S) const {
+  for (const auto& term : terms_)
+    if (!term->stiffnessBoundOfPositions()) term->addStiffnessBound(x, t, freeNode_, S);
 }
 
 double StructuralSystem::frequencySquaredBound(const Eigen::VectorXd& x, double t,

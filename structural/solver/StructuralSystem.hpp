@@ -42,11 +42,14 @@ class StructuralSystem {
   // Tells every term which kind of integrator steps the system (Term::prepareFor), once.
   void prepareFor(const IntegrationTraits& traits);
   // Per node, the row sum S_i of the stiffness at x, t that bounds the explicit step's highest
-  // frequency, omega^2 <= max S_i / m_i (EX5; the membranes' part an estimate, EX6m): the terms'
-  // bounds added up in term order.
+  // frequency, omega^2 <= max S_i / m_i (EX5; the membranes' part an estimate, EX6m): the bounds
+  // of the terms whose bound is a function of (x, t) alone added up in term order
+  // (positionStiffnessBound), then those of the terms that read their state
+  // (addStateStiffnessBound), so that the first part can be made elsewhere (alongside an assembly)
+  // and give the same bits.
   std::vector<double> stiffnessBound(const Eigen::VectorXd& x, double t) const;
-  // Whether every term's bound is a function of (x, t) alone (Term::stiffnessBoundOfPositions).
-  bool stiffnessBoundOfPositions() const { return boundOfPositions_; }
+  std::vector<double> positionStiffnessBound(const Eigen::VectorXd& x, double t) const;
+  void addStateStiffnessBound(const Eigen::VectorXd& x, double t, std::vector<double>& S) const;
   // The largest of the terms' bounds on the squared frequencies of modes over many nodes
   // (Term::frequencySquaredBound), given the lumped nodal masses.
   double frequencySquaredBound(const Eigen::VectorXd& x, double t,
@@ -175,7 +178,6 @@ class StructuralSystem {
   bool watchesExplicitMotion_ = false;
   std::vector<int> watchedDofs_;  // the dofs of the watchers' nodes (their couplings')
   Eigen::VectorXd motion_;        // afterExplicitMotion's, at watchedDofs_
-  bool boundOfPositions_ = true;
   // captureStepLoads: the loads' residual of each part (the first's then their sum) and the time
   // of that sum (NaN: none).
   bool captureLoads_ = false;

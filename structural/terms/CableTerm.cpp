@@ -18,6 +18,12 @@ void CableTerm::addCouplings(std::vector<std::vector<int>>& cliques) const {
 }
 
 void CableTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
+  if (line_assembly::explicitForcesOnly(*m_, p, out)) {
+    for (const auto& c : m_->cables)
+      if (!m_->lineSets[c.set].cutBy(p.t))
+        line_assembly::addCableExplicitForce(*m_, c.a, c.b, c.L, m_->materials[c.material], p, out);
+    return;
+  }
   for (const auto& c : m_->cables)
     if (!m_->lineSets[c.set].cutBy(p.t)) assembleCable(*m_, c.a, c.b, c.L, c.material, p, out);
 }

@@ -18,20 +18,12 @@ void assembleCable(const Model& m, int a, int b, double L, int material, const E
     }
     return;
   }
-  const bool wantJ = out.wantMatrix();
-  ++out.work().lineElastic;
-  if (!wantJ && !p.xStart && (!p.inertia || p.zeroAcceleration) && m.massDamping == 0.0) {
-    // The explicit step's evaluation (EX2): the internal force and the weight, what the general
-    // path below gives then (no Jacobian, M a = 0, no damping), in its operations. With gravity
-    // the general path had cost three times this one (a generated C-9 in free flight).
-    Vec6 r = kernels::cableForceOnly(pos(p.x, a), pos(p.x, b), L, mat);
-    if (mat.density > 0.0) {
-      ++out.work().lineMass;
-      if (m.hasGravity()) r -= p.loadFactor * kernels::cableGravity(L, mat, m.gravity);
-    }
-    out.add<2>({a, b}, r, nullptr);
+  if (explicitForcesOnly(m, p, out)) {
+    addCableExplicitForce(m, a, b, L, mat, p, out);
     return;
   }
+  const bool wantJ = out.wantMatrix();
+  ++out.work().lineElastic;
   Vec6 r;
   Mat6 J;
   if (p.xStart) {

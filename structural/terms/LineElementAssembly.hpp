@@ -57,6 +57,31 @@ bool addSlackTangent(const kernels::PolylineResult<N>& res, const kernels::LineM
   return kink;
 }
 
+// Whether an evaluation is the explicit step's (EX2): residual only, M a = 0 (no acceleration
+// or a = 0), no mass damping, no discrete gradient. Then a cable carries its internal force and
+// its weight alone (addCableExplicitForce), what assembleCable gives then.
+inline bool explicitForcesOnly(const Model& m, const EvalPoint& p, const SystemAssembler& out) {
+  return !p.inertiaOnly && !out.wantMatrix() && !p.xStart && (!p.inertia || p.zeroAcceleration) &&
+         m.massDamping == 0.0;
+}
+
+// assembleCable's explicit path (explicitForcesOnly), inlined into the terms' loops over their
+// elements: called once per element across files it cost about 150 instructions an element
+// (the general path's tests, the call, the scatter's set-up); the same operations, so the same
+// bits. With gravity the general path had cost three times this one (a generated C-9 in free
+// flight).
+[[gnu::always_inline]] inline void addCableExplicitForce(const Model& m, int a, int b, double L,
+                                                         const kernels::LineMaterial& mat,
+                                                         const EvalPoint& p, SystemAssembler& out) {
+  ++out.work().lineElastic;
+  kernels::Vec6 r = kernels::cableForceOnly(pos(p.x, a), pos(p.x, b), L, mat);
+  if (mat.density > 0.0) {
+    ++out.work().lineMass;
+    if (m.hasGravity()) r -= p.loadFactor * kernels::cableGravity(L, mat, m.gravity);
+  }
+  out.add<2>({a, b}, r, nullptr);
+}
+
 // Internal force, inertia and gravity of one two-node cable, scattered through the assembler.
 void assembleCable(const Model& m, int a, int b, double L, int material, const EvalPoint& p,
                    SystemAssembler& out);

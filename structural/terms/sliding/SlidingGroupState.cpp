@@ -219,9 +219,11 @@ int SlidingGroupState::notePassages(const Eigen::VectorXd& x, const Eigen::Vecto
       if (d.dot(d + delta) >= 0.0) {
         // Not head on: beside the node? Delta from >= 0 to < 0, near the node (far from it a
         // sharply folded line has Delta ~ 0 of either sign, and nothing is passing).
+        // Near first: the gain's four lengths only for a slider by the node (rare).
         const double capture = kernels::kPassageCapture * ref_[k];
+        if (!(d.norm() < capture || (d + delta).norm() < capture)) continue;
         const double g0 = handoverGain(static_cast<int>(s), end, x);
-        if (!(g0 >= 0.0) || !(d.norm() < capture || (d + delta).norm() < capture)) continue;
+        if (!(g0 >= 0.0)) continue;
         if (!foldOpen(static_cast<int>(s), end, x)) continue;
         if (x1.size() == 0) x1 = x + dx;
         const double g1 = handoverGain(static_cast<int>(s), end, x1);

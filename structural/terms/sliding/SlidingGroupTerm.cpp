@@ -387,11 +387,15 @@ void SlidingGroupTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
   const bool wantJ = out.wantMatrix();
   floor_ = 0.0;
   if (condensed_ && p.xStart) return assembleCondensed(p, out);
+  const bool explicitForces = line_assembly::explicitForcesOnly(*m_, p, out);
   for (int k = 0; k < g.numElements(); ++k) {
     const int n1 = g.chain[k], n2 = g.chain[k + 1];
     const int s = state_.sliderOfElement(k);
     if (s < 0) {  // inactive: a plain two-node cable (docs/formulation.md section 3)
-      assembleCable(*m_, n1, n2, state_.refLength(k), g.material, p, out);
+      if (explicitForces)
+        line_assembly::addCableExplicitForce(*m_, n1, n2, state_.refLength(k), mat, p, out);
+      else
+        assembleCable(*m_, n1, n2, state_.refLength(k), g.material, p, out);
       continue;
     }
     const int n3 = g.sliders[s];
