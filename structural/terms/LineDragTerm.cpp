@@ -32,16 +32,9 @@ void LineDragTerm::addCouplings(std::vector<std::vector<int>>& cliques) const {
 
 void LineDragTerm::addSegment(int a, int b, const Vec3& wind, double c, const EvalPoint& p,
                               SystemAssembler& out) const {
-  const bool wantJ = out.wantMatrix();
   ++out.work().drag;
-  if (!wantJ) {  // residual only: the same residual on both nodes (LD1)
-    out.addToEachNode<2>({a, b}, kernels::lineDragNodeResidual(
-                                     p.x.segment<3>(3 * a), p.x.segment<3>(3 * b),
-                                     p.v.segment<3>(3 * a), p.v.segment<3>(3 * b), wind, c));
-    return;
-  }
   const auto d = kernels::lineDrag(p.x.segment<3>(3 * a), p.x.segment<3>(3 * b),
-                                   p.v.segment<3>(3 * a), p.v.segment<3>(3 * b), wind, c, wantJ);
+                                   p.v.segment<3>(3 * a), p.v.segment<3>(3 * b), wind, c, true);
   const Eigen::Matrix<double, 6, 6> J = p.cx * d.dPosition + p.cv * d.dVelocity;
   out.add<2>({a, b}, d.residual, &J);
 }
@@ -60,28 +53,46 @@ double LineDragTerm::assemblyCost() const {
   return cost;
 }
 
-void LineDragTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
-  if (!p.inertia) return;  // drag needs motion: nothing in statics
+template <class Segment>
+void LineDragTerm::forEachSegment(const EvalPoint& p, Segment&& segment) const {
   for (size_t di = 0; di < m_->drags.size(); ++di) {
     const auto& d = m_->drags[di];
     // Drag is an applied load: scaled by the load factor like the others (1 in dynamics).
     const double coef = d.coefficient * p.loadFactor;
-    for (const auto& e : d.edges) addSegment(e[0], e[1], d.wind, coef, p, out);
-    for (int ci : cablesOf_[di])
-      addSegment(m_->cables[ci].a, m_->cables[ci].b, d.wind, coef, p, out);
+    for (const auto& e : d.edges) segment(e[0], e[1], d.wind, coef);
+    for (int ci : cablesOf_[di]) segment(m_->cables[ci].a, m_->cables[ci].b, d.wind, coef);
     for (int gi : groupsOf_[di]) {
       const auto& g = m_->groups[gi];
+      const SlidingGroupState& state = *groups_[gi];
+      const int sliders = static_cast<int>(g.sliders.size());
       for (int k = 0; k < g.numElements(); ++k) {
-        const int s = groups_[gi]->sliderOfElement(k);
+        int s = -1;  // SlidingGroupState::sliderOfElement, inline: the first slider on k
+        for (int j = 0; j < sliders && s < 0; ++j)
+          if (state.activeElement(j) == k) s = j;
         if (s < 0) {
-          addSegment(g.chain[k], g.chain[k + 1], d.wind, coef, p, out);
+          segment(g.chain[k], g.chain[k + 1], d.wind, coef);
         } else {  // the two straight parts through the slider
-          addSegment(g.chain[k], g.sliders[s], d.wind, coef, p, out);
-          addSegment(g.sliders[s], g.chain[k + 1], d.wind, coef, p, out);
+          segment(g.chain[k], g.sliders[s], d.wind, coef);
+          segment(g.sliders[s], g.chain[k + 1], d.wind, coef);
         }
       }
     }
   }
+}
+
+void LineDragTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
+  if (!p.inertia) return;  // drag needs motion: nothing in statics
+  if (out.wantMatrix())
+    forEachSegment(p, [&](int a, int b, const Vec3& wind, double coef) {
+      addSegment(a, b, wind, coef, p, out);
+    });
+  else  // the explicit step's: residual only, inlined into the loops (LD1)
+    forEachSegment(p, [&](int a, int b, const Vec3& wind, double coef) {
+      ++out.work().drag;
+      out.addToEachNode<2>({a, b}, kernels::lineDragNodeResidual(
+                                       p.x.segment<3>(3 * a), p.x.segment<3>(3 * b),
+                                       p.v.segment<3>(3 * a), p.v.segment<3>(3 * b), wind, coef));
+    });
 }
 
 }  // namespace chute

@@ -26,8 +26,14 @@ class LineDragTerm final : public Term {
   bool assemblesApart() const override { return true; }
 
  private:
+  // With the Jacobian (the residual-only segments are inlined into assemble's loop).
   void addSegment(int a, int b, const kernels::Vec3& wind, double c, const EvalPoint& p,
                   SystemAssembler& out) const;
+  // segment(a, b, wind, coefficient) for every straight segment under drag, in model order: the
+  // edges and cables of each drag load's set, and its sliding groups' elements (an active one as
+  // its two parts through the slider).
+  template <class Segment>
+  void forEachSegment(const EvalPoint& p, Segment&& segment) const;
   const Model* m_;
   std::vector<const SlidingGroupState*> groups_;
   // Per drag load (model order): the cables and the sliding groups of its line set, in model
