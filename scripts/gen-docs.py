@@ -196,9 +196,10 @@ program start, doubled the CPU time of implicit runs. Two other evaluations of t
 that do not touch each other's data share the threads the same way: the lumped mass of the
 sliding elements at the step's new positions runs alongside the assembly, on the thread that
 finishes its part first (`StructuralSystem::assemble(p, wantMatrix, alongside)`), and so does,
-before a step that estimates its stable step, the stiffness bound at those positions when every
-term's bound is a function of positions and time alone (`Term::stiffnessBoundOfPositions`; not
-with sliding groups or contact, whose bounds read their state); the energy balance's load
+before a step that estimates its stable step, the stiffness bound at those positions of the
+terms whose bound is a function of positions and time alone (`Term::stiffnessBoundOfPositions`:
+membranes, cables; the sliding groups' and contact's bounds read their state and are added after
+it, in every estimate, so that the sum is the same made alongside or in place); the energy balance's load
 residual and energy run one on each thread (`StructuralSystem::runTwo`). Each is done by one
 thread in its own order, so none changes a bit (`GeneratedFlight.OneThreadAndTwoFlyTheSameBits`:
 a folded generated flight, rows and steps bit for bit). On the generated 12k and 24k C-9 two
@@ -335,7 +336,8 @@ of every position at every step; the halves' node records are merged and loaded 
 generated 12k C-9 in free flight runs in 0.925x (one thread) and 0.929x (two) of its wall time
 before (bench/results/flight_per_node_work.md).
 
-On systems of 6000 dofs or more (`ExplicitSettings::halvesFromDofs`) the step's passes over all
+On systems of 2000 dofs or more (`ExplicitSettings::halvesFromDofs`; 6000 before the C-9 slider
+case's measurement below) the step's passes over all
 dofs (EX1's prediction and update, EX7's shifted positions) run in halves on the assembly's two
 threads; each assembly part clears its own residual on its thread and the parts' sum is made
 half by half just before each half's update (`StructuralSystem::assembleForHalves`,
@@ -346,6 +348,18 @@ build's wall time on two threads and 0.923x on one; at 24k two threads are 1.59x
 (bench/results/two_threads_whole_step.md). The second thread still spins for 7.7 % of the run
 while the first works alone between assemblies (the airflow's commit, the canopy's velocity, the
 stable step, the balance's bookkeeping).
+
+On the C-9 slider case (2,448 equations, 28 sliding groups) the first thread worked alone for
+about a third of each two-thread step (perf: the second thread spinning 30 % of its time), and
+then waited for the second thread's longer part (23 % of its time). Kept, same bits
+(bench/results/c9_slider_serial_work.md): the membranes' and cables' stiffness bound made
+alongside the assembly also where sliding groups are (their own bound added after it), the step's
+passes in halves from 2000 dofs, the explicit cable force and the line drag's residual inlined
+into their terms' loops (1.3 % and 0.7 % of the case's instructions). The case to 1 s with its
+frames on two threads: 0.918x the wall time before (9 pairs). Measured and not kept: the terms'
+assembly costs measured again (a cable element 1.1 of a triangle, a line-drag segment 0.9-1.2,
+where 0.7 had been taken) put the cables in the first part: the first thread waited less, the
+run was no faster (1.025x, 15 pairs).
 """
 
 

@@ -7,6 +7,7 @@ airflow's loads (docs/flight.md) and collects the flight figures of their summar
     bench/flight/flight_runs.py payload     # released at 40 m/s with payloads of 50-200 kg
     bench/flight/flight_runs.py porosity    # C_D0 against the cloth's permeability
     bench/flight/flight_runs.py calibrate   # the base pressure coefficient on one canopy
+    bench/flight/flight_runs.py convergence # the matrix on two meshes, ensembles of round-off runs
 
 Each writes bench/results/flight_<what>.csv and .md (or --out). Runs go in parallel (--jobs);
 CHUTE_BIN names another chute binary (default build/bin/chute).
@@ -17,6 +18,8 @@ import csv
 import json
 import math
 import os
+import re
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -41,7 +44,7 @@ CALIBRATION = "d5_g20"  # the one member the base pressure is fitted on
 
 
 def generate_and_run(tag, m, workdir, start="inflated", speed=None, held=False, t_end=6.0,
-                     size_factor=1.0, sets=(), permeability=None, payload=None):
+                     size_factor=1.0, sets=(), permeability=None, payload=None, perturb=0):
     d = os.path.join(workdir, tag)
     os.makedirs(d, exist_ok=True)
     msh, case = os.path.join(d, "p.msh"), os.path.join(d, "p.toml")
@@ -62,13 +65,19 @@ def generate_and_run(tag, m, workdir, start="inflated", speed=None, held=False, 
     run = [CHUTE, "run", case, "--out", out, "--quiet"]
     for s in sets:
         run += ["--set", s]
+    if perturb:
+        # A change that changes no physics: the stiffness damping times 1 + k 1e-12; the run's
+        # chaotic breathing then takes another course (the round-off ensembles of docs/flight.md).
+        damping = float(re.search(r"^stiffness_damping\s*=\s*([0-9.eE+-]+)", open(case).read(),
+                                  re.M).group(1))
+        run += ["--set", "solver.stiffness_damping=%.17g" % (damping * (1.0 + perturb * 1e-12))]
     t0 = time.time()
     p = subprocess.run(run, capture_output=True, text=True)
     wall = time.time() - t0
     with open(os.path.join(out, "summary.json")) as f:
         s = json.load(f)
     fl = s.get("flight", {})
-    return dict(tag=tag, status=s["status"], exit=p.returncode, wall=round(wall, 1),
+    return dict(tag=tag, status=s["status"], exit=p.returncode, wall=round(wall, 1), t_end=t_end,
                 steps=s["steps"], triangles=None, speed=V, payload=pay, **fl)
 
 
@@ -95,9 +104,55 @@ def write_csv(rows, path):
         w.writerows(rows)
 
 
+FIGURES = [("drag_coefficient", "C_D0"), ("projected_diameter_ratio", "D_p/D0"),
+           ("steady_descent_speed", "descent m/s")]
+
+
+def convergence_table(rows, a, base):
+    write_csv(rows, base + ".csv")
+    ok = [r for r in rows if r.get("status") == "completed"]
+    with open(base + ".md", "w") as f:
+        f.write("# Flight figures: mesh convergence of ensemble means\n\n")
+        f.write("Made by bench/flight/flight_runs.py convergence (%s). Each canopy of the matrix "
+                "on its mesh (h 1.00) and on elements 0.7 of it (h 0.70); on each, %d runs that "
+                "differ by round-off only (stiffness damping times 1 + k 1e-12, k = 0 .. %d), "
+                "%g times the matrix's run length; steady figures over the last fifth of each "
+                "run. Per mesh: the ensemble's mean (least .. largest); `diff`: the fine mesh's "
+                "mean against the coarse one's; `spread`: the larger of the two ensembles' "
+                "(largest - least) / mean. Runs not completed: %d.\n\n"
+                % (" ".join(sys.argv[2:]), a.runs, a.runs - 1, a.t_factor, len(rows) - len(ok)))
+        head = ["canopy", "t_end s"]
+        for _, name in FIGURES:
+            head += [name + " h 1.00", name + " h 0.70", "diff", "spread"]
+        f.write("| " + " | ".join(head) + " |\n|" + "---|" * len(head) + "\n")
+        for m in MATRIX:
+            if a.only not in m["name"]:
+                continue
+            ens = {sf: [r for r in ok if r["tag"].startswith("%s_h%.2f_k" % (m["name"], sf))]
+                   for sf in (1.0, 0.7)}
+            if not ens[1.0] or not ens[0.7]:
+                continue
+            cells = [m["name"], "%.3g" % ens[1.0][0]["t_end"]]
+            for key, _ in FIGURES:
+                means, spread = {}, 0.0
+                for sf in (1.0, 0.7):
+                    vals = [r[key] for r in ens[sf]]
+                    means[sf] = statistics.mean(vals)
+                    spread = max(spread, (max(vals) - min(vals)) / means[sf])
+                    cells.append("%.4g (%.4g .. %.4g)" % (means[sf], min(vals), max(vals)))
+                cells.append("%+.2f %%" % (100.0 * (means[0.7] / means[1.0] - 1.0)))
+                cells.append("%.2f %%" % (100.0 * spread))
+            f.write("| " + " | ".join(cells) + " |\n")
+    print(open(base + ".md").read())
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("what", choices=["matrix", "opening", "payload", "porosity", "calibrate"])
+    ap.add_argument("what", choices=["matrix", "opening", "payload", "porosity", "calibrate",
+                                     "convergence"])
+    ap.add_argument("--runs", type=int, default=6, help="convergence: runs per canopy and mesh")
+    ap.add_argument("--t-factor", type=float, default=2.0,
+                    help="convergence: the matrix's run length times this")
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--out", default=os.path.join(ROOT, "bench/results"))
     ap.add_argument("--set", action="append", default=[], help="passed to every chute run")
@@ -116,6 +171,17 @@ def main():
                 te = a.t_end or max(6.0, 4.0 * m["D"] / V + 4.0)
                 jobs.append(("%s_h%.2f" % (m["name"], sf), m, dict(t_end=te, size_factor=sf,
                                                                     sets=a.set)))
+    elif a.what == "convergence":
+        # Each canopy on its matrix mesh and on elements 0.7 of it, each an ensemble of runs that
+        # differ by round-off only, run longer than the matrix's so that the steady window (the
+        # last fifth) holds more of the canopy's breathing.
+        for m in members:
+            for sf in (1.0, 0.7):
+                V = math.sqrt(2 * m["payload"] * G / (1.225 * 0.78 * math.pi * m["D"] ** 2 / 4))
+                te = a.t_end or a.t_factor * max(6.0, 4.0 * m["D"] / V + 4.0)
+                for k in range(a.runs):
+                    jobs.append(("%s_h%.2f_k%d" % (m["name"], sf, k), m,
+                                 dict(t_end=te, size_factor=sf, sets=a.set, perturb=k)))
     elif a.what == "calibrate":
         m = next(x for x in MATRIX if x["name"] == CALIBRATION)
         for cb in a.cb.split(","):
@@ -149,6 +215,9 @@ def main():
             print(json.dumps(r), flush=True)
     rows.sort(key=lambda r: r["tag"])
     os.makedirs(a.out, exist_ok=True)
+    if a.what == "convergence":
+        convergence_table(rows, a, os.path.join(a.out, "flight_convergence"))
+        return
     base = os.path.join(a.out, "flight_" + a.what)
     write_csv(rows, base + ".csv")
     keys = ["tag", "status", "speed", "payload", "steady_descent_speed", "drag_coefficient",
