@@ -158,6 +158,63 @@ using M = std::int64_t __attribute__((vector_size(8 * kTriangleLanes)));
   sums[7] = dCloth;
 }
 
+// The lanes' strain state (triangleStrainState, MembraneTriangleForce.hpp) lane by lane, the same
+// operations in the same order; with it the edges x1 - x0, x2 - x0 and the sums x0 + x1 + x2 the
+// face loads use (dropped where unused).
+struct LaneStrain {
+  V dN[3][2], F[3][2], edge1[3], edge2[3], xsum[3];
+  V e0, e1, e2, u, w, R, l1;
+  M taut, slack;
+};
+[[gnu::always_inline]] inline void laneStrain(const double* x, const MembraneTriangleLanes& t,
+                                              LaneStrain& s) {
+  const double* at[3][kTriangleLanes];
+  for (int i = 0; i < 3; ++i)
+    for (int l = 0; l < kTriangleLanes; ++l) at[i][l] = x + 3 * t.nodes[l][i];
+  for (int i = 0; i < 3; ++i)
+    for (int c = 0; c < 2; ++c) s.dN[i][c] = load(t.dN[i][c]);
+  // M1: F = sum_i x_i dN_i^T and C = F^T F.
+  for (int r = 0; r < 3; ++r) {
+    const V x0 = {at[0][0][r], at[0][1][r], at[0][2][r], at[0][3][r]};
+    const V x1 = {at[1][0][r], at[1][1][r], at[1][2][r], at[1][3][r]};
+    const V x2 = {at[2][0][r], at[2][1][r], at[2][2][r], at[2][3][r]};
+    for (int c = 0; c < 2; ++c) s.F[r][c] = (x0 * s.dN[0][c] + x1 * s.dN[1][c]) + x2 * s.dN[2][c];
+    s.edge1[r] = x1 - x0;
+    s.edge2[r] = x2 - x0;
+    s.xsum[r] = (x0 + x1) + x2;
+  }
+  const auto& F = s.F;
+  const V c00 = (F[0][0] * F[0][0] + F[1][0] * F[1][0]) + F[2][0] * F[2][0];
+  const V c11 = (F[0][1] * F[0][1] + F[1][1] * F[1][1]) + F[2][1] * F[2][1];
+  const V c01 = (F[0][0] * F[0][1] + F[1][0] * F[1][1]) + F[2][0] * F[2][1];
+  const V half = all(0.5), one = all(1.0), zero = all(0.0);
+  s.e0 = half * (c00 - one), s.e1 = half * (c11 - one), s.e2 = c01;
+  // The principal strains l1 >= l2.
+  const V a = s.e0, d = s.e1;
+  s.w = half * s.e2, s.u = half * (a - d);
+  const V q = s.u * s.u + s.w * s.w;
+  s.R = sqrt(q);
+  s.l1 = half * (a + d) + s.R;
+  const V l2 = half * (a + d) - s.R;
+  const V nu = load(t.nu);
+  s.taut = loadMask(t.noWrinkling) | (l2 + nu * s.l1 > zero);
+  s.slack = ~s.taut & (s.l1 <= zero);
+}
+
+// membraneTriangleEnergy (MembraneTriangleForce.hpp) lane by lane, the same operations in the
+// same order.
+[[gnu::always_inline]] inline void energies(const double* x, const MembraneTriangleLanes& t,
+                                            double (&energy)[kTriangleLanes]) {
+  LaneStrain s;
+  laneStrain(x, t, s);
+  const V half = all(0.5), zero = all(0.0);
+  const V d00 = load(t.d00), d01 = load(t.d01), d22 = load(t.d22);
+  const V t0 = d00 * s.e0 + d01 * s.e1, t1 = d01 * s.e0 + d00 * s.e1, t2 = d22 * s.e2;
+  const V taut = half * ((s.e0 * t0 + s.e1 * t1) + s.e2 * t2);
+  const V wrinkled = ((half * load(t.E)) * s.l1) * s.l1;
+  store(energy, load(t.weight) * (s.taut ? taut : (s.slack ? zero : wrinkled)));
+}
+
 // membraneTriangleForce (MembraneTriangleForce.hpp) lane by lane: the same operations in the
 // same order, the wrinkling state selected by masks as its select() does by bits.
 // With face loads (v and q given): fs gets each lane's face load added, loads the load alone.
@@ -167,39 +224,14 @@ using M = std::int64_t __attribute__((vector_size(8 * kTriangleLanes)));
     double (*loads)[kTriangleLanes] = nullptr, const TriangleFlowParameters* flow = nullptr,
     const TriangleFlowBatch* batch = nullptr, TriangleFlowAccumulators* acc = nullptr,
     double* nodeSums = nullptr) {
-  const double* at[3][kTriangleLanes];
-  for (int i = 0; i < 3; ++i)
-    for (int l = 0; l < kTriangleLanes; ++l) at[i][l] = x + 3 * t.nodes[l][i];
-  V dN[3][2];
-  for (int i = 0; i < 3; ++i)
-    for (int c = 0; c < 2; ++c) dN[i][c] = load(t.dN[i][c]);
-  // M1: F = sum_i x_i dN_i^T and C = F^T F.
-  // With them the edges x1 - x0 and x2 - x0 for the face loads (dropped without).
-  V F[3][2], edge1[3], edge2[3], xsum[3];
-  for (int r = 0; r < 3; ++r) {
-    const V x0 = {at[0][0][r], at[0][1][r], at[0][2][r], at[0][3][r]};
-    const V x1 = {at[1][0][r], at[1][1][r], at[1][2][r], at[1][3][r]};
-    const V x2 = {at[2][0][r], at[2][1][r], at[2][2][r], at[2][3][r]};
-    for (int c = 0; c < 2; ++c) F[r][c] = (x0 * dN[0][c] + x1 * dN[1][c]) + x2 * dN[2][c];
-    edge1[r] = x1 - x0;
-    edge2[r] = x2 - x0;
-    xsum[r] = (x0 + x1) + x2;
-  }
-  const V c00 = (F[0][0] * F[0][0] + F[1][0] * F[1][0]) + F[2][0] * F[2][0];
-  const V c11 = (F[0][1] * F[0][1] + F[1][1] * F[1][1]) + F[2][1] * F[2][1];
-  const V c01 = (F[0][0] * F[0][1] + F[1][0] * F[1][1]) + F[2][0] * F[2][1];
-  const V half = all(0.5), one = all(1.0), zero = all(0.0);
-  const V e0 = half * (c00 - one), e1 = half * (c11 - one), e2 = c01;
-  // The principal strains l1 >= l2.
-  const V a = e0, d = e1;
-  const V w = half * e2, u = half * (a - d);
-  const V q = u * u + w * w;
-  const V R = sqrt(q);
-  const V l1 = half * (a + d) + R;
-  const V l2 = half * (a + d) - R;
-  const V nu = load(t.nu);
-  const M taut = loadMask(t.noWrinkling) | (l2 + nu * l1 > zero);
-  const M slack = ~taut & (l1 <= zero);
+  LaneStrain s;
+  laneStrain(x, t, s);
+  const auto& F = s.F;
+  const auto& dN = s.dN;
+  const auto &edge1 = s.edge1, &edge2 = s.edge2, &xsum = s.xsum;
+  const V e0 = s.e0, e1 = s.e1, e2 = s.e2, u = s.u, w = s.w, R = s.R, l1 = s.l1;
+  const M taut = s.taut, slack = s.slack;
+  const V half = all(0.5), zero = all(0.0);
   // Taut: S = D e; wrinkled: S = E l1 d l1/de.
   const V d00 = load(t.d00), d01 = load(t.d01), d22 = load(t.d22);
   const V t0 = d00 * e0 + d01 * e1, t1 = d01 * e0 + d00 * e1, t2 = d22 * e2;
@@ -263,6 +295,7 @@ using M = std::int64_t __attribute__((vector_size(8 * kTriangleLanes)));
 
 using Forces = void (*)(const double*, const MembraneTriangleLanes&, TriangleLaneVectors&,
                         WrinkleState*);
+using Energies = void (*)(const double*, const MembraneTriangleLanes&, double (&)[kTriangleLanes]);
 using ForcesAndLoads = void (*)(const double*, const double*, const MembraneTriangleLanes&,
                                 const TriangleFaceLoadLanes&, TriangleLaneVectors&,
                                 double (&)[3][kTriangleLanes]);
@@ -289,6 +322,24 @@ void membraneTriangleForces(const double* x, const MembraneTriangleLanes& t, Tri
   static const Forces copy =
       useAvx2() ? &membraneTriangleForcesAvx2 : &membraneTriangleForcesBaseline;
   copy(x, t, f, state);
+}
+
+void membraneTriangleEnergiesBaseline(const double* x, const MembraneTriangleLanes& t,
+                                      double (&energy)[kTriangleLanes]) {
+  energies(x, t, energy);
+}
+
+[[gnu::target("avx2")]] void membraneTriangleEnergiesAvx2(const double* x,
+                                                          const MembraneTriangleLanes& t,
+                                                          double (&energy)[kTriangleLanes]) {
+  energies(x, t, energy);
+}
+
+void membraneTriangleEnergies(const double* x, const MembraneTriangleLanes& t,
+                              double (&energy)[kTriangleLanes]) {
+  static const Energies copy =
+      useAvx2() ? &membraneTriangleEnergiesAvx2 : &membraneTriangleEnergiesBaseline;
+  copy(x, t, energy);
 }
 
 void membraneTriangleForcesAndLoadsBaseline(const double* x, const double* v,

@@ -49,6 +49,15 @@ void membraneTriangleForcesBaseline(const double* x, const MembraneTriangleLanes
 void membraneTriangleForcesAvx2(const double* x, const MembraneTriangleLanes& t,
                                 TriangleLaneVectors& f, WrinkleState* state);
 
+// Each lane's strain energy at the positions x, as membraneTriangleEnergy gives it (the energy
+// balance's membranes, four at a time); the copy useAvx2() picks.
+void membraneTriangleEnergies(const double* x, const MembraneTriangleLanes& t,
+                              double (&energy)[kTriangleLanes]);
+void membraneTriangleEnergiesBaseline(const double* x, const MembraneTriangleLanes& t,
+                                      double (&energy)[kTriangleLanes]);
+void membraneTriangleEnergiesAvx2(const double* x, const MembraneTriangleLanes& t,
+                                  double (&energy)[kTriangleLanes]);
+
 // Four triangles' face loads (TriangleFaceLoadParameters, P2), lane by lane.
 struct alignas(32) TriangleFaceLoadLanes {
   double pressure[kTriangleLanes], drag[kTriangleLanes];

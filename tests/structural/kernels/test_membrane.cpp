@@ -312,7 +312,13 @@ TEST(MembraneKernel, FourTrianglesAtATimeAreTheExplicitTriangleBitForBit) {
   std::vector<std::pair<const char*, Copy>> copies = {{"baseline", &membraneTriangleForcesBaseline},
                                                       {"dispatched", &membraneTriangleForces}};
   if (avx2Available()) copies.emplace_back("avx2", &membraneTriangleForcesAvx2);
-  int counts[3] = {0, 0, 0}, compared = 0;
+  // And each lane's strain energy, membraneTriangleEnergy's bits (the energy balance).
+  using EnergyCopy =
+      void (*)(const double*, const MembraneTriangleLanes&, double(&)[kTriangleLanes]);
+  std::vector<std::pair<const char*, EnergyCopy>> energyCopies = {
+      {"baseline", &membraneTriangleEnergiesBaseline}, {"dispatched", &membraneTriangleEnergies}};
+  if (avx2Available()) energyCopies.emplace_back("avx2", &membraneTriangleEnergiesAvx2);
+  int counts[3] = {0, 0, 0}, compared = 0, energies = 0;
   for (int batch = 0; batch < 2000; ++batch) {
     MembraneTriangleLanes lanes;
     double x[3 * 3 * kTriangleLanes];  // lane l's node i is node 4 (2 - i) + l
@@ -349,10 +355,24 @@ TEST(MembraneKernel, FourTrianglesAtATimeAreTheExplicitTriangleBitForBit) {
           }
       }
     }
+    for (const auto& [name, copy] : energyCopies) {
+      double W[kTriangleLanes];
+      copy(x, lanes, W);
+      for (int l = 0; l < kTriangleLanes; ++l) {
+        const double expect =
+            membraneTriangleEnergy(xs[l][0].data(), xs[l][1].data(), xs[l][2].data(), recs[l]);
+        ASSERT_EQ(std::bit_cast<std::uint64_t>(W[l] + 0.0),
+                  std::bit_cast<std::uint64_t>(expect + 0.0))
+            << name << " lane " << l << ": " << W[l] << " against " << expect;
+        ++energies;
+      }
+    }
   }
-  std::printf("%d entries compared bit for bit (%zu copies%s): %d taut, %d wrinkled, %d slack\n",
-              compared, copies.size(), avx2Available() ? ", AVX2 among them" : ", no AVX2 here",
-              counts[0], counts[1], counts[2]);
+  std::printf(
+      "%d entries compared bit for bit (%zu copies%s): %d taut, %d wrinkled, %d slack; "
+      "%d energies\n",
+      compared, copies.size(), avx2Available() ? ", AVX2 among them" : ", no AVX2 here", counts[0],
+      counts[1], counts[2], energies);
   EXPECT_GT(counts[1], 1000);
   EXPECT_GT(counts[2], 1000);
 }
