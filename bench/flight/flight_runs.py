@@ -111,38 +111,38 @@ FIGURES = [("drag_coefficient", "C_D0"), ("projected_diameter_ratio", "D_p/D0"),
 def convergence_table(rows, a, base):
     write_csv(rows, base + ".csv")
     ok = [r for r in rows if r.get("status") == "completed"]
+    levels = sorted({float(r["tag"].rsplit("_h", 1)[1].split("_k")[0]) for r in ok}, reverse=True)
     with open(base + ".md", "w") as f:
         f.write("# Flight figures: mesh convergence of ensemble means\n\n")
         f.write("Made by bench/flight/flight_runs.py convergence (%s). Each canopy of the matrix "
-                "on its mesh (h 1.00) and on elements 0.7 of it (h 0.70); on each, %d runs that "
-                "differ by round-off only (stiffness damping times 1 + k 1e-12, k = 0 .. %d), "
-                "%g times the matrix's run length; steady figures over the last fifth of each "
-                "run. Per mesh: the ensemble's mean (least .. largest); `diff`: the fine mesh's "
-                "mean against the coarse one's; `spread`: the larger of the two ensembles' "
-                "(largest - least) / mean. Runs not completed: %d.\n\n"
-                % (" ".join(sys.argv[2:]), a.runs, a.runs - 1, a.t_factor, len(rows) - len(ok)))
-        head = ["canopy", "t_end s"]
-        for _, name in FIGURES:
-            head += [name + " h 1.00", name + " h 0.70", "diff", "spread"]
+                "on its mesh (h 1.00) and on elements %s of it; on each, runs that differ by "
+                "round-off only (stiffness damping times 1 + k 1e-12, k = 0, 1, ...), %g times the "
+                "matrix's run length; steady figures over the last fifth of each run. Per mesh: "
+                "the ensemble's mean (least .. largest, runs); `finest pair`: the finest mesh's "
+                "mean against the next coarser one's. Runs not completed: %d.\n\n"
+                % (" ".join(sys.argv[2:]), ", ".join("%.2f" % h for h in levels[1:]), a.t_factor,
+                   len(rows) - len(ok)))
+        head = ["canopy", "figure"] + ["h %.2f" % h for h in levels] + ["finest pair"]
         f.write("| " + " | ".join(head) + " |\n|" + "---|" * len(head) + "\n")
         for m in MATRIX:
-            if a.only not in m["name"]:
+            ens = {h: [r for r in ok if r["tag"].startswith("%s_h%.2f_k" % (m["name"], h))]
+                   for h in levels}
+            have = [h for h in levels if ens[h]]
+            if len(have) < 2:
                 continue
-            ens = {sf: [r for r in ok if r["tag"].startswith("%s_h%.2f_k" % (m["name"], sf))]
-                   for sf in (1.0, 0.7)}
-            if not ens[1.0] or not ens[0.7]:
-                continue
-            cells = [m["name"], "%.3g" % ens[1.0][0]["t_end"]]
-            for key, _ in FIGURES:
-                means, spread = {}, 0.0
-                for sf in (1.0, 0.7):
-                    vals = [r[key] for r in ens[sf]]
-                    means[sf] = statistics.mean(vals)
-                    spread = max(spread, (max(vals) - min(vals)) / means[sf])
-                    cells.append("%.4g (%.4g .. %.4g)" % (means[sf], min(vals), max(vals)))
-                cells.append("%+.2f %%" % (100.0 * (means[0.7] / means[1.0] - 1.0)))
-                cells.append("%.2f %%" % (100.0 * spread))
-            f.write("| " + " | ".join(cells) + " |\n")
+            for key, name in FIGURES:
+                cells, means = [m["name"], name], {}
+                for h in levels:
+                    vals = [r[key] for r in ens[h]]
+                    if not vals:
+                        cells.append("")
+                        continue
+                    means[h] = statistics.mean(vals)
+                    cells.append("%.4g (%.4g .. %.4g, %d)" % (means[h], min(vals), max(vals),
+                                                             len(vals)))
+                fine, coarse = have[-1], have[-2]
+                cells.append("%+.2f %%" % (100.0 * (means[fine] / means[coarse] - 1.0)))
+                f.write("| " + " | ".join(cells) + " |\n")
     print(open(base + ".md").read())
 
 
@@ -160,7 +160,20 @@ def main():
     ap.add_argument("--t-end", type=float, default=None)
     ap.add_argument("--size-factors", default="1.0")
     ap.add_argument("--cb", default="-0.6,-0.7,-0.8,-0.9")
+    ap.add_argument("--from-csv", default="",
+                    help="convergence: no runs; the table from these comma-separated CSV files "
+                         "of earlier convergence runs (e.g. a finer mesh run apart)")
     a = ap.parse_args()
+    if a.what == "convergence" and a.from_csv:
+        rows = []
+        for path in a.from_csv.split(","):
+            with open(path) as f:
+                rows += [{k: (float(v) if k in ("drag_coefficient", "projected_diameter_ratio",
+                                                "steady_descent_speed") else v)
+                          for k, v in r.items()} for r in csv.DictReader(f)]
+        os.makedirs(a.out, exist_ok=True)
+        convergence_table(rows, a, os.path.join(a.out, "flight_convergence"))
+        return
     work = tempfile.mkdtemp(prefix="chute-flight-")
     jobs = []
     members = [m for m in MATRIX if a.only in m["name"]]
@@ -175,8 +188,10 @@ def main():
         # Each canopy on its matrix mesh and on elements 0.7 of it, each an ensemble of runs that
         # differ by round-off only, run longer than the matrix's so that the steady window (the
         # last fifth) holds more of the canopy's breathing.
+        levels = [float(x) for x in a.size_factors.split(",")] if a.size_factors != "1.0" \
+            else [1.0, 0.7]
         for m in members:
-            for sf in (1.0, 0.7):
+            for sf in levels:
                 V = math.sqrt(2 * m["payload"] * G / (1.225 * 0.78 * math.pi * m["D"] ** 2 / 4))
                 te = a.t_end or a.t_factor * max(6.0, 4.0 * m["D"] / V + 4.0)
                 for k in range(a.runs):
