@@ -98,6 +98,39 @@ def main():
                     within(c["projected_diameter_ratio"], 0.67, 0.70)))
         w("")
 
+    conv = rows(os.path.join(R, "flight_convergence.csv"))
+    if conv:
+        w("## Steady descent of the matrix, mesh-converged (ensemble means)\n")
+        w("From flight_convergence.csv (`flight_runs.py convergence`, table in flight_convergence.md):"
+          " per canopy the finest mesh's mean over its round-off ensemble, and the change from the"
+          " next coarser mesh's mean (the criterion: within 2 %). Published: C_D0 0.75-0.80, D_p/D0"
+          " 0.67-0.70 (Knacke).\n")
+        w("| canopy | finest h | runs | descent m/s | C_D0 | change | in 0.75-0.80 | D_p/D0 | change |"
+          " in 0.67-0.70 |\n|---|---|---|---|---|---|---|---|---|---|")
+        groups = {}
+        for r in conv:
+            if r.get("status") != "completed":
+                continue
+            name, rest = r["tag"].rsplit("_h", 1)
+            groups.setdefault(name, {}).setdefault(float(rest.split("_k")[0]), []).append(r)
+
+        def mean(rs, key):
+            return sum(r[key] for r in rs) / len(rs)
+
+        for name, by_h in groups.items():
+            hs = sorted(by_h)
+            if len(hs) < 2:
+                continue
+            fine_rs, coarse_rs = by_h[hs[0]], by_h[hs[1]]
+            cd, cdc = mean(fine_rs, "drag_coefficient"), mean(coarse_rs, "drag_coefficient")
+            dp = mean(fine_rs, "projected_diameter_ratio")
+            dpc = mean(coarse_rs, "projected_diameter_ratio")
+            w("| %s | %.2f | %d | %.3f | %.4f | %+.2f %% | %s | %.4f | %+.2f %% | %s |" % (
+                name, hs[0], len(fine_rs), mean(fine_rs, "steady_descent_speed"), cd,
+                100 * (cd / cdc - 1), within(cd, 0.75, 0.80), dp, 100 * (dp / dpc - 1),
+                within(dp, 0.67, 0.70)))
+        w("")
+
     if a.c9 and os.path.exists(os.path.join(a.c9, "summary.json")):
         fl = json.load(open(os.path.join(a.c9, "summary.json")))["flight"]
         w("## The full-scale C-9 (`cases/c9_flight.toml`, ft)\n")
