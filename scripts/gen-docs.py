@@ -355,7 +355,9 @@ then waited for the second thread's longer part (23 % of its time). Kept, same b
 (bench/results/c9_slider_serial_work.md): the membranes' and cables' stiffness bound made
 alongside the assembly also where sliding groups are (their own bound added after it), the step's
 passes in halves from 2000 dofs, the explicit cable force and the line drag's residual inlined
-into their terms' loops (1.3 % and 0.7 % of the case's instructions). The case to 1 s with its
+into their terms' loops (1.3 % and 0.7 % of the case's instructions); and the energy balance's
+membrane strain energy is made four triangles at a time (`kernels::membraneTriangleEnergies`,
+the same bits as one at a time: 25 % fewer instructions in that pass). The case to 1 s with its
 frames on two threads: 0.918x the wall time before (9 pairs). Measured and not kept: the terms'
 assembly costs measured again (a cable element 1.1 of a triangle, a line-drag segment 0.9-1.2,
 where 0.7 had been taken) put the cables in the first part: the first thread waited less, the

@@ -300,9 +300,9 @@ TEST(MembraneKernel, ExplicitTriangleForceIsMembraneForceBitForBit) {
 }
 
 // The explicit step's triangles four at a time (MembraneTriangleBatch.hpp): each lane gives
-// membraneTriangleForce's forces and state bit for bit, lanes of different shapes, states and
-// wrinkling settings side by side, on the baseline copy and on the AVX2 copy where the processor
-// has it.
+// membraneTriangleForce's forces and state, and membraneTriangleEnergy's energy, bit for bit, lanes
+// of different shapes, states and wrinkling settings side by side, on the baseline copy and on the
+// AVX2 copy where the processor has it.
 TEST(MembraneKernel, FourTrianglesAtATimeAreTheExplicitTriangleBitForBit) {
   std::mt19937 rng(43);
   std::uniform_real_distribution<double> jitter(-0.4, 0.4);
