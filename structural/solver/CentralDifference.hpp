@@ -29,7 +29,8 @@ struct ExplicitSettings {
   // From this many dofs the step's passes over all dofs (EX1's prediction and update, EX7's
   // shifted positions) run in halves on the assembly's two threads, the same values: a hand-over
   // to the second thread costs about what a half pass over a few thousand dofs saves (the C-9
-  // slider case, 2,448 equations: 0.99x alone, 0.95x with its bound alongside; docs/performance.md).
+  // slider case, 2,448 equations: 0.99x alone, 0.95x with its bound alongside;
+  // docs/performance.md).
   int halvesFromDofs = 2000;
 };
 
