@@ -19,8 +19,8 @@ namespace chute::kernels {
 // from the cloth's air permeability: the velocity uRef at the test pressure difference dpRef
 // (e.g. ft^3/ft^2/min at 0.5 in of water), with the inertial part given or zero.
 struct ClothPermeability {
-  double viscous = 0.0;   // Delta p per unit velocity (0 with inertial 0: impermeable)
-  double inertial = 0.0;  // Delta p per unit velocity squared
+  double viscous = 0.0;     // Delta p per unit velocity (0 with inertial 0: impermeable)
+  double inertial = 0.0;    // Delta p per unit velocity squared
   double perViscous = 0.0;  // 1 / viscous: the linear law by a multiplication (every face, every
                             // step: the division's latency was a fifth of the airflow's loads pass)
   // viscous from the test point once the inertial part is taken out: dpRef = a uRef + b uRef^2.

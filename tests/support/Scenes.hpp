@@ -12,8 +12,7 @@ namespace chute::testing {
 // temp/<name>_<pid>.toml holding `text`; returns its path. The process id keeps tests that
 // ctest runs in parallel (one process per test) from writing one file at the same time.
 inline std::string writeCase(const std::string& name, const std::string& text) {
-  const std::string path =
-      ::testing::TempDir() + name + "_" + std::to_string(::getpid()) + ".toml";
+  const std::string path = ::testing::TempDir() + name + "_" + std::to_string(::getpid()) + ".toml";
   std::ofstream(path) << text;
   return path;
 }

@@ -105,7 +105,9 @@ class SlidingGroupState {
   // The split at the start of the step (the stick predictor), for the trial active element.
   double splitStart(int slider) const { return friction_.splitStart(slider); }
   // Converged friction state of a slider at the end of the step, before commit(x).
-  void setConvergedFriction(int slider, const FrictionState& f) { friction_.setConverged(slider, f); }
+  void setConvergedFriction(int slider, const FrictionState& f) {
+    friction_.setConverged(slider, f);
+  }
   const FrictionState& friction(int slider) const { return friction_.committed(slider); }
   // Splits start uniform at the first positions seen (search or commit).
   void ensureSplits(const Eigen::VectorXd& x);
