@@ -43,13 +43,23 @@ MATRIX = [
 CALIBRATION = "d5_g20"  # the one member the base pressure is fitted on
 
 
+def descent_speed(m, payload):
+    """The release speed: the steady descent speed with C_D0 ~ 0.78 at sea level."""
+    return math.sqrt(2 * payload * G / (1.225 * 0.78 * math.pi * m["D"] ** 2 / 4))
+
+
+def matrix_t_end(m):
+    """The matrix's run length: four diameters' fall at the descent speed, and 4 s, 6 s least."""
+    return max(6.0, 4.0 * m["D"] / descent_speed(m, m["payload"]) + 4.0)
+
+
 def generate_and_run(tag, m, workdir, start="inflated", speed=None, held=False, t_end=6.0,
                      size_factor=1.0, sets=(), permeability=None, payload=None, perturb=0):
     d = os.path.join(workdir, tag)
     os.makedirs(d, exist_ok=True)
     msh, case = os.path.join(d, "p.msh"), os.path.join(d, "p.toml")
     pay = m["payload"] if payload is None else payload
-    V = speed if speed is not None else math.sqrt(2 * pay * G / (1.225 * 0.78 * math.pi * m["D"] ** 2 / 4))
+    V = speed if speed is not None else descent_speed(m, pay)
     cmd = [CHUTE, "mesh", "parachute", "--units", "si", "--gores", str(m["gores"]), "--diameter",
            str(m["D"]), "--line-length", str(m["lines"]), "--element-size",
            str(m["size"] * size_factor), "--payload-mass", str(pay), "--start", start,
@@ -133,7 +143,7 @@ def convergence_table(rows, a, base):
             for key, name in FIGURES:
                 cells, means = [m["name"], name], {}
                 for h in levels:
-                    vals = [r[key] for r in ens[h]]
+                    vals = [float(r[key]) for r in ens[h]]  # runs' floats or CSV text
                     if not vals:
                         cells.append("")
                         continue
@@ -168,9 +178,7 @@ def main():
         rows = []
         for path in a.from_csv.split(","):
             with open(path) as f:
-                rows += [{k: (float(v) if k in ("drag_coefficient", "projected_diameter_ratio",
-                                                "steady_descent_speed") else v)
-                          for k, v in r.items()} for r in csv.DictReader(f)]
+                rows += list(csv.DictReader(f))
         os.makedirs(a.out, exist_ok=True)
         convergence_table(rows, a, os.path.join(a.out, "flight_convergence"))
         return
@@ -180,8 +188,7 @@ def main():
     if a.what == "matrix":
         for m in members:
             for sf in [float(x) for x in a.size_factors.split(",")]:
-                V = math.sqrt(2 * m["payload"] * G / (1.225 * 0.78 * math.pi * m["D"] ** 2 / 4))
-                te = a.t_end or max(6.0, 4.0 * m["D"] / V + 4.0)
+                te = a.t_end or matrix_t_end(m)
                 jobs.append(("%s_h%.2f" % (m["name"], sf), m, dict(t_end=te, size_factor=sf,
                                                                     sets=a.set)))
     elif a.what == "convergence":
@@ -192,8 +199,7 @@ def main():
             else [1.0, 0.7]
         for m in members:
             for sf in levels:
-                V = math.sqrt(2 * m["payload"] * G / (1.225 * 0.78 * math.pi * m["D"] ** 2 / 4))
-                te = a.t_end or a.t_factor * max(6.0, 4.0 * m["D"] / V + 4.0)
+                te = a.t_end or a.t_factor * matrix_t_end(m)
                 for k in range(a.runs):
                     jobs.append(("%s_h%.2f_k%d" % (m["name"], sf, k), m,
                                  dict(t_end=te, size_factor=sf, sets=a.set, perturb=k)))

@@ -63,12 +63,8 @@ void LineDragTerm::forEachSegment(const EvalPoint& p, Segment&& segment) const {
     for (int ci : cablesOf_[di]) segment(m_->cables[ci].a, m_->cables[ci].b, d.wind, coef);
     for (int gi : groupsOf_[di]) {
       const auto& g = m_->groups[gi];
-      const SlidingGroupState& state = *groups_[gi];
-      const int sliders = static_cast<int>(g.sliders.size());
       for (int k = 0; k < g.numElements(); ++k) {
-        int s = -1;  // SlidingGroupState::sliderOfElement, inline: the first slider on k
-        for (int j = 0; j < sliders && s < 0; ++j)
-          if (state.activeElement(j) == k) s = j;
+        const int s = groups_[gi]->sliderOfElement(k);
         if (s < 0) {
           segment(g.chain[k], g.chain[k + 1], d.wind, coef);
         } else {  // the two straight parts through the slider

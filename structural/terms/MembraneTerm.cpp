@@ -619,13 +619,13 @@ void MembraneTerm::addEnergyOver(const Eigen::VectorXd& x, const Eigen::VectorXd
       en.gravity -= share[i] * m_->gravity.dot(x.segment<3>(3 * e.nodes[i]));
   };
   const bool lumped = m_->massKind == kernels::MassKind::Lumped;
-  // With AVX2 the explicit records' energies four at a time, a batch when its first triangle is
-  // reached (the triangles' slots grow with k), added in k's order: the same bits
+  // With AVX2 the explicit records' energies four at a time (triangleLanes_, made with them in
+  // makeExplicitTriangles), a batch when its first triangle is reached (the triangles' slots grow
+  // with k), added in k's order: the same bits
   // (MembraneKernel.FourTrianglesAtATimeAreTheExplicitTriangleBitForBit). One at a time they cost
   // about 1.5 force passes per triangle.
   constexpr int kLanes = kernels::kTriangleLanes;
-  const bool inLanes =
-      kernels::useAvx2() && triangleLanes_.size() * kLanes >= explicitTriangles_.size();
+  const bool inLanes = kernels::useAvx2();
   size_t batch = std::numeric_limits<size_t>::max();
   double laneEnergy[kLanes];
   for (size_t k = begin; k < end; ++k) {

@@ -184,10 +184,11 @@ class MembraneTerm final : public Term {
   // The reference part of each element's stable-step bound (EX6m), made for explicit steps.
   mutable std::vector<kernels::MembraneBoundReference> bound_;
   void makeBound() const;
-  // Positions of the last assembly, and whether states_' principal values are still to be
-  // computed from them.
+  // addEnergy over elements [begin, end) (the whole, or a half of addEnergyHalf).
   void addEnergyOver(const Eigen::VectorXd& x, const Eigen::VectorXd& v, size_t begin, size_t end,
                      EnergyBreakdown& e) const;
+  // Positions of the last assembly, and whether states_' principal values are still to be
+  // computed from them.
   Eigen::VectorXd lastX_;
   mutable bool principalsStale_ = false;
 };

@@ -60,12 +60,6 @@ bool SlidingGroupState::isActive(int element) const {
   return sliderOfElement(element) >= 0;
 }
 
-int SlidingGroupState::sliderOfElement(int element) const {
-  for (size_t s = 0; s < trial_.size(); ++s)
-    if (trial_[s] == element) return static_cast<int>(s);
-  return -1;
-}
-
 void SlidingGroupState::setActiveElement(int slider, int element) {
   if (element < 0 || element >= def_->numElements())
     throw std::out_of_range("active element out of range in group " + def_->name);

@@ -88,8 +88,14 @@ class SlidingGroupState {
   // The trial active element of a slider, set where it is known to be (EM12's condensed chain);
   // commit() counts the nodes it passed.
   void moveTo(int slider, int element) { trial_[slider] = element; }
-  bool isActive(int element) const;        // active for some slider (trial state)
-  int sliderOfElement(int element) const;  // -1 if inactive
+  bool isActive(int element) const;  // active for some slider (trial state)
+  // The first slider in the element, -1 if inactive. Inline: every element of every sliding
+  // group at every explicit step (the line drag's and the group's own loops).
+  int sliderOfElement(int element) const {
+    for (size_t s = 0; s < trial_.size(); ++s)
+      if (trial_[s] == element) return static_cast<int>(s);
+    return -1;
+  }
 
   // Reference arc length from the chain's first node to the slider (uniform strain in the
   // active element: the slider splits its reference length as l1 : l2).
