@@ -18,12 +18,14 @@ import csv
 import json
 import math
 import os
-import re
 import statistics
 import subprocess
 import sys
 import tempfile
 import time
+
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from roundoff import damping_sets  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 CHUTE = os.environ.get("CHUTE_BIN", os.path.join(ROOT, "build/bin/chute"))
@@ -75,12 +77,8 @@ def generate_and_run(tag, m, workdir, start="inflated", speed=None, held=False, 
     run = [CHUTE, "run", case, "--out", out, "--quiet"]
     for s in sets:
         run += ["--set", s]
-    if perturb:
-        # A change that changes no physics: the stiffness damping times 1 + k 1e-12; the run's
-        # chaotic breathing then takes another course (the round-off ensembles of docs/flight.md).
-        damping = float(re.search(r"^stiffness_damping\s*=\s*([0-9.eE+-]+)", open(case).read(),
-                                  re.M).group(1))
-        run += ["--set", "solver.stiffness_damping=%.17g" % (damping * (1.0 + perturb * 1e-12))]
+    for s in damping_sets(case, perturb):  # round-off only (bench/roundoff.py)
+        run += ["--set", s]
     t0 = time.time()
     p = subprocess.run(run, capture_output=True, text=True)
     wall = time.time() - t0

@@ -12,11 +12,14 @@ another chute binary (default build/bin/chute).
 import argparse
 import json
 import os
-import re
 import statistics
 import subprocess
+import sys
 import tempfile
 from concurrent.futures import ThreadPoolExecutor
+
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from roundoff import damping_sets  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 CHUTE = os.environ.get("CHUTE_BIN", os.path.join(ROOT, "build/bin/chute"))
@@ -25,10 +28,10 @@ FIGURES = [("steady_descent_speed", "descent", 3), ("drag_coefficient", "C_D0", 
            ("peak_opening_force", "peak force", 1), ("peak_opening_force_time", "at s", 2)]
 
 
-def run(case, damping, k, out):
+def run(case, k, out):
     cmd = [CHUTE, "run", case, "--out", out, "--quiet"]
-    if k:
-        cmd += ["--set", f"solver.stiffness_damping={damping * (1.0 + k * 1e-12):.17g}"]
+    for s in damping_sets(case, k):
+        cmd += ["--set", s]
     subprocess.run(cmd, check=True, capture_output=True, env=dict(os.environ, CHUTE_THREADS="1"))
     with open(os.path.join(out, "summary.json")) as f:
         return json.load(f)["flight"]
@@ -40,12 +43,10 @@ def main():
     ap.add_argument("--case", default=os.path.join(ROOT, "cases/c9_flight.toml"))
     ap.add_argument("--out", default=os.path.join(ROOT, "bench/results/c9_flight_roundoff.md"))
     args = ap.parse_args()
-    text = open(args.case).read()
-    damping = float(re.search(r"^stiffness_damping\s*=\s*([0-9.eE+-]+)", text, re.M).group(1))
     tmp = tempfile.mkdtemp(prefix="flight_roundoff_")
     ks = list(range(args.runs + 1))
     with ThreadPoolExecutor(max_workers=2) as pool:
-        flights = list(pool.map(lambda k: run(args.case, damping, k, os.path.join(tmp, str(k))), ks))
+        flights = list(pool.map(lambda k: run(args.case, k, os.path.join(tmp, str(k))), ks))
     head = "| run | " + " | ".join(label for _, label, _ in FIGURES) + " |"
     lines = ["# The full-scale C-9's flight figures under round-off", "",
              f"Made by `bench/flight/roundoff_ensemble.py`: `{os.path.relpath(args.case, ROOT)}` "

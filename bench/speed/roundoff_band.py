@@ -15,11 +15,14 @@ bench/results/c9_slider_roundoff_band.md.
 import argparse
 import csv
 import os
-import re
 import statistics
 import subprocess
+import sys
 import tempfile
 from concurrent.futures import ThreadPoolExecutor
+
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from roundoff import damping_sets  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 CASE = os.path.join(ROOT, "cases/c9_slider.toml")
@@ -51,9 +54,6 @@ def main():
                     help="NAME=BIN[:SET...] (BIN empty: the reference binary)")
     ap.add_argument("--out", default=os.path.join(ROOT, "bench/results/c9_slider_roundoff_band.md"))
     args = ap.parse_args()
-    # The case's own stiffness damping, which the runs perturb.
-    damping_of_case = float(re.search(r"^stiffness_damping\s*=\s*([0-9.eE+-]+)",
-                                      open(CASE).read(), re.M).group(1))
     tmp = tempfile.mkdtemp(prefix="roundoff_band_")
     configs = [("reference", args.reference, [])]
     for c in args.candidate:
@@ -64,9 +64,8 @@ def main():
     jobs = []
     for ci, (name, binary, sets) in enumerate(configs):
         for k in range(args.runs + 1):
-            damping = ([f"solver.stiffness_damping={damping_of_case * (1.0 + k * 1e-12):.17g}"]
-                       if k else [])
-            jobs.append((ci, k, binary, sets + damping, os.path.join(tmp, f"{ci}_{k}")))
+            jobs.append((ci, k, binary, sets + damping_sets(CASE, k),
+                         os.path.join(tmp, f"{ci}_{k}")))
     with ThreadPoolExecutor(max_workers=2) as pool:
         values = list(pool.map(lambda j: skirt(j[2], j[3], j[4]), jobs))
     runs = {}
