@@ -168,6 +168,9 @@ def main():
     ap.add_argument("--t-end", type=float, default=None)
     ap.add_argument("--size-factors", default="1.0")
     ap.add_argument("--cb", default="-0.6,-0.7,-0.8,-0.9")
+    ap.add_argument("--speeds", default="20,30,40", help="opening: the winds, m/s")
+    ap.add_argument("--ensemble", type=int, default=1,
+                    help="opening: runs per speed that differ by round-off only (k = 0, 1, ...)")
     ap.add_argument("--from-csv", default="",
                     help="convergence: no runs; the table from these comma-separated CSV files "
                          "of earlier convergence runs (e.g. a finer mesh run apart)")
@@ -208,10 +211,11 @@ def main():
                 "loads.canopy_flow.0.base_pressure=%s" % cb])))
     elif a.what == "opening":
         m = next(x for x in MATRIX if x["name"].startswith("c9"))
-        for V in (20.0, 30.0, 40.0):
-            jobs.append(("held_%g" % V, m, dict(start="folded", speed=V, held=True,
-                                                t_end=a.t_end or 4.0 * 20.0 / V + 2.0,
-                                                sets=a.set)))
+        for V in [float(x) for x in a.speeds.split(",")]:
+            for k in range(a.ensemble):  # k > 0: round-off only (bench/roundoff.py)
+                jobs.append(("held_%g" % V + ("_k%d" % k if a.ensemble > 1 else ""), m,
+                             dict(start="folded", speed=V, held=True,
+                                  t_end=a.t_end or 4.0 * 20.0 / V + 2.0, sets=a.set, perturb=k)))
     elif a.what == "payload":
         m = next(x for x in MATRIX if x["name"].startswith("c9"))
         for pay in (50.0, 100.0, 150.0, 200.0):
