@@ -5,6 +5,7 @@
 // `chute run` writes (probes, VTU series, summary), with any integrator the case names.
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -39,6 +40,9 @@ struct CoupleArgs {
   std::vector<double> wind = {0.0, 0.0, 0.0};
   bool quiet = false;
 };
+
+// As many windows as a run may take steps (limits.md).
+constexpr double kMaxWindows = 1e9;
 
 // What a coupled run reports in summary.json beside a run's figures.
 void countWindows(const coupling::CouplingReport& rep, RunResult& r) {
@@ -85,6 +89,29 @@ int couple(const CoupleArgs& a) {
   cs.omega = a.omega, cs.tolerance = a.tolerance, cs.maxIterations = a.maxIterations;
   cs.window = a.window, cs.tEnd = a.tEnd;
   const double tEnd = a.tEnd > 0.0 ? a.tEnd : spec.solver.tEnd;
+  // The windows, checked before anything is written (exit-codes.md): a window or an end time
+  // shorter than the case's least step cannot be stepped, and the windows to the end are bounded
+  // as a run's steps are (limits.md).
+  if (a.window > 0.0 && a.window < spec.solver.dtMin) {
+    fmt::print(stderr,
+               "chute: couple: --window: {:g} is shorter than the case's least step "
+               "(solver.dt_min = {:g})\n",
+               a.window, spec.solver.dtMin);
+    return kExitBadInput;
+  }
+  if (a.tEnd > 0.0 && a.tEnd < spec.solver.dtMin) {
+    fmt::print(stderr,
+               "chute: couple: --t-end: {:g} is shorter than the case's least step "
+               "(solver.dt_min = {:g})\n",
+               a.tEnd, spec.solver.dtMin);
+    return kExitBadInput;
+  }
+  if (const double window = a.window > 0.0 ? a.window : spec.solver.dt;
+      tEnd / std::min(window, tEnd) > kMaxWindows) {
+    fmt::print(stderr, "chute: couple: --window: {:g} windows to t = {:g}, more than {:g}\n",
+               tEnd / window, tEnd, kMaxWindows);
+    return kExitBadInput;
+  }
 
   // The output of `chute run` (probes, VTU series, summary), written at the ends of the accepted
   // windows that reach an output time (docs/coupling.md).

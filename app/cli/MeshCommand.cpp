@@ -10,6 +10,7 @@
 // `chute mesh geo SCRIPT.geo --out FILE.msh [--timeout s] [--max-memory MiB]`: runs a gmsh script
 // (which can run commands) and writes its mesh (GeoScript.hpp); the only way chute runs a .geo.
 #include <fmt/core.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -43,18 +44,16 @@ namespace {
 
 // A case is written only if `chute run` would start it (docs/meshing.md): the reader and the
 // limits judged before a run (an explicit run's steps at its stable step: a payload of 1e-6 on
-// a box's corners gave a stable step of 5e-10 s, 4e9 steps). If not, the mesh and the case just
-// written are removed and the reason, with the option the limiting node belongs to, is given.
-void refuseCaseRunWouldRefuse(const std::string& caseFile, const std::string& meshFile) {
+// a box's corners gave a stable step of 5e-10 s, 4e9 steps). If not, the reason, with the option
+// the limiting node belongs to, is thrown (KeptOutputs then removes the mesh and the case just
+// written and puts back what they replaced).
+void refuseCaseRunWouldRefuse(const std::string& caseFile) {
   int node = -1;
   CaseSpec spec;
   try {
     spec = readCase(caseFile);
     checkRunCanStart(spec, &node);
   } catch (const std::exception& e) {
-    std::error_code ec;
-    std::filesystem::remove(caseFile, ec);
-    std::filesystem::remove(meshFile, ec);
     std::string why = e.what();
     const auto colon = why.find(": ");  // "case.toml:NN: key: reason": the file is ours, not theirs
     if (colon != std::string::npos && why.rfind(caseFile, 0) == 0) why = why.substr(colon + 2);
@@ -134,8 +133,63 @@ std::string outputPathProblem(const std::string& path, const std::string& extens
   const fs::path parent = fs::path(path).parent_path();
   if (!parent.empty() && !fs::is_directory(parent, ec))
     return "'" + path + "': no directory " + parent.string();
+  // Something there already is replaced only if it is a file (through links): writing into a
+  // FIFO would wait for a reader for ever, and a link to nothing may lead to another output.
+  if (fs::exists(fs::symlink_status(path, ec))) {
+    const fs::file_status target = fs::status(path, ec);
+    if (!fs::exists(target)) return "'" + path + "' is a link to nothing";
+    if (!fs::is_regular_file(target)) return "'" + path + "' exists and is not a regular file";
+  }
   return "";
 }
+
+// The files a generator writes over, kept aside until it has succeeded (exit-codes.md: a refused
+// command leaves the files it names as they were): each existing one (the file a link leads to,
+// the link left in place) renamed to a hidden name beside it, and put back, over whatever was
+// written there, unless succeeded() is called.
+class KeptOutputs {
+ public:
+  explicit KeptOutputs(const std::vector<std::string>& paths) {
+    namespace fs = std::filesystem;
+    for (const auto& path : paths) {
+      if (path.empty()) continue;
+      std::error_code ec;
+      Kept k;
+      k.existed = fs::exists(path, ec);
+      k.target = k.existed ? fs::canonical(path, ec) : fs::path(path);
+      if (ec) throw std::invalid_argument("'" + path + "': " + ec.message());
+      if (k.existed) {
+        k.aside = k.target.parent_path() / ("." + k.target.filename().string() + ".chute-kept-" +
+                                            std::to_string(::getpid()));
+        fs::rename(k.target, k.aside, ec);
+        if (ec) throw std::invalid_argument("'" + path + "' cannot be replaced: " + ec.message());
+      }
+      kept_.push_back(k);
+    }
+  }
+  KeptOutputs(const KeptOutputs&) = delete;
+  KeptOutputs& operator=(const KeptOutputs&) = delete;
+  void succeeded() {
+    std::error_code ec;
+    for (const auto& k : kept_)
+      if (k.existed) std::filesystem::remove(k.aside, ec);
+    kept_.clear();
+  }
+  ~KeptOutputs() {
+    std::error_code ec;
+    for (const auto& k : kept_) {
+      std::filesystem::remove(k.target, ec);
+      if (k.existed) std::filesystem::rename(k.aside, k.target, ec);
+    }
+  }
+
+ private:
+  struct Kept {
+    std::filesystem::path target, aside;
+    bool existed = false;
+  };
+  std::vector<Kept> kept_;
+};
 
 }  // namespace
 
@@ -162,13 +216,22 @@ std::function<int()> addMeshGeoCommand(CLI::App& mesh) {
       fmt::print(stderr, "chute: mesh geo: --out: '{}' is the script\n", a->out);
       return kExitBadInput;
     }
+    if (const std::string bad = outputPathProblem(a->out, ""); !bad.empty()) {
+      fmt::print(stderr, "chute: mesh geo: --out: {}\n", bad);
+      return kExitBadInput;
+    }
     fmt::print("{}: running the gmsh script (gmsh scripts can run commands)\n", a->script);
     std::fflush(stdout);
     mesh::GmshMesh m;
     try {
+      KeptOutputs kept({a->out});
       m = mesh::meshGeoScript(a->script, a->out, a->limits);
+      kept.succeeded();
     } catch (const mesh::MeshError& e) {
       fmt::print(stderr, "chute: mesh geo: {}\n", e.what());
+      return kExitBadInput;
+    } catch (const std::invalid_argument& e) {  // --out cannot be replaced (KeptOutputs)
+      fmt::print(stderr, "chute: mesh geo: --out: {}\n", e.what());
       return kExitBadInput;
     }
     fmt::print("{}: {} nodes, {} physical groups\n", a->out, m.nodeTags.size(), m.groups.size());
@@ -324,9 +387,11 @@ std::function<int()> addMeshClusterCommand(CLI::App& mesh) {
     mesh::GeneratedCluster g;
     try {
       if (!a->o.caseFile.empty()) mesh::checkParachuteCaseOptions(a->o.caseOptions);
+      KeptOutputs kept({a->o.out, a->o.caseFile});
       g = mesh::generateCluster(a->spec, a->o.out);
       if (!a->o.caseFile.empty())
         mesh::writeClusterCase(a->spec, g, a->o.caseFile, a->o.out, a->o.caseOptions);
+      kept.succeeded();
     } catch (const std::invalid_argument& e) {
       fmt::print(stderr, "chute: mesh cluster: {}\n", e.what());
       return kExitBadInput;
@@ -390,11 +455,13 @@ Command addMeshCommand(CLI::App& app) {
             mesh::GeneratedParachute g;
             try {
               if (!a->o.caseFile.empty()) mesh::checkParachuteCaseOptions(a->o.caseOptions);
+              KeptOutputs kept({a->o.out, a->o.caseFile});
               g = mesh::generateParachute(a->spec, a->o.out);
               if (!a->o.caseFile.empty()) {
                 mesh::writeParachuteCase(a->spec, g, a->o.caseFile, a->o.out, a->o.caseOptions);
-                refuseCaseRunWouldRefuse(a->o.caseFile, a->o.out);
+                refuseCaseRunWouldRefuse(a->o.caseFile);
               }
+              kept.succeeded();
             } catch (const std::invalid_argument& e) {
               fmt::print(stderr, "chute: mesh parachute: {}\n", e.what());
               return kExitBadInput;

@@ -39,7 +39,9 @@ CouplingReport runCoupled(CouplingInterface& s, const FlowParticipant& flow,
     s.setFacePressures(p);
     s.initializeWithLoads();
   }
-  while (s.time() < tEnd - 1e-9 * window) {
+  // Round-off of summed windows: an end within 1e-9 of the last window (or of the time to the end,
+  // for a window longer than the run) counts as reached.
+  while (s.time() < tEnd - 1e-9 * std::min(window, tEnd)) {
     const double dt = std::min(window, tEnd - s.time());
     WindowReport w;
     try {

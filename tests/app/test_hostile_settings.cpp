@@ -3,6 +3,7 @@
 // documented status before anything is written, or ended with its output whole and truthful
 // (docs/limits.md, docs/exit-codes.md). One test per class of the second hostile-input round.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <chrono>
 #include <cmath>
@@ -211,6 +212,75 @@ TEST(HostileSettings, AGeneratedCaseARunWouldRefuseIsNotWritten) {
   EXPECT_NE(o.err.find("--payload-mass: the case would not run"), std::string::npos) << o.err;
   EXPECT_FALSE(fs::exists(msh));
   EXPECT_FALSE(fs::exists(toml));
+}
+
+// A generator refused after it has meshed (the case it would write is one a run refuses) leaves
+// the files --out and --case name as they were: it wrote over them and removed them on refusing,
+// saying "nothing written" (found by the third hostile-input attack).
+TEST(HostileSettings, ARefusedGeneratorLeavesTheFilesItNamedAsTheyWere) {
+  const fs::path dir = scratch("generated_over", true);
+  const fs::path msh = dir / "mine.msh", toml = dir / "mine.toml";
+  std::ofstream(msh) << "precious mesh\n";
+  std::ofstream(toml) << "precious case\n";
+  const Outcome o = runChute(
+      "mesh parachute --gores 8 --diameter 2 --line-length 2 --element-size 0.4 "
+      "--line-elements 4 --payload-box 0.2,0.2,0.2 --riser-length 0.5 --payload-mass 1e-6 --out " +
+      msh.string() + " --case " + toml.string() + " --quiet");
+  std::printf("over existing files -> %d: %s", o.status, o.err.c_str());
+  EXPECT_EQ(o.status, 2);
+  EXPECT_EQ(lines(o.err), 1);
+  EXPECT_EQ(bytes(msh), "precious mesh\n");
+  EXPECT_EQ(bytes(toml), "precious case\n");
+  // Nothing else left in the directory (the files kept aside while it meshed included).
+  int entries = 0;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir)) ++entries;
+  EXPECT_EQ(entries, 2);
+}
+
+// Outputs that cannot be files are refused before meshing: a FIFO as --case (the generator waited
+// for a reader for ever, its mesh written), a link to nothing (a link to the --out mesh passed the
+// check that the two differ, and the case was written over the mesh).
+TEST(HostileSettings, AGeneratorRefusesAFifoOrALinkToNothingBeforeMeshing) {
+  const fs::path dir = scratch("generated_targets", true);
+  const std::string args =
+      "mesh parachute --gores 6 --diameter 1 --line-length 1 --element-size 0.3 --units si ";
+  ASSERT_EQ(::mkfifo((dir / "f.toml").c_str(), 0644), 0);
+  const auto t0 = std::chrono::steady_clock::now();
+  const Outcome fifo = runChute(args + "--out " + (dir / "q.msh").string() + " --case " +
+                                (dir / "f.toml").string() + " --quiet");
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::printf("--case a FIFO -> %d in %.2f s: %s", fifo.status, s, fifo.err.c_str());
+  EXPECT_EQ(fifo.status, 2);
+  EXPECT_NE(fifo.err.find("not a regular file"), std::string::npos) << fifo.err;
+  EXPECT_FALSE(fs::exists(dir / "q.msh"));
+  EXPECT_LT(s, 30.0);
+  fs::create_symlink("t.msh", dir / "tl.toml");
+  const Outcome link = runChute(args + "--out " + (dir / "t.msh").string() + " --case " +
+                                (dir / "tl.toml").string() + " --quiet");
+  std::printf("--case a link to the coming mesh -> %d: %s", link.status, link.err.c_str());
+  EXPECT_EQ(link.status, 2);
+  EXPECT_NE(link.err.find("link to nothing"), std::string::npos) << link.err;
+  EXPECT_FALSE(fs::exists(dir / "t.msh"));
+  EXPECT_TRUE(fs::is_symlink(dir / "tl.toml"));
+}
+
+// `chute couple --window` longer than the run ran no window and reported "completed" at t = 0;
+// one shorter than the case's least step started the run and failed in it (exit 3, output
+// written). The first runs to the end in one window, the second is refused before anything.
+TEST(HostileSettings, ACoupledRunsWindowIsCheckedAndNeverSkipsTheRun) {
+  const std::string coupled = CHUTE_SOURCE_DIR "/cases/canopy_coupled.toml";
+  const fs::path out = scratch("coupled_long_window");
+  const Outcome o =
+      runChute("couple " + coupled + " --t-end 0.002 --window 1e12 --quiet --out " + out.string());
+  std::printf("--window 1e12 -> %d: %s", o.status, o.err.c_str());
+  ASSERT_EQ(o.status, 0) << o.err;
+  const std::string summary = bytes(out / "summary.json");
+  EXPECT_NE(summary.find("\"status\": \"completed\""), std::string::npos) << summary;
+  const auto at = summary.find("\"final_time\": ");
+  ASSERT_NE(at, std::string::npos) << summary;
+  EXPECT_NEAR(std::stod(summary.substr(at + 14)), 0.002, 1e-12) << summary;
+  expectRefused("couple --window 1e-20", "couple " + coupled + " --window 1e-20", "--window");
+  expectRefused("couple --t-end 1e-300", "couple " + coupled + " --t-end 1e-300", "--t-end");
 }
 
 // A static load that equilibrium follows only in increments halved near their floor (gravity

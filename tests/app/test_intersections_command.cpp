@@ -118,3 +118,27 @@ TEST(IntersectionsCommand, CountsEachFrameAndExitsAsDocumented) {
   std::printf("%s", bad.out.c_str());
   EXPECT_EQ(bad.status, 2);
 }
+
+// A frame whose cells name points it does not have (a segment to point 10 of 10, one to -1) is
+// bad input naming the file (status 2), like a frame VTK cannot read; it was status 1, an
+// internal error (found by a hostile-input attack with mutated frames).
+TEST(IntersectionsCommand, ACellNamingAMissingPointIsBadInput) {
+  const fs::path dir = fs::path(::testing::TempDir()) / "intersections_missing_point";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  for (const int missing : {10, -1}) {
+    SceneFrame f = frame(0.0, false);
+    f.connectivity[7] = missing;  // the segment's first node (after the quad's 4, the triangle's 3)
+    {
+      VtuSeries series(dir.string(), "soup");
+      series.write(f);
+    }
+    const Result r = runChute("intersections " + (dir / "soup_000000.vtu").string() + " --quiet");
+    std::printf("segment node %d -> %d: %s", missing, r.status, r.out.c_str());
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.out.find("soup_000000.vtu: intersection check: segment vertex " +
+                         std::to_string(missing) + " out of range"),
+              std::string::npos)
+        << r.out;
+  }
+}
