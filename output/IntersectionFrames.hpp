@@ -2,10 +2,8 @@
 // The elements the intersection check (mesh/IntersectionCheck.hpp) looks at, taken from a frame
 // of a run: membrane triangles and quadrilaterals (as two triangles) and 2-node line cells
 // (cables, trusses, sliding elements and their parts through a slider); vertices are ignored.
-// Either from a state (SceneFrame, as the run writes it) or from a .vtu file on disk (read with
-// VTK's XML reader).
-#include <string>
-
+// Either from a state (SceneFrame, as the run writes it) or from a .vtu file on disk
+// (render/IntersectionFrameFile.hpp: the frame checked as `chute render` checks it).
 #include "IntersectionCheck.hpp"
 #include "SceneFrame.hpp"
 
@@ -13,8 +11,8 @@ namespace chute {
 
 mesh::IntersectionMesh intersectionMesh(const SceneFrame& frame);
 
-// Throws std::runtime_error naming the file if it cannot be read or holds a cell of another kind
-// (polygons, volumes).
-mesh::IntersectionMesh readIntersectionMesh(const std::string& vtuFile);
+// Adds a cell of VTK type `vtkType` with point indices ids (a vertex adds nothing); false for a
+// cell of another kind (polygons, volumes).
+bool addIntersectionCell(mesh::IntersectionMesh& m, int vtkType, const int* ids);
 
 }  // namespace chute

@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "IntersectionFrames.hpp"
 #include "VtuSeries.hpp"
 #include "app/cli/Command.hpp"
+#include "render/IntersectionFrameFile.hpp"
 
 namespace chute::cli {
 
@@ -100,7 +100,7 @@ Command addIntersectionsCommand(CLI::App& app) {
           const std::string file = (dir / frames[i].file).string();
           mesh::IntersectionMesh m;
           try {
-            m = readIntersectionMesh(file);
+            m = render::readIntersectionMesh(file);
           } catch (const std::exception& e) {
             fmt::print(stderr, "chute: intersections: {}\n", e.what());
             return kExitBadInput;
