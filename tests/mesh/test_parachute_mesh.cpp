@@ -462,8 +462,9 @@ TEST(ParachuteMesh, PathsWithQuotesBackslashesAndNewlinesReadBackAsThemselves) {
 }
 
 // A case is written only for a mesh `chute run` takes with its default limits: 1000 slider
-// divisions (a million nodes, more than a case reads) are refused before gmsh runs; a mesh
-// with more equations than a run takes, once meshed, before anything is written. Lines,
+// divisions (a million nodes, more than a case reads) are refused before gmsh runs, and so is a
+// mesh estimated at more than 1.2 times the equations a run takes; one nearer the limit, once
+// meshed, before anything is written. Lines,
 // risers and slider quads finer than a tenth of the canopy's elements are refused (the explicit
 // step follows the shortest element: 3,000 elements a line took minutes for 4 ms).
 TEST(ParachuteMesh, ACaseBeyondTheRunsLimitsIsRefusedAtGeneration) {
@@ -486,6 +487,18 @@ TEST(ParachuteMesh, ACaseBeyondTheRunsLimitsIsRefusedAtGeneration) {
   } catch (const std::invalid_argument& e) {
     std::printf("%s\n", e.what());
     EXPECT_NE(std::string(e.what()).find("solver.max_equations"), std::string::npos);
+  }
+  // Within a fifth of the estimate the mesh is made, and its own count refuses it (checkForCase).
+  s = everything();
+  s.elementSize = 0.1;  // about 500 canopy nodes: the estimate's constant terms small beside them
+  const std::size_t equations = 3 * (generateParachute(s, "").mesh.nodeTags.size() - 1);
+  s.caseLimits = {MshLimits{}.maxNodes, MshLimits{}.maxElements, equations * 10 / 11};
+  try {
+    generateParachute(s, "");
+    FAIL() << "expected a refusal";
+  } catch (const std::invalid_argument& e) {
+    std::printf("%s\n", e.what());
+    EXPECT_EQ(std::string(e.what()).rfind("--case: the mesh has up to", 0), 0u);
   }
   s = everything();
   s.lineElements = 3000;  // 6.7e-4 ft elements under a canopy of 0.4 ft
