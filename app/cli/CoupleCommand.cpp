@@ -116,6 +116,15 @@ int couple(const CoupleArgs& a) {
   // The output of `chute run` (probes, VTU series, summary), written at the ends of the accepted
   // windows that reach an output time (docs/coupling.md).
   const std::string outDir = a.outDir.empty() ? "out/" + spec.name : a.outDir;
+  // The flow's answer to the start, checked before anything is written: a finite but huge wind or
+  // q overflows the law's pressures (--wind 1e200: infinite), bad input naming the options.
+  const Eigen::VectorXd startPressures = flow.facePressures(writeInterfaceData(*structure));
+  if (!startPressures.allFinite()) {
+    fmt::print(stderr,
+               "chute: couple: --wind, --q, --air-density: the flow's pressures on the start are "
+               "not finite (values out of scale)\n");
+    return kExitBadInput;
+  }
   RunResult r;
   std::unique_ptr<RunOutput> out;
   std::unique_ptr<std::ofstream> csv;
@@ -125,7 +134,7 @@ int couple(const CoupleArgs& a) {
     out->setEquilibrium(
         [&](const StructuralState& s) { return structure->integrator().equilibrium(s); });
     // The flow's loads on the start act from t = 0 (initial data), then the start is written.
-    structure->setFacePressures(flow.facePressures(writeInterfaceData(*structure)));
+    structure->setFacePressures(startPressures);
     structure->initializeWithLoads();
     out->record(structure->state());
     out->frame(structure->state());

@@ -24,6 +24,15 @@ double relativeNorm(const Eigen::VectorXd& r, const Eigen::VectorXd& ref) {
   const double n = ref.norm();
   return n > 0.0 ? r.norm() / n : r.norm();
 }
+
+// The flow's answer at the structure's state at time t: loads that are not finite (a flow law
+// overflowing at a huge wind, a flow solver gone wrong) end the coupled run as diverged, with
+// the last good window's state, rather than reach the structure.
+Eigen::VectorXd finiteAnswer(Eigen::VectorXd p, double t) {
+  if (!p.allFinite())
+    throw CouplingError("the flow's pressures are not finite at t = " + std::to_string(t));
+  return p;
+}
 }  // namespace
 
 CouplingReport runCoupled(CouplingInterface& s, const FlowParticipant& flow,
@@ -34,6 +43,11 @@ CouplingReport runCoupled(CouplingInterface& s, const FlowParticipant& flow,
   const double tEnd = cs.tEnd > 0.0 ? cs.tEnd : s.endTime();
   // The first window's loads: the flow's answer to the initial state.
   Eigen::VectorXd p = flow(writeInterfaceData(s));
+  if (!p.allFinite()) {
+    rep.converged = false;
+    rep.failure = "the flow's pressures are not finite at t = " + std::to_string(s.time());
+    return rep;
+  }
   // They act from t = 0: the start's acceleration is taken under them (initial data).
   if (s.time() == 0.0 && s.counters().steps == 0) {
     s.setFacePressures(p);
@@ -49,7 +63,7 @@ CouplingReport runCoupled(CouplingInterface& s, const FlowParticipant& flow,
         // Serial-explicit: loads from the state at the window's start, one structural solve.
         s.setFacePressures(p);
         s.advance(dt);
-        const Eigen::VectorXd next = flow(writeInterfaceData(s));
+        const Eigen::VectorXd next = finiteAnswer(flow(writeInterfaceData(s)), s.time());
         w.iterations = 1;
         w.residual = relativeNorm(next - p, next);
         p = next;
@@ -62,7 +76,8 @@ CouplingReport runCoupled(CouplingInterface& s, const FlowParticipant& flow,
         for (int k = 0;; ++k) {
           s.setFacePressures(p);  // readData
           s.advance(dt);
-          const Eigen::VectorXd pt = flow(writeInterfaceData(s));  // writeData -> flow solve
+          const Eigen::VectorXd pt =
+              finiteAnswer(flow(writeInterfaceData(s)), s.time());  // writeData -> flow solve
           const Eigen::VectorXd r = pt - p;
           w.iterations = k + 1;
           w.residual = relativeNorm(r, pt);

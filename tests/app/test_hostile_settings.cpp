@@ -283,6 +283,23 @@ TEST(HostileSettings, ACoupledRunsWindowIsCheckedAndNeverSkipsTheRun) {
   expectRefused("couple --t-end 1e-300", "couple " + coupled + " --t-end 1e-300", "--t-end");
 }
 
+// A finite wind so large that the coupled flow law's pressures overflow: on the start, refused
+// before anything is written (it was status 2 after the output was made); after a window, the
+// run ends as diverged with its last good window (it was status 1, an internal error).
+TEST(HostileSettings, ACoupledFlowsPressuresThatOverflowAreBadInputOrADivergedRun) {
+  const std::string coupled = CHUTE_SOURCE_DIR "/cases/canopy_coupled.toml";
+  expectRefused("couple --wind 0 0 1e160", "couple " + coupled + " --wind 0 0 1e160",
+                "pressures on the start are not finite");
+  const fs::path out = scratch("coupled_overflow");
+  const Outcome o = runChute("couple " + coupled + " --wind 1e200 0 0 --t-end 0.01 --quiet --out " +
+                             out.string());
+  std::printf("--wind 1e200 0 0 -> %d: %s", o.status, o.err.c_str());
+  EXPECT_EQ(o.status, 3);
+  EXPECT_EQ(lines(o.err), 1);
+  EXPECT_NE(o.err.find("not finite"), std::string::npos) << o.err;
+  EXPECT_NE(bytes(out / "summary.json").find("\"status\": \"diverged\""), std::string::npos);
+}
+
 // A static load that equilibrium follows only in increments halved near their floor (gravity
 // 1e9 on the capstan belt) converged one 1e-8 step of the load after another for hours; the
 // load stepping's increments are bounded (docs/limits.md) and the run ends as diverged.
