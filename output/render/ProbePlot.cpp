@@ -72,9 +72,15 @@ struct Panel {
   std::vector<Series> series;
 };
 
+// The probe columns named in an error line: the first kListed, then how many there are (a file
+// of 200,000 columns gave a line of 1.7 MB).
 std::string columnList(const std::vector<std::string>& header) {
+  constexpr size_t kListed = 40;
   std::string known;
-  for (size_t i = 1; i < header.size(); ++i) known += (i > 1 ? ", " : "") + header[i];
+  for (size_t i = 1; i < header.size() && i <= kListed; ++i)
+    known += (i > 1 ? ", " : "") + header[i].substr(0, 200);
+  if (header.size() > kListed + 1)
+    known += ", ... (" + std::to_string(header.size() - 1) + " columns in all)";
   return known;
 }
 
@@ -94,6 +100,11 @@ void plotProbes(const PlotOptions& o) {
     const std::string csv = (fs::path(dir) / "probes.csv").string();
     runs.push_back(readProbeColumns(csv, o.columns, buckets));
     const auto& header = runs.back().header;
+    // Every panel is drawn against the time: a file whose first column is not `t` is not a run's
+    // probes.csv (its first column was taken as the time whatever it held).
+    if (!header.empty() && header[0] != "t")
+      throw std::runtime_error(csv + ": its first column is '" + header[0].substr(0, 200) +
+                               "', not the time 't' (not a probes.csv chute wrote)");
     for (const auto& c : o.columns) {
       if (!header.empty() && c == header[0])
         throw std::runtime_error("--columns: '" + c +
