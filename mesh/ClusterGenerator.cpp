@@ -30,7 +30,13 @@ void ClusterSpec::validate() const {
   if (riserElements < 1 || riserElements > 10000) bad("--riser-elements", "must be in [1, 10000]");
   if (parachute.payloadMass > 0.0 || parachute.hasBox())
     bad("--payload-box", "a cluster carries a point payload (--payload-mass) on its risers");
-  parachute.validate();
+  // The risers checked as a parachute's (ParachuteSpec::validate: 0, the default of a third of
+  // the lines, or at least D/1000, in elements at least a tenth of the canopy's): 1e-9 gave a
+  // case whose step no run can take.
+  ParachuteSpec withRisers = parachute;
+  withRisers.riserLength = riserLength;
+  withRisers.riserElements = riserElements;
+  withRisers.validate();
   if (spacing > 0.0 && spacing < 0.1 * parachute.diameter)
     bad("--spacing",
         "less than a tenth of the diameter: the canopies would start inside each other");

@@ -239,8 +239,11 @@ Command addCoupleCommand(CLI::App& app) {
       ->check(CLI::Range(1e-6, 1.0));
   cmd->add_option("--tolerance", a->tolerance, "relative residual ending a window (1e-8)")
       ->check(CLI::PositiveNumber);
-  cmd->add_option("--max-iterations", a->maxIterations, "sub-iterations per window (100)")
-      ->check(CLI::PositiveNumber);
+  // Bounded (limits.md): each sub-iteration is a structural solve, and a typo (1e9 for 100) with
+  // an unreachable --tolerance kept the first window going for hours.
+  cmd->add_option("--max-iterations", a->maxIterations,
+                  "sub-iterations per window (100; at most 10000)")
+      ->check(CLI::Range(1, 10000));
   cmd->add_option("--window", a->window, "time-window size (default solver.dt)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--t-end", a->tEnd, "end time (default solver.t_end)")

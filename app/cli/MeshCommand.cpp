@@ -389,8 +389,10 @@ std::function<int()> addMeshClusterCommand(CLI::App& mesh) {
       if (!a->o.caseFile.empty()) mesh::checkParachuteCaseOptions(a->o.caseOptions);
       KeptOutputs kept({a->o.out, a->o.caseFile});
       g = mesh::generateCluster(a->spec, a->o.out);
-      if (!a->o.caseFile.empty())
+      if (!a->o.caseFile.empty()) {
         mesh::writeClusterCase(a->spec, g, a->o.caseFile, a->o.out, a->o.caseOptions);
+        refuseCaseRunWouldRefuse(a->o.caseFile);
+      }
       kept.succeeded();
     } catch (const std::invalid_argument& e) {
       fmt::print(stderr, "chute: mesh cluster: {}\n", e.what());

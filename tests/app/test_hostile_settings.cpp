@@ -283,6 +283,31 @@ TEST(HostileSettings, ACoupledRunsWindowIsCheckedAndNeverSkipsTheRun) {
   expectRefused("couple --t-end 1e-300", "couple " + coupled + " --t-end 1e-300", "--t-end");
 }
 
+// Sub-iterations per window are bounded: 1e9 with an unreachable --tolerance kept the first
+// window going for hours (each sub-iteration a structural solve).
+TEST(HostileSettings, ACoupledRunsSubIterationsAreBounded) {
+  expectRefused("couple --max-iterations 1e9",
+                "couple " CHUTE_SOURCE_DIR "/cases/canopy_coupled.toml --max-iterations 1000000000",
+                "--max-iterations");
+}
+
+// `chute mesh cluster` wrote a case `chute run` refuses (risers of 1e-9: a step of 4e-21 s): its
+// risers are now checked as a parachute's (0 or at least D/1000), and its case is read back and
+// judged before it is kept, as the parachute's is.
+TEST(HostileSettings, AClusterWithRisersNoRunCanStepIsRefused) {
+  const fs::path dir = scratch("cluster_risers", true);
+  const Outcome o = runChute(
+      "mesh cluster --gores 6 --diameter 1.0 --line-length 0.9 --element-size 0.25 "
+      "--payload-mass 3 --units si --t-end 0.01 --canopies 2 --riser-length 1e-9 --out " +
+      (dir / "c.msh").string() + " --case " + (dir / "c.toml").string() + " --quiet");
+  std::printf("cluster risers 1e-9 -> %d: %s", o.status, o.err.c_str());
+  EXPECT_EQ(o.status, 2);
+  EXPECT_EQ(lines(o.err), 1);
+  EXPECT_NE(o.err.find("--riser-length"), std::string::npos) << o.err;
+  EXPECT_FALSE(fs::exists(dir / "c.msh"));
+  EXPECT_FALSE(fs::exists(dir / "c.toml"));
+}
+
 // A finite wind so large that the coupled flow law's pressures overflow: on the start, refused
 // before anything is written (it was status 2 after the output was made); after a window, the
 // run ends as diverged with its last good window (it was status 1, an internal error).
