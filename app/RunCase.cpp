@@ -148,7 +148,9 @@ void runStatics(const CaseSpec& spec, StructuralSystem& sys, const RunOptions& o
   const auto rep = statics.solveFromStart(state, sv.loadSteps, sv.initialLoadFactor);
   r.newtonIterations = rep.iterations;
   r.maxNewtonInStep = statics.maxIterationsInStep();
-  r.steps = sv.loadSteps;
+  // A run that failed reports the increments that converged, and (state.t) the load factor of
+  // its last equilibrium, the state it writes.
+  r.steps = rep.converged ? sv.loadSteps : statics.incrementsTaken();
   if (!rep.converged) r.status = RunStatus::Diverged, r.reason = rep.failure;
   r.symbolicAnalyses = newton.linearSolver().analyses();
   r.linearSolver = newton.linearSolver().kindName();

@@ -49,6 +49,7 @@ NewtonReport StaticLoadStepper::solve(StructuralState& s, int nSteps, double ini
       std::snprintf(factor, sizeof factor, "%.6g", lambda);
       total.failure = "no equilibrium path within " + std::to_string(kMaxIncrements) +
                       " load increments (reached load factor " + factor + ")";
+      keepReached(s, x, lambda);
       return total;
     }
     const double target = std::min(1.0, lambda + increment);
@@ -89,20 +90,27 @@ NewtonReport StaticLoadStepper::solve(StructuralState& s, int nSteps, double ini
         total.failure = "no convergence in " + std::to_string(inStep) + " iterations";
         if (!rep.outOfIterations) total.failure = rep.failure;
         total.failure += std::string(" at load factor ") + factor;
+        keepReached(s, x, lambda);
         return total;
       }
       continue;
     }
     sys_->commit(CommitPoint{x, s.t, 0.0, s.t});
+    ++taken_;
     halvedInThisStep = false;
     lambda = target;
     increment = geometric ? std::min(1.0, std::max(increment, lambda * (growth - 1.0))) : increment;
   }
   total.converged = true;
+  keepReached(s, x, 1.0);
+  return total;
+}
+
+void StaticLoadStepper::keepReached(StructuralState& s, const Eigen::VectorXd& x, double lambda) {
   s.x = x;
   s.v.setZero();
   s.a.setZero();
-  return total;
+  reached_ = lambda;
 }
 
 NewtonReport StaticLoadStepper::solveFromStart(StructuralState& s, int nSteps,
@@ -110,7 +118,7 @@ NewtonReport StaticLoadStepper::solveFromStart(StructuralState& s, int nSteps,
   sys_->updateState(s.x);
   sys_->commit(CommitPoint{s.x, s.t, 0.0, s.t});
   NewtonReport rep = solve(s, nSteps, initialFactor);
-  s.t = 1.0;
+  s.t = reached_;
   return rep;
 }
 

@@ -14,10 +14,15 @@ class StaticLoadStepper {
   StaticLoadStepper(StructuralSystem& sys, Newton& newton) : sys_(&sys), newton_(&newton) {}
   NewtonReport solve(StructuralState& s, int nSteps, double initialFactor = 1.0);
   // A static run: from the model's positions (s, committed), solved in nSteps increments; the
-  // solution is reported at t = 1, the full load factor.
+  // solution is reported at t = 1, the full load factor. One that fails leaves in s the last
+  // equilibrium it reached, at t = its load factor (a diverged run's last good state: the start
+  // at t = 0 if no increment converged; it was the start reported at t = 1).
   NewtonReport solveFromStart(StructuralState& s, int nSteps, double initialFactor);
   // The most Newton iterations one load increment took (converged or not).
   int maxIterationsInStep() const { return maxInStep_; }
+  // The load factor of the last equilibrium reached, and the increments that converged.
+  double reachedLoadFactor() const { return reached_; }
+  long incrementsTaken() const { return taken_; }
 
  private:
   // ST1: further Newton runs (newton_max_iterations each) of an increment that ran out of
@@ -30,6 +35,10 @@ class StaticLoadStepper {
   StructuralSystem* sys_;
   Newton* newton_;
   int maxInStep_ = 0;
+  double reached_ = 0.0;
+  long taken_ = 0;
+  // s holds the equilibrium x reached at load factor lambda (on success or failure).
+  void keepReached(StructuralState& s, const Eigen::VectorXd& x, double lambda);
 };
 
 }  // namespace chute

@@ -325,6 +325,28 @@ TEST(HostileSettings, ACoupledFlowsPressuresThatOverflowAreBadInputOrADivergedRu
   EXPECT_NE(bytes(out / "summary.json").find("\"status\": \"diverged\""), std::string::npos);
 }
 
+// A static run that fails writes its last equilibrium at the load factor it was reached at: the
+// Hencky membrane under 1e300 reached none, and its start was written as the state at the full
+// load (t = 1, no deflection) with final_time 1 and 30 steps (third hostile-input attack).
+TEST(HostileSettings, AFailedStaticRunsLastRowIsWhereItsLastEquilibriumIs) {
+  const fs::path out = scratch("static_failed");
+  const Outcome o =
+      runChute("run " CHUTE_SOURCE_DIR "/cases/hencky.toml --quiet " +
+               std::string("--set loads.pressure.0.pressure=1e300 --out ") + out.string());
+  std::printf("hencky under 1e300: status %d: %s", o.status, o.err.c_str());
+  EXPECT_EQ(o.status, 3);
+  std::ifstream in(out / "probes.csv");
+  std::string line, last;
+  while (std::getline(in, line))
+    if (!line.empty()) last = line;
+  const auto cells = splitCsv(last);
+  ASSERT_FALSE(cells.empty());
+  EXPECT_EQ(std::stod(cells[0]), 0.0) << last;  // no increment converged: the start, unloaded
+  const std::string summary = bytes(out / "summary.json");
+  EXPECT_NE(summary.find("\"final_time\": 0.0"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"steps\": 0"), std::string::npos) << summary;
+}
+
 // A static load that equilibrium follows only in increments halved near their floor (gravity
 // 1e9 on the capstan belt) converged one 1e-8 step of the load after another for hours; the
 // load stepping's increments are bounded (docs/limits.md) and the run ends as diverged.
