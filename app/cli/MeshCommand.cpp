@@ -313,6 +313,12 @@ void addOutputOptions(CLI::App* p, Outputs& o) {
       ->default_val(0.1);
   p->add_option("--t-end", o.caseOptions.tEnd, "case: end time")->default_val(2.0);
   p->add_option("--dt", o.caseOptions.dt, "case: time step")->default_val(2e-3);
+  p->add_option("--probe-interval", o.caseOptions.probeInterval,
+                "case: time between probes.csv rows")
+      ->default_val(o.caseOptions.probeInterval);
+  p->add_option("--vtu-interval", o.caseOptions.vtuInterval,
+                "case: time between VTU frames (0: no series)")
+      ->default_val(o.caseOptions.vtuInterval);
   p->add_flag("--quiet", o.quiet, "print nothing");
 }
 

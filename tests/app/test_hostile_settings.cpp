@@ -347,6 +347,25 @@ TEST(HostileSettings, AFailedStaticRunsLastRowIsWhereItsLastEquilibriumIs) {
   EXPECT_NE(summary.find("\"steps\": 0"), std::string::npos) << summary;
 }
 
+// The output intervals of a generated case (limits.md names them; the generator checked them but
+// the command line did not take them): given, they are the case's; beyond what a case writes by
+// default, refused by name before meshing.
+TEST(HostileSettings, AGeneratedCasesOutputIntervalsAreOptionsAndBounded) {
+  const fs::path dir = scratch("generated_intervals", true);
+  const std::string args =
+      "mesh parachute --gores 6 --diameter 1 --line-length 1 --element-size 0.3 --units si "
+      "--t-end 0.1 --out " +
+      (dir / "p.msh").string() + " --case " + (dir / "p.toml").string() + " --quiet ";
+  ASSERT_EQ(runChute(args + "--probe-interval 0.02 --vtu-interval 0").status, 0);
+  const std::string text = bytes(dir / "p.toml");
+  EXPECT_NE(text.find("[output]\ninterval = 0.02"), std::string::npos) << text;
+  EXPECT_EQ(text.find("[output.vtu]"), std::string::npos) << text;
+  const Outcome rows = runChute(args + "--probe-interval 1e-8");
+  std::printf("--probe-interval 1e-8 -> %d: %s", rows.status, rows.err.c_str());
+  EXPECT_EQ(rows.status, 2);
+  EXPECT_NE(rows.err.find("--probe-interval"), std::string::npos) << rows.err;
+}
+
 // A static load that equilibrium follows only in increments halved near their floor (gravity
 // 1e9 on the capstan belt) converged one 1e-8 step of the load after another for hours; the
 // load stepping's increments are bounded (docs/limits.md) and the run ends as diverged.
