@@ -100,6 +100,9 @@ void ParachuteSpec::validate() const {
   if (lineSlack < 0.0 || lineSlack >= 0.5) bad("--line-slack", "must be in [0, 0.5)");
   if (packLength < 0.0) bad("--pack-length", "must not be negative");
   if (packDiameter < 0.0) bad("--pack-diameter", "must not be negative");
+  // A bag wider than the canopy's flat diameter packs nothing (1e6 was refused naming
+  // --pack-length: its runs' crossings took up the whole canopy).
+  if (packDiameter > diameter) bad("--pack-diameter", "larger than the canopy's --diameter");
   if (packGap < 0.0) bad("--pack-gap", "must not be negative");
   checkLimits();
   if (start == "packed") packLayout(*this);  // throws naming the --pack-* option
