@@ -170,7 +170,8 @@ def main():
     ap.add_argument("--cb", default="-0.6,-0.7,-0.8,-0.9")
     ap.add_argument("--speeds", default="20,30,40", help="opening: the winds, m/s")
     ap.add_argument("--ensemble", type=int, default=1,
-                    help="opening: runs per speed that differ by round-off only (k = 0, 1, ...)")
+                    help="opening, payload: runs per speed or payload that differ by round-off "
+                         "only (k = 0, 1, ...)")
     ap.add_argument("--from-csv", default="",
                     help="convergence: no runs; the table from these comma-separated CSV files "
                          "of earlier convergence runs (e.g. a finer mesh run apart)")
@@ -219,8 +220,10 @@ def main():
     elif a.what == "payload":
         m = next(x for x in MATRIX if x["name"].startswith("c9"))
         for pay in (50.0, 100.0, 150.0, 200.0):
-            jobs.append(("payload_%g" % pay, m, dict(start="folded", speed=40.0, payload=pay,
-                                                     t_end=a.t_end or 6.0, sets=a.set)))
+            for k in range(a.ensemble):  # k > 0: round-off only (bench/roundoff.py)
+                jobs.append(("payload_%g" % pay + ("_k%d" % k if a.ensemble > 1 else ""), m,
+                             dict(start="folded", speed=40.0, payload=pay,
+                                  t_end=a.t_end or 6.0, sets=a.set, perturb=k)))
     elif a.what == "porosity":
         m = next(x for x in MATRIX if x["name"].startswith("c9"))
         for cfm in (0.0, 30.0, 100.0, 200.0, 300.0):
