@@ -157,12 +157,18 @@ class KeptOutputs {
       Kept k;
       k.existed = fs::exists(path, ec);
       k.target = k.existed ? fs::canonical(path, ec) : fs::path(path);
-      if (ec) throw std::invalid_argument("'" + path + "': " + ec.message());
+      if (ec) {
+        restore();
+        throw std::invalid_argument("'" + path + "': " + ec.message());
+      }
       if (k.existed) {
         k.aside = k.target.parent_path() / ("." + k.target.filename().string() + ".chute-kept-" +
                                             std::to_string(::getpid()));
         fs::rename(k.target, k.aside, ec);
-        if (ec) throw std::invalid_argument("'" + path + "' cannot be replaced: " + ec.message());
+        if (ec) {
+          restore();  // the ones already kept aside (no destructor runs for this one)
+          throw std::invalid_argument("'" + path + "' cannot be replaced: " + ec.message());
+        }
       }
       kept_.push_back(k);
     }
@@ -175,15 +181,17 @@ class KeptOutputs {
       if (k.existed) std::filesystem::remove(k.aside, ec);
     kept_.clear();
   }
-  ~KeptOutputs() {
+  ~KeptOutputs() { restore(); }
+
+ private:
+  void restore() {
     std::error_code ec;
     for (const auto& k : kept_) {
       std::filesystem::remove(k.target, ec);
       if (k.existed) std::filesystem::rename(k.aside, k.target, ec);
     }
+    kept_.clear();
   }
-
- private:
   struct Kept {
     std::filesystem::path target, aside;
     bool existed = false;
