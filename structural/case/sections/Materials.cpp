@@ -29,6 +29,9 @@ kernels::LineMaterial readMaterial(TomlTable t) {
   m.area = t.positive("area");
   m.density = t.nonNegative("density", 0.0);
   m.compressionStiffnessRatio = t.nonNegative("compression_stiffness_ratio", 0.0);
+  // E_c / E: a cable or cord no stiffer in compression than in tension (1: a truss member);
+  // 1e300 overflowed the mass and was refused as "mass not finite", naming no key.
+  if (m.compressionStiffnessRatio > 1.0) t.fail("compression_stiffness_ratio", "must be in [0, 1]");
   t.finish();
   return m;
 }

@@ -12,6 +12,7 @@ namespace {
 // Most steps a dynamic run may ask for (t_end / dt), and the least step relative to t_end that
 // still advances time (a few ulps of t_end).
 constexpr double kMaxSteps = 1e9;
+constexpr double kMaxMassDamping = 1e12;  // 1/s
 constexpr double kLeastRelativeStep = 1e-15;
 
 // The terms the energy-momentum scheme has discrete gradients for (docs/formulation.md section
@@ -87,6 +88,9 @@ void readSolver(CaseSpec& c, TomlTable s) {
              "is given with target_dt: both ask for mass scaling, give one");
     sv.stiffnessDamping = s.nonNegative("stiffness_damping", 0.0);
     m.massDamping = s.nonNegative("mass_damping", 0.0);
+    // alpha M overflowed at 1.8e308 and was refused as "mass not finite", naming no key; 1e12 /s
+    // damps a mode of 1e-12 s critically, beyond any step a run takes (docs/limits.md).
+    if (m.massDamping > kMaxMassDamping) s.fail("mass_damping", "must be at most 1e12 (1/s)");
     sv.energyTolerance = s.nonNegative("energy_tolerance", sv.energyTolerance);
     if (sv.rhoInf < 0.0 || sv.rhoInf > 1.0) s.fail("rho_inf", "must be in [0, 1]");
     sv.dtMin = s.positive("dt_min", sv.dt * 1e-6);
