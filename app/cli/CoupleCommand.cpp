@@ -92,20 +92,14 @@ int couple(const CoupleArgs& a) {
   // The windows, checked before anything is written (exit-codes.md): a window or an end time
   // shorter than the case's least step cannot be stepped, and the windows to the end are bounded
   // as a run's steps are (limits.md).
-  if (a.window > 0.0 && a.window < spec.solver.dtMin) {
-    fmt::print(stderr,
-               "chute: couple: --window: {:g} is shorter than the case's least step "
-               "(solver.dt_min = {:g})\n",
-               a.window, spec.solver.dtMin);
-    return kExitBadInput;
-  }
-  if (a.tEnd > 0.0 && a.tEnd < spec.solver.dtMin) {
-    fmt::print(stderr,
-               "chute: couple: --t-end: {:g} is shorter than the case's least step "
-               "(solver.dt_min = {:g})\n",
-               a.tEnd, spec.solver.dtMin);
-    return kExitBadInput;
-  }
+  for (const auto& [option, given] : {std::pair{"--window", a.window}, {"--t-end", a.tEnd}})
+    if (given > 0.0 && given < spec.solver.dtMin) {
+      fmt::print(stderr,
+                 "chute: couple: {}: {:g} is shorter than the case's least step "
+                 "(solver.dt_min = {:g})\n",
+                 option, given, spec.solver.dtMin);
+      return kExitBadInput;
+    }
   if (const double window = a.window > 0.0 ? a.window : spec.solver.dt;
       tEnd / std::min(window, tEnd) > kMaxWindows) {
     fmt::print(stderr, "chute: couple: --window: {:g} windows to t = {:g}, more than {:g}\n",

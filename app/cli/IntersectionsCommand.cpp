@@ -105,12 +105,7 @@ Command addIntersectionsCommand(CLI::App& app) {
             fmt::print(stderr, "chute: intersections: {}\n", e.what());
             return kExitBadInput;
           }
-          try {
-            last = mesh::countIntersections(m);
-          } catch (const std::invalid_argument& e) {  // cells naming points the frame lacks
-            fmt::print(stderr, "chute: intersections: {}: {}\n", file, e.what());
-            return kExitBadInput;
-          }
+          last = mesh::countIntersections(m);
           lastT = frames[i].t;
           any += last.total();
           if (!a->quiet)

@@ -42,10 +42,12 @@ CouplingReport runCoupled(CouplingInterface& s, const FlowParticipant& flow,
   const double window = cs.window > 0.0 ? cs.window : s.preferredTimeStep();
   const double tEnd = cs.tEnd > 0.0 ? cs.tEnd : s.endTime();
   // The first window's loads: the flow's answer to the initial state.
-  Eigen::VectorXd p = flow(writeInterfaceData(s));
-  if (!p.allFinite()) {
+  Eigen::VectorXd p;
+  try {
+    p = finiteAnswer(flow(writeInterfaceData(s)), s.time());
+  } catch (const CouplingError& e) {
     rep.converged = false;
-    rep.failure = "the flow's pressures are not finite at t = " + std::to_string(s.time());
+    rep.failure = e.what();
     return rep;
   }
   // They act from t = 0: the start's acceleration is taken under them (initial data).

@@ -20,8 +20,7 @@ class StaticLoadStepper {
   NewtonReport solveFromStart(StructuralState& s, int nSteps, double initialFactor);
   // The most Newton iterations one load increment took (converged or not).
   int maxIterationsInStep() const { return maxInStep_; }
-  // The load factor of the last equilibrium reached, and the increments that converged.
-  double reachedLoadFactor() const { return reached_; }
+  // The increments that converged.
   long incrementsTaken() const { return taken_; }
 
  private:

@@ -89,7 +89,7 @@ void readSolver(CaseSpec& c, TomlTable s) {
     sv.stiffnessDamping = s.nonNegative("stiffness_damping", 0.0);
     m.massDamping = s.nonNegative("mass_damping", 0.0);
     // alpha M overflowed at 1.8e308 and was refused as "mass not finite", naming no key; 1e12 /s
-    // damps a mode of 1e-12 s critically, beyond any step a run takes (docs/limits.md).
+    // damps a mode of 1e-12 s critically, beyond any step a run takes (docs/case-files.md).
     if (m.massDamping > kMaxMassDamping) s.fail("mass_damping", "must be at most 1e12 (1/s)");
     sv.energyTolerance = s.nonNegative("energy_tolerance", sv.energyTolerance);
     if (sv.rhoInf < 0.0 || sv.rhoInf > 1.0) s.fail("rho_inf", "must be in [0, 1]");
