@@ -1,5 +1,7 @@
 #include "terms/LineDragTerm.hpp"
 
+#include <algorithm>
+
 #include "kernels/LineDragKernel.hpp"
 
 namespace chute {
@@ -15,6 +17,15 @@ LineDragTerm::LineDragTerm(const Model& m, std::vector<const SlidingGroupState*>
     for (size_t g = 0; g < m.groups.size(); ++g)
       if (m.groups[g].set == m.drags[d].lineSet) groupsOf_[d].push_back(static_cast<int>(g));
   }
+}
+
+void LineDragTerm::leaveCables(const TakenCables& taken) {
+  cablesLeft_ = cablesOf_;
+  cablesTaken_ = taken != nullptr;
+  if (!taken) return;
+  for (auto& left : cablesLeft_)
+    left.erase(std::remove_if(left.begin(), left.end(), [&](int c) { return (*taken)[c] != 0; }),
+               left.end());
 }
 
 void LineDragTerm::addCouplings(std::vector<std::vector<int>>& cliques) const {
@@ -39,28 +50,31 @@ void LineDragTerm::addSegment(int a, int b, const Vec3& wind, double c, const Ev
   out.add<2>({a, b}, d.residual, &J);
 }
 
-// Per segment, 0.7 of an explicit membrane triangle (Term::assemblyCost).
+// Per segment, 0.7 of an explicit membrane triangle (Term::assemblyCost); none for the cables
+// whose drag the cable term took (CB1).
 double LineDragTerm::assemblyCost() const {
   double cost = 0.0;
-  for (const auto& d : m_->drags) {
+  for (size_t di = 0; di < m_->drags.size(); ++di) {
+    const auto& d = m_->drags[di];
     if (d.lineSet < 0) {
       cost += 0.7 * static_cast<double>(d.edges.size());
       continue;
     }
-    for (const auto& c : m_->cables) cost += c.set == d.lineSet ? 0.7 : 0.0;
+    cost += 0.7 * static_cast<double>((cablesTaken_ ? cablesLeft_ : cablesOf_)[di].size());
     for (const auto& g : m_->groups) cost += g.set == d.lineSet ? 0.7 * g.numElements() : 0.0;
   }
   return cost;
 }
 
 template <class Segment>
-void LineDragTerm::forEachSegment(const EvalPoint& p, Segment&& segment) const {
+void LineDragTerm::forEachSegment(const EvalPoint& p, bool fused, Segment&& segment) const {
+  const auto& cables = fused ? cablesLeft_ : cablesOf_;
   for (size_t di = 0; di < m_->drags.size(); ++di) {
     const auto& d = m_->drags[di];
     // Drag is an applied load: scaled by the load factor like the others (1 in dynamics).
     const double coef = d.coefficient * p.loadFactor;
     for (const auto& e : d.edges) segment(e[0], e[1], d.wind, coef);
-    for (int ci : cablesOf_[di]) segment(m_->cables[ci].a, m_->cables[ci].b, d.wind, coef);
+    for (int ci : cables[di]) segment(m_->cables[ci].a, m_->cables[ci].b, d.wind, coef);
     for (int gi : groupsOf_[di]) {
       const auto& g = m_->groups[gi];
       for (int k = 0; k < g.numElements(); ++k) {
@@ -78,12 +92,13 @@ void LineDragTerm::forEachSegment(const EvalPoint& p, Segment&& segment) const {
 
 void LineDragTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
   if (!p.inertia) return;  // drag needs motion: nothing in statics
+  const bool fused = cablesTaken_ && fusedLineDrag(*m_, p, out);
   if (out.wantMatrix())
-    forEachSegment(p, [&](int a, int b, const Vec3& wind, double coef) {
+    forEachSegment(p, fused, [&](int a, int b, const Vec3& wind, double coef) {
       addSegment(a, b, wind, coef, p, out);
     });
   else  // the explicit step's: residual only, inlined into the loops (LD1)
-    forEachSegment(p, [&](int a, int b, const Vec3& wind, double coef) {
+    forEachSegment(p, fused, [&](int a, int b, const Vec3& wind, double coef) {
       ++out.work().drag;
       out.addToEachNode<2>({a, b}, kernels::lineDragNodeResidual(
                                        p.x.segment<3>(3 * a), p.x.segment<3>(3 * b),

@@ -5,6 +5,7 @@
 
 #include "assembly/Term.hpp"
 #include "model/Model.hpp"
+#include "terms/LineDragFusion.hpp"
 #include "terms/sliding/SlidingGroupState.hpp"
 
 namespace chute {
@@ -24,6 +25,9 @@ class LineDragTerm final : public Term {
   // Reads the model and the sliding groups' active elements, which the search sets before an
   // assembly and no assembly writes: it may run on either thread, beside the groups themselves.
   bool assemblesApart() const override { return true; }
+  // CB1: the cables whose drag the cable term adds on the explicit step's evaluations
+  // (fusedLineDrag), left out there (nullptr: none).
+  void leaveCables(const TakenCables& taken);
 
  private:
   // With the Jacobian (the residual-only segments are inlined into assemble's loop).
@@ -32,13 +36,16 @@ class LineDragTerm final : public Term {
   // segment(a, b, wind, coefficient) for every straight segment under drag, in model order: the
   // edges and cables of each drag load's set, and its sliding groups' elements (an active one as
   // its two parts through the slider).
+  // fused: the explicit step's evaluation, without the cables the cable term took (CB1).
   template <class Segment>
-  void forEachSegment(const EvalPoint& p, Segment&& segment) const;
+  void forEachSegment(const EvalPoint& p, bool fused, Segment&& segment) const;
   const Model* m_;
   std::vector<const SlidingGroupState*> groups_;
   // Per drag load (model order): the cables and the sliding groups of its line set, in model
   // order (found once, not by a search of every cable and group at every evaluation).
   std::vector<std::vector<int>> cablesOf_, groupsOf_;
+  std::vector<std::vector<int>> cablesLeft_;  // cablesOf_ less the taken cables (CB1)
+  bool cablesTaken_ = false;
 };
 
 }  // namespace chute

@@ -17,7 +17,12 @@ namespace chute {
 TermList::TermList(const Model& model, TermOptions options,
                    std::vector<std::unique_ptr<Term>> extraTerms) {
   // Only what the scene uses: a term exists only if the model has something for it.
-  if (!model.cables.empty()) terms_.push_back(std::make_unique<CableTerm>(model));
+  CableTerm* cables = nullptr;
+  if (!model.cables.empty()) {
+    auto t = std::make_unique<CableTerm>(model);
+    cables = t.get();
+    terms_.push_back(std::move(t));
+  }
   for (size_t g = 0; g < model.groups.size(); ++g) {
     auto t = std::make_unique<SlidingGroupTerm>(model, static_cast<int>(g), options.search);
     groups_.push_back(t.get());
@@ -42,7 +47,10 @@ TermList::TermList(const Model& model, TermOptions options,
   if (!model.drags.empty()) {
     std::vector<const SlidingGroupState*> states;
     for (auto* g : groups_) states.push_back(&g->state());
-    terms_.push_back(std::make_unique<LineDragTerm>(model, states));
+    auto t = std::make_unique<LineDragTerm>(model, states);
+    // CB1: the explicit step's drag of the cables in the cables' pass.
+    if (cables) t->leaveCables(cables->takeLineDrag());
+    terms_.push_back(std::move(t));
   }
   if (!model.faceDrags.empty()) {
     auto t = std::make_unique<FaceDragTerm>(model);

@@ -3,10 +3,16 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <bit>
+#include <cstdint>
 #include <cstring>
 #include <random>
+#include <utility>
+#include <vector>
 
+#include "kernels/CableBatch.hpp"
 #include "kernels/CableKernel.hpp"
+#include "kernels/LineDragKernel.hpp"
 #include "support/FiniteDifference.hpp"
 #include "support/LineGeometry.hpp"
 
@@ -152,4 +158,103 @@ TEST(CableKernel, ResidualOnlyIsTheFullEvaluationBitForBit) {
       EXPECT_EQ(cableMassTimes(L, rope(), kind, a), product) << trial;
     }
   }
+}
+
+// CB1: the explicit step's cables four at a time give, lane by lane, cableForceOnly's force less
+// the load factor times the weight (F5) plus lineDragNodeResidual's drag (LD1), bit for bit
+// (signs of zeros aside: a sum with a zero drag), in every state the scalar path has: taut,
+// slack, exactly zero strain, a compressed truss and a cable with compression stiffness, inside
+// the apex, no length, no drag, a cut cable (drag only), an empty lane; with and without drag
+// and weight; on every copy this processor runs.
+TEST(CableBatch, LanesAreTheScalarKernelsBitForBit) {
+  std::mt19937 rng(29);
+  std::normal_distribution<double> n(0, 1);
+  using Copy = void (*)(const double*, const double*, const CableLanes&, double, double,
+                        const std::int64_t(&)[kCableLanes], CableLaneVectors&);
+  std::vector<std::pair<const char*, Copy>> copies = {{"baseline", &cableForcesAndDragBaseline},
+                                                      {"dispatched", &cableForcesAndDrag}};
+  if (avx2Available()) copies.emplace_back("avx2", &cableForcesAndDragAvx2);
+  auto bits = [](double v) { return std::bit_cast<std::uint64_t>(v + 0.0); };
+  const Vec3 g(0.0, 0.0, -9.81);
+  int compared = 0, withDrag = 0, cut = 0;
+  for (int batch = 0; batch < 400; ++batch) {
+    // Eight nodes: lane l's cable from node 2l to node 2l + 1.
+    Eigen::VectorXd x(24), v(24);
+    for (int k = 0; k < 24; ++k) x[k] = n(rng), v[k] = n(rng);
+    CableLanes lanes;
+    std::int64_t elastic[kCableLanes];
+    std::vector<LineMaterial> mats(kCableLanes);
+    std::vector<double> Ls(kCableLanes), coefs(kCableLanes);
+    std::vector<Vec3> weights(kCableLanes), winds(kCableLanes);
+    std::vector<bool> empty(kCableLanes, false);
+    for (int l = 0; l < kCableLanes; ++l) {
+      const int kind = (batch * kCableLanes + l) % 11;
+      const double L = 0.5 + std::abs(n(rng));
+      const Vec3 xa = x.segment<3>(6 * l);
+      const double stretch = kind == 0   ? 0.9
+                             : kind == 1 ? 1.05
+                             : kind == 2 ? 1e-12
+                                         : 1.0 + 0.1 * n(rng);
+      Vec3 xb = xa + stretch * L * randomUnit(rng);
+      if (kind == 3) xb = xa;  // no length
+      if (kind == 4) {         // exactly zero strain
+        x.segment<3>(6 * l).setZero();
+        xb = Vec3(L, 0.0, 0.0);
+      }
+      x.segment<3>(6 * l + 3) = xb;
+      LineMaterial mat = rope(kind != 5);  // a truss
+      if (kind == 6) mat.compressionStiffnessRatio = 0.5;
+      if (kind == 7) mat.density = 0.0;
+      mats[l] = mat, Ls[l] = L;
+      weights[l] =
+          mat.density > 0.0 && kind != 8 ? Vec3(cableGravity(L, mat, g).head<3>()) : Vec3::Zero();
+      coefs[l] = kind == 9 ? 0.0 : 0.01 * std::abs(n(rng));
+      winds[l] = Vec3(n(rng), n(rng), n(rng));
+      empty[l] = kind == 10 && l == kCableLanes - 1;
+      if (empty[l])
+        clearCableLane(lanes, l);
+      else
+        setCableLane(lanes, l, 2 * l, 2 * l + 1, L, mat, weights[l], coefs[l], winds[l]);
+      elastic[l] = batch % 5 == 4 && l == 1 ? 0 : -1;
+    }
+    for (double loadFactor : {1.0, 0.7})
+      for (double dragFactor : {loadFactor, 0.0})
+        for (const auto& [name, copy] : copies) {
+          CableLaneVectors f;
+          copy(x.data(), v.data(), lanes, loadFactor, dragFactor, elastic, f);
+          for (int l = 0; l < kCableLanes; ++l) {
+            if (empty[l]) {
+              for (int k = 0; k < 3; ++k) {
+                EXPECT_EQ(f.v[0][k][l] + 0.0, 0.0);
+                EXPECT_EQ(f.v[1][k][l] + 0.0, 0.0);
+              }
+              continue;
+            }
+            const Vec3 xa = x.segment<3>(6 * l), xb = x.segment<3>(6 * l + 3);
+            Vec6 expect = Vec6::Zero();
+            if (elastic[l] != 0) {
+              expect = cableForceOnly(xa, xb, Ls[l], mats[l]);
+              Vec6 w;
+              w << weights[l], weights[l];
+              expect -= loadFactor * w;
+            } else {
+              ++cut;
+            }
+            const Vec3 drag =
+                lineDragNodeResidual(xa, xb, v.segment<3>(6 * l), v.segment<3>(6 * l + 3), winds[l],
+                                     coefs[l] * dragFactor);
+            withDrag += drag.squaredNorm() > 0.0;
+            for (int k = 0; k < 3; ++k) {
+              ASSERT_EQ(bits(f.v[0][k][l]), bits(expect[k] + drag[k]))
+                  << name << " batch " << batch << " lane " << l << " xyz " << k;
+              ASSERT_EQ(bits(f.v[1][k][l]), bits(expect[3 + k] + drag[k]))
+                  << name << " batch " << batch << " lane " << l;
+              ASSERT_EQ(bits(f.drag[k][l]), bits(drag[k])) << name;
+              compared += 3;
+            }
+          }
+        }
+  }
+  std::printf("%d entries compared bit for bit (%zu copies%s): %d with drag, %d of cut cables\n",
+              compared, copies.size(), avx2Available() ? ", AVX2 among them" : "", withDrag, cut);
 }
