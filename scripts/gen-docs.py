@@ -173,8 +173,8 @@ sliding groups' active elements, set between assemblies) and a coupled flow's su
 go to a second thread; sliding groups and point masses stay on the first. The split is made once
 per scene from costs per element measured on the C-9 slider case (one thread, residual only, in
 units of the explicit membrane triangle: pressure face 0.42, face-drag face 0.72 (a load the
-membranes' pass takes, P2: 0.23 added to the membranes), line element 0.7,
-line-drag segment 0.7, sliding element 0.9 and 8 more per slider, quad 5; the airflow's face 1.3,
+membranes' pass takes, P2: 0.23 added to the membranes), line element 0.7 (four at a time,
+CB1: 0.55, and 0.6 for the drag of its set taken into that pass), line-drag segment 0.7, sliding element 0.9 and 8 more per slider, quad 5; the airflow's face 1.3,
 measured on the generated C-9 in free flight, or 0.85 added to the membranes where their pass
 takes it, FL13; largest first, each to the lighter part, a tie to the second; the membranes as
 two halves of their cost, halved where the halves land in different parts), never from timings,

@@ -129,12 +129,13 @@ void CableTerm::addStiffnessBound(const Eigen::VectorXd& /*x*/, double t,
   }
 }
 
-// Per element, 0.7 of an explicit membrane triangle one by one, 0.3 in lanes, and 0.2 for the
-// drag taken (Term::assemblyCost).
+// Per element, 0.7 of an explicit membrane triangle one by one; in lanes 0.55, and 0.6 more for
+// the drag taken (Term::assemblyCost; the lanes with drag at 1.14 of a triangle, perf, the C-9
+// slider case on one thread).
 double CableTerm::assemblyCost() const {
   if (lanes_.empty()) return 0.7 * static_cast<double>(m_->cables.size());
   const double taken = static_cast<double>(std::count(takenSlot_.begin(), takenSlot_.end(), 1));
-  return 0.3 * static_cast<double>(m_->cables.size()) + 0.2 * taken;
+  return 0.55 * static_cast<double>(m_->cables.size()) + 0.6 * taken;
 }
 
 double CableTerm::stepEventFraction(const Eigen::VectorXd& x, const Eigen::VectorXd& dx) {
