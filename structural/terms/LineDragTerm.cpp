@@ -28,6 +28,10 @@ void LineDragTerm::leaveCables(const TakenCables& taken) {
                left.end());
 }
 
+void LineDragTerm::leaveGroups(std::vector<char> taken) {
+  groupsTaken_ = std::move(taken);
+}
+
 void LineDragTerm::addCouplings(std::vector<std::vector<int>>& cliques) const {
   for (const auto& d : m_->drags) {
     for (const auto& e : d.edges) cliques.push_back({e[0], e[1]});
@@ -61,14 +65,18 @@ double LineDragTerm::assemblyCost() const {
       continue;
     }
     cost += 0.7 * static_cast<double>((cablesTaken_ ? cablesLeft_ : cablesOf_)[di].size());
-    for (const auto& g : m_->groups) cost += g.set == d.lineSet ? 0.7 * g.numElements() : 0.0;
+    for (int gi : groupsOf_[di]) {  // a taken group's active elements alone: two parts each
+      const auto& g = m_->groups[gi];
+      const bool taken = !groupsTaken_.empty() && groupsTaken_[gi] != 0;
+      cost += 0.7 * (taken ? 2.0 * static_cast<double>(g.sliders.size()) : g.numElements());
+    }
   }
   return cost;
 }
 
 template <class Segment>
 void LineDragTerm::forEachSegment(const EvalPoint& p, bool fused, Segment&& segment) const {
-  const auto& cables = fused ? cablesLeft_ : cablesOf_;
+  const auto& cables = fused && cablesTaken_ ? cablesLeft_ : cablesOf_;
   for (size_t di = 0; di < m_->drags.size(); ++di) {
     const auto& d = m_->drags[di];
     // Drag is an applied load: scaled by the load factor like the others (1 in dynamics).
@@ -77,9 +85,11 @@ void LineDragTerm::forEachSegment(const EvalPoint& p, bool fused, Segment&& segm
     for (int ci : cables[di]) segment(m_->cables[ci].a, m_->cables[ci].b, d.wind, coef);
     for (int gi : groupsOf_[di]) {
       const auto& g = m_->groups[gi];
+      const bool activeOnly = fused && !groupsTaken_.empty() && groupsTaken_[gi] != 0;
       for (int k = 0; k < g.numElements(); ++k) {
         const int s = groups_[gi]->sliderOfElement(k);
         if (s < 0) {
+          if (activeOnly) continue;  // the group's own pass adds it (CB1)
           segment(g.chain[k], g.chain[k + 1], d.wind, coef);
         } else {  // the two straight parts through the slider
           segment(g.chain[k], g.sliders[s], d.wind, coef);
@@ -92,7 +102,7 @@ void LineDragTerm::forEachSegment(const EvalPoint& p, bool fused, Segment&& segm
 
 void LineDragTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
   if (!p.inertia) return;  // drag needs motion: nothing in statics
-  const bool fused = cablesTaken_ && fusedLineDrag(*m_, p, out);
+  const bool fused = (cablesTaken_ || !groupsTaken_.empty()) && fusedLineDrag(*m_, p, out);
   if (out.wantMatrix())
     forEachSegment(p, fused, [&](int a, int b, const Vec3& wind, double coef) {
       addSegment(a, b, wind, coef, p, out);

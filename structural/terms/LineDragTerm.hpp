@@ -28,6 +28,9 @@ class LineDragTerm final : public Term {
   // CB1: the cables whose drag the cable term adds on the explicit step's evaluations
   // (fusedLineDrag), left out there (nullptr: none).
   void leaveCables(const TakenCables& taken);
+  // CB1: per sliding group (model order), whether the group adds the drag of its inactive
+  // elements on those evaluations; this term then adds only its active elements' two parts.
+  void leaveGroups(std::vector<char> taken);
 
  private:
   // With the Jacobian (the residual-only segments are inlined into assemble's loop).
@@ -46,6 +49,7 @@ class LineDragTerm final : public Term {
   std::vector<std::vector<int>> cablesOf_, groupsOf_;
   std::vector<std::vector<int>> cablesLeft_;  // cablesOf_ less the taken cables (CB1)
   bool cablesTaken_ = false;
+  std::vector<char> groupsTaken_;  // per model group (CB1); empty: none
 };
 
 }  // namespace chute

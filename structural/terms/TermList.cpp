@@ -50,6 +50,10 @@ TermList::TermList(const Model& model, TermOptions options,
     auto t = std::make_unique<LineDragTerm>(model, states);
     // CB1: the explicit step's drag of the cables in the cables' pass.
     if (cables) t->leaveCables(cables->takeLineDrag());
+    std::vector<char> takenGroups;
+    for (auto* g : groups_) takenGroups.push_back(g->takeLineDrag() ? 1 : 0);
+    if (std::find(takenGroups.begin(), takenGroups.end(), 1) != takenGroups.end())
+      t->leaveGroups(std::move(takenGroups));
     terms_.push_back(std::move(t));
   }
   if (!model.faceDrags.empty()) {

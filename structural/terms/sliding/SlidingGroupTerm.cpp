@@ -6,12 +6,14 @@
 #include <limits>
 #include <stdexcept>
 
+#include "kernels/CableKernel.hpp"
 #include "kernels/PolylineDiscreteGradient.hpp"
 #include "kernels/SliderFriction.hpp"
 #include "kernels/SliderWhirlDamping.hpp"
 #include "kernels/SlidingCableKernel.hpp"
 #include "kernels/SlidingDiscreteGradient.hpp"
 #include "kernels/StiffnessBound.hpp"
+#include "terms/LineDragFusion.hpp"
 #include "terms/LineElementAssembly.hpp"
 
 namespace chute {
@@ -27,6 +29,7 @@ using line_assembly::pos;
 // ---- SlidingGroupTerm ------------------------------------------------------------------------
 SlidingGroupTerm::SlidingGroupTerm(const Model& m, int group, SliderSearch search)
     : m_(&m), state_(m.groups[group]), search_(search) {
+  lanes_ = kernels::useAvx2();  // the baseline copy of the lanes is slower than one by one
   const auto& sliders = m.groups[group].sliders;
   for (size_t s = 0; s < sliders.size(); ++s) {
     const auto& c = m.constraint[sliders[s]];
@@ -377,6 +380,86 @@ void SlidingGroupTerm::addStiffnessBound(const Eigen::VectorXd& x, double /*t*/,
   }
 }
 
+bool SlidingGroupTerm::takeLineDrag() {
+  if (!lanes_) return false;
+  const DragLoadDef* only = nullptr;
+  int loads = 0;
+  for (const auto& d : m_->drags)
+    if (d.lineSet >= 0 && d.lineSet == state_.def().set) only = &d, ++loads;
+  if (loads != 1) return false;  // none, or several: the line-drag term adds them
+  drag_ = only;
+  return true;
+}
+
+void SlidingGroupTerm::assembleInactiveLanes(const EvalPoint& p, SystemAssembler& out,
+                                             bool withDrag) {
+  const auto& g = state_.def();
+  const auto& mat = m_->materials[g.material];
+  // The lanes as they are, unless an element changed since they were made.
+  bool same = laneDrag_ == (withDrag ? 1 : 0);
+  size_t next = 0;
+  for (int k = 0; k < g.numElements() && same; ++k) {
+    if (state_.sliderOfElement(k) >= 0) continue;
+    same = next < laneElements_.size() && laneElements_[next] == k &&
+           laneLengths_[next] == state_.refLength(k);
+    ++next;
+  }
+  if (!same || next != laneElements_.size()) {
+    const bool weighs = mat.density > 0.0 && m_->hasGravity();
+    const double coefficient = withDrag ? drag_->coefficient : 0.0;
+    const Vec3 wind = withDrag ? drag_->wind : Vec3::Zero();
+    laneElements_.clear();
+    laneLengths_.clear();
+    for (int k = 0; k < g.numElements(); ++k)
+      if (state_.sliderOfElement(k) < 0) {
+        laneElements_.push_back(k);
+        laneLengths_.push_back(state_.refLength(k));
+      }
+    const size_t n = laneElements_.size();
+    inactiveLanes_.resize((n + kernels::kCableLanes - 1) / kernels::kCableLanes);
+    for (size_t slot = 0; slot < inactiveLanes_.size() * kernels::kCableLanes; ++slot) {
+      auto& lanes = inactiveLanes_[slot / kernels::kCableLanes];
+      const int lane = static_cast<int>(slot % kernels::kCableLanes);
+      if (slot >= n) {
+        kernels::clearCableLane(lanes, lane);
+        continue;
+      }
+      const int k = laneElements_[slot];
+      const double L = laneLengths_[slot];
+      // addCableExplicitForce's weight, as cableGravity gives it.
+      const Vec3 weight =
+          weighs ? Vec3(kernels::cableGravity(L, mat, m_->gravity).head<3>()) : Vec3::Zero();
+      kernels::setCableLane(lanes, lane, g.chain[k], g.chain[k + 1], L, mat, weight, coefficient,
+                            wind);
+    }
+    laneDrag_ = withDrag ? 1 : 0;
+  }
+  // The energy balance's loads, when kept: the drag is a load, the weight is not.
+  Eigen::VectorXd* captured = withDrag ? out.fusedLoads() : nullptr;
+  kernels::CableLaneVectors f;
+  const std::int64_t elastic[kernels::kCableLanes] = {-1, -1, -1, -1};
+  const size_t n = laneElements_.size();
+  for (size_t b = 0; b < inactiveLanes_.size(); ++b) {
+    const auto& lanes = inactiveLanes_[b];
+    kernels::cableForcesAndDrag(p.x.data(), p.v.data(), lanes, p.loadFactor,
+                                withDrag ? p.loadFactor : 0.0, elastic, f);
+    for (int l = 0; l < kernels::kCableLanes && b * kernels::kCableLanes + l < n; ++l) {
+      ++out.work().lineElastic;
+      if (mat.density > 0.0) ++out.work().lineMass;
+      if (withDrag) ++out.work().drag;
+      kernels::Vec6 r;
+      for (int k = 0; k < 3; ++k) r[k] = f.v[0][k][l], r[3 + k] = f.v[1][k][l];
+      const int a = lanes.nodes[l][0], bn = lanes.nodes[l][1];
+      out.add<2>({a, bn}, r, nullptr);
+      if (captured)
+        for (int k = 0; k < 3; ++k) {
+          (*captured)[3 * a + k] += f.drag[k][l];
+          (*captured)[3 * bn + k] += f.drag[k][l];
+        }
+    }
+  }
+}
+
 void SlidingGroupTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
   if (p.inertiaOnly) {  // reads only (no floor_): may run alongside the assembly (EX2)
     assembleInertia(p, out);
@@ -388,10 +471,13 @@ void SlidingGroupTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
   floor_ = 0.0;
   if (condensed_ && p.xStart) return assembleCondensed(p, out);
   const bool explicitForces = line_assembly::explicitForcesOnly(*m_, p, out);
+  const bool inLanes = explicitForces && lanes_;
+  if (inLanes) assembleInactiveLanes(p, out, drag_ && fusedLineDrag(*m_, p, out));
   for (int k = 0; k < g.numElements(); ++k) {
     const int n1 = g.chain[k], n2 = g.chain[k + 1];
     const int s = state_.sliderOfElement(k);
     if (s < 0) {  // inactive: a plain two-node cable (docs/formulation.md section 3)
+      if (inLanes) continue;
       if (explicitForces)
         line_assembly::addCableExplicitForce(*m_, n1, n2, state_.refLength(k), mat, p, out);
       else

@@ -3,6 +3,7 @@
 // docs/friction.md) and its inactive elements as cables; runs the active-element search (F12) in
 // updateState() and the node hand-overs (RG2-RG3) at converged steps.
 #include "assembly/Term.hpp"
+#include "kernels/CableBatch.hpp"
 #include "kernels/Regularisations.hpp"
 #include "model/Model.hpp"
 #include "terms/sliding/SlidingGroupState.hpp"
@@ -18,6 +19,10 @@ class SlidingGroupTerm final : public Term, public EventSource {
   int updateState(const Eigen::VectorXd& x) override { return state_.search(x, search_); }
   long searchesPerUpdate() const override { return static_cast<long>(state_.def().sliders.size()); }
   void assemble(const EvalPoint& p, SystemAssembler& out) override;
+  // CB1: the drag of the inactive elements, when the group's line set has exactly one drag load,
+  // to be added in the group's pass on the explicit step's evaluations (fusedLineDrag), their
+  // elastic forces four at a time; whether it took it (never without AVX2).
+  bool takeLineDrag();
   void addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v, double t,
                  EnergyBreakdown& e) const override;
   // Configuration-dependent mass and gravity make the consistent Jacobian non-symmetric.
@@ -95,6 +100,18 @@ class SlidingGroupTerm final : public Term, public EventSource {
   ActiveParts activeParts(int element, const Eigen::VectorXd& x) const;
 
  private:
+  // The explicit step's inactive elements four at a time (CB1), with the taken drag when
+  // withDrag, in chain order (the active ones are assembled after them).
+  void assembleInactiveLanes(const EvalPoint& p, SystemAssembler& out, bool withDrag);
+  const DragLoadDef* drag_ = nullptr;  // the taken drag load (takeLineDrag)
+  bool lanes_ = false;                 // AVX2: the inactive elements in lanes
+  // The lanes of the inactive elements, made again only when an element's activity or reference
+  // length changed (a hand-over): the elements in them and their lengths, and whether the drag
+  // in them is the taken one.
+  std::vector<kernels::CableLanes> inactiveLanes_;
+  std::vector<int> laneElements_;
+  std::vector<double> laneLengths_;
+  int laneDrag_ = -1;
   // EvalPoint::inertiaOnly: M(x) a alone (EX2's lumped mass), reading the state and writing only
   // to out.
   void assembleInertia(const EvalPoint& p, SystemAssembler& out) const;
