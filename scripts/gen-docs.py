@@ -80,6 +80,8 @@ MD_PAGES = [
      "The airflow's loads in the membranes' pass, and the membranes in two halves, one sitting"),
     ("flight_per_node_work.md", "The airflow's per-node work in an explicit step, one sitting"),
     ("two_threads_whole_step.md", "Both threads on more of the explicit step, one sitting"),
+    ("c9_slider_real_time_2026-11-28.md",
+     "The C-9 slider case as shipped: line elements four at a time and mass scaling, one sitting"),
 ]
 
 
