@@ -243,10 +243,12 @@ bool SlidingGroupState::passedBeside(int slider, int end, const Eigen::VectorXd&
   // From clearly on the node's side at the step's start (a folded line with Delta ~ 0 throughout
   // never qualifies) ...
   if (!(committedGain_[end][slider] > band)) return false;
-  if (!foldOpen(slider, end, x)) return false;
+  // Near the node first (one length), the fold's two after it: a slider is far from both its
+  // element's nodes on most steps.
   const Vec3 xs = nodePos(x, def_->sliders[slider]);
   const double li = (xs - nodePos(x, def_->chain[k + end])).norm();
   if (!(li < kernels::kPassageCapture * ref_[k])) return false;
+  if (!foldOpen(slider, end, x)) return false;
   // ... to within the band or beyond it now.
   if (!(handoverGain(slider, end, x) <= band)) return false;
   transfer = handoverTransfer(slider, end, x);
