@@ -15,6 +15,17 @@ constexpr int kExitInterrupted = 4;    // SIGINT/SIGTERM: checkpoint and valid o
 constexpr int kExitOutputFailed = 5;   // a write failed (disk full): output whole up to a time
 constexpr int kExitIntersections = 6;  // `chute intersections --expect-none` found some
 
+// An output path given empty is refused by name: an unset shell variable in `--out "$DIR"` would
+// otherwise fall back to the default in silence (docs/cli.md).
+inline CLI::Validator notEmptyPath() {
+  return CLI::Validator(
+      [](std::string& s) {
+        return s.empty() ? std::string("an empty path (leave the option out for its default)")
+                         : std::string();
+      },
+      "");
+}
+
 struct Command {
   CLI::App* sub = nullptr;   // the CLI11 subcommand (owned by the application)
   std::function<int()> run;  // runs it once the command line is parsed; returns the exit status

@@ -260,7 +260,8 @@ Command addCoupleCommand(CLI::App& app) {
       ->take_all();
   cmd->add_option("--out", a->outDir,
                   "output directory (default out/<case name>): probes.csv, the VTU series, "
-                  "summary.json, and coupling.csv (one row per window)");
+                  "summary.json, and coupling.csv (one row per window)")
+      ->check(notEmptyPath());
   cmd->add_flag("--quiet", a->quiet, "no report on the terminal");
   return {cmd, [a] { return couple(*a); }};
 }

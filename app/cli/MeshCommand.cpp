@@ -212,7 +212,9 @@ std::function<int()> addMeshGeoCommand(CLI::App& mesh) {
       "run a gmsh script (.geo) and write its mesh. A gmsh script is a program: it can run "
       "shell commands (System) -- run only scripts you trust");
   g->add_option("script", a->script, "gmsh script (.geo)")->required();
-  g->add_option("--out", a->out, "mesh to write (.msh, format 4.1)")->required();
+  g->add_option("--out", a->out, "mesh to write (.msh, format 4.1)")
+      ->required()
+      ->check(notEmptyPath());
   g->add_option("--timeout", a->limits.seconds, "seconds the script may run")
       ->default_val(a->limits.seconds)
       ->check(CLI::Range(0.1, 86400.0));
@@ -308,8 +310,9 @@ void addFlightOptions(CLI::App* p, Outputs& o) {
 void addOutputOptions(CLI::App* p, Outputs& o) {
   p->add_option("--config", o.config,
                 "parameter file (TOML): option = value, names without '--'; the command line wins");
-  p->add_option("--out", o.out, "output mesh (.msh, format 4.1)");
-  p->add_option("--case", o.caseFile, "also write a case file that runs the mesh");
+  p->add_option("--out", o.out, "output mesh (.msh, format 4.1)")->check(notEmptyPath());
+  p->add_option("--case", o.caseFile, "also write a case file that runs the mesh")
+      ->check(notEmptyPath());
   p->add_option("--units", o.caseOptions.units,
                 "case: ft (ft, slug, s, lbf) or si (m, kg, s, N); the mesh's lengths are in them")
       ->default_val("ft")

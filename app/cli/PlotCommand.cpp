@@ -52,7 +52,7 @@ Command addPlotCommand(CLI::App& app) {
   cmd->add_option("--size", a->size,
                   "image size WxH (each side 16 to 8192, at most 33,554,432 pixels)")
       ->default_val("1200x700");
-  cmd->add_option("--out", a->o.out, "PNG file")->default_val("plot.png");
+  cmd->add_option("--out", a->o.out, "PNG file")->default_val("plot.png")->check(notEmptyPath());
   return {cmd, [a] {
             if (const auto bad = parseImageSize(a->size, a->o.width, a->o.height)) {
               fmt::print(stderr, "chute: plot: --size: {}\n", *bad);

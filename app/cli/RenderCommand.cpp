@@ -35,7 +35,8 @@ Command addRenderCommand(CLI::App& app) {
                 "membrane fields element by element (default: averaged at the nodes for display)");
   cmd->add_option("--compare", a->o.compareDir, "a second run shown side by side");
   cmd->add_option("--size", a->size, "image size WxH")->default_val("1280x720");
-  cmd->add_option("--out", a->o.outDir, "directory for the PNG files (default RUN_DIR/snapshots)");
+  cmd->add_option("--out", a->o.outDir, "directory for the PNG files (default RUN_DIR/snapshots)")
+      ->check(notEmptyPath());
   cmd->add_flag("--quiet", a->quiet, "do not list the files written");
   return {cmd, [a] {
             if (const auto bad = parseImageSize(a->size, a->o.width, a->o.height)) {

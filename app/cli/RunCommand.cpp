@@ -87,7 +87,8 @@ Command addRunCommand(CLI::App& app) {
   auto a = std::make_shared<RunArgs>();
   auto* run = app.add_subcommand("run", "run a case file");
   run->add_option("case", a->caseFile, "case file (TOML)")->required();
-  run->add_option("--out", a->outDir, "output directory (default out/<case name>/)");
+  run->add_option("--out", a->outDir, "output directory (default out/<case name>/)")
+      ->check(notEmptyPath());
   run->add_option(
          "--set", a->sets,
          "override a value of the case by its dotted path, e.g. solver.dt=1e-4 (docs/cli.md)")

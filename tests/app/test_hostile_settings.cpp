@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -418,4 +419,32 @@ TEST(HostileSettings, ASubnormalFirstLoadFactorStillStepsToTheLoad) {
     worst = std::max(worst, std::abs(a[i] - b[i]) / std::max(1.0, std::abs(b[i])));
   std::printf("largest difference of the last probe row from the reference run: %.3g\n", worst);
   EXPECT_LT(worst, 1e-6);
+}
+
+// An output path given empty (an unset shell variable in `--out "$DIR"`) is refused by name with
+// status 2 by every verb that writes, instead of falling back to the default in silence; a case
+// file next to it is not written.
+TEST(HostileSettings, AnEmptyOutputPathIsRefusedByName) {
+  const fs::path dir = scratch("empty_out", true);
+  const std::string caseFile = (dir / "p.toml").string();
+  // (verb, arguments, the option named)
+  const std::vector<std::array<std::string, 3>> verbs = {
+      {"run", "run " + kBead + " --out ''", "--out"},
+      {"couple", "couple " + kBead + " --out ''", "--out"},
+      {"render", "render " + dir.string() + " --out ''", "--out"},
+      {"plot", "plot " + dir.string() + " --out ''", "--out"},
+      {"mesh parachute", "mesh parachute --out '' --case " + caseFile, "--out"},
+      {"mesh parachute --case", "mesh parachute --out " + (dir / "p.msh").string() + " --case ''",
+       "--case"},
+      {"mesh geo", "mesh geo " + (dir / "x.geo").string() + " --out ''", "--out"},
+  };
+  for (const auto& [what, args, option] : verbs) {
+    const Outcome o = runChute(args);
+    std::printf("%-24s -> %d: %s", what.c_str(), o.status, o.err.c_str());
+    EXPECT_EQ(o.status, 2) << what;
+    EXPECT_EQ(lines(o.err), 1) << what;
+    EXPECT_NE(o.err.find(option + ": an empty path"), std::string::npos) << what << ": " << o.err;
+  }
+  EXPECT_FALSE(fs::exists(caseFile));
+  EXPECT_FALSE(fs::exists(dir / "p.msh"));
 }
