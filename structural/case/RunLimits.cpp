@@ -73,7 +73,17 @@ void checkRunSize(const CaseSpec& spec, TimeIntegrator& integrator, const Struct
     const auto mat = materialAt(m, est->limitingNode);
     if (undampedSteps > kMaxRunSteps || !(est->undamped > 0.0)) {
       if (mat) {
-        key = mat->key + (spec.settings.count(mat->key + ".density") ? ".density" : ".E");
+        // The key to name: the one of the two the command line overrode, if just one was (the
+        // likelier slip), else the density where the case gives it, else E.
+        auto overridden = [&](const std::string& k) {
+          const auto it = spec.settings.find(k);
+          return it != spec.settings.end() && it->second.origin.rfind("--set", 0) == 0;
+        };
+        const std::string E = mat->key + ".E", density = mat->key + ".density";
+        if (overridden(E) != overridden(density))
+          key = overridden(E) ? E : density;
+        else
+          key = spec.settings.count(density) ? density : E;
         why = fmt::format(
             "the stable step at {} (E = {}, density = {}) is {} before any safety "
             "factor: E or the density is out of scale",

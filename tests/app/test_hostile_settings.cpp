@@ -75,6 +75,10 @@ TEST(HostileSettings, ExplicitStepsThatWouldNeverEndAreRefused) {
                 "solver.safety_factor");
   expectRefused("stiffness_damping 1e3", "run " + kDrop + " --set solver.stiffness_damping=1e3",
                 "solver.stiffness_damping");
+  // A line's E overridden where the case gives both E and density: the override is named.
+  expectRefused("tape E 1e300",
+                "run " CHUTE_SOURCE_DIR "/cases/c9_slider.toml --set materials.tape.E=1e300",
+                "--set materials.tape.E=1e300: materials.tape.E:");
 }
 
 // Selective mass scaling: a quantile outside [0, 0.5], or asked for together with target_dt.
