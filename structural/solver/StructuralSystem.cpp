@@ -42,6 +42,15 @@ StructuralSystem::StructuralSystem(const Model& model, TermOptions options,
 
   std::vector<std::vector<int>> cliques;
   for (const auto& t : terms_) t->addCouplings(cliques);
+  // Nodes no term touches (in no element, load or point mass) with a free dof: neither stiffness
+  // nor mass there, so the equations are singular (the run refuses them, untouchedFreeNodes()).
+  std::vector<char> touched(model.numNodes(), 0);
+  for (const auto& c : cliques)
+    for (int n : c) touched[n] = 1;
+  for (int n = 0; n < model.numNodes(); ++n) {
+    const auto& c = model.constraint[n];
+    if (!touched[n] && !(c.fixed[0] && c.fixed[1] && c.fixed[2])) untouchedFreeNodes_.push_back(n);
+  }
   assembler_.buildPattern(cliques);
   splitAssembly();
 }

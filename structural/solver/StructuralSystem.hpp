@@ -38,6 +38,9 @@ class StructuralSystem {
   StructuralState initialState() const;
   // Whether node i has a free dof (its rows are part of the free system).
   const std::vector<char>& freeNodes() const { return freeNode_; }
+  // The nodes with a free dof that no term touches (no element, load or point mass): the
+  // equations are singular there.
+  const std::vector<int>& untouchedFreeNodes() const { return untouchedFreeNodes_; }
 
   // Tells every term which kind of integrator steps the system (Term::prepareFor), once.
   void prepareFor(const IntegrationTraits& traits);
@@ -172,6 +175,7 @@ class StructuralSystem {
   DofMap dofs_;
   std::vector<int> constrainedDofs_;  // the dofs without an equation, in order (prescribeMotion)
   std::vector<char> freeNode_;
+  std::vector<int> untouchedFreeNodes_;
   TermList list_;
   const std::vector<std::unique_ptr<Term>>& terms_;  // list_'s
   std::vector<EventSource*> events_;

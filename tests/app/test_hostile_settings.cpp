@@ -452,3 +452,24 @@ TEST(HostileSettings, AnEmptyOutputPathIsRefusedByName) {
   EXPECT_FALSE(fs::exists(caseFile));
   EXPECT_FALSE(fs::exists(dir / "p.msh"));
 }
+
+// A free node in no element, load or point mass (a stray entry of [nodes]): refused by name with
+// status 2 before anything is written, implicit or explicit (an implicit run had halved its first
+// step down to dt_min and stopped with status 3; an explicit one named it as massless).
+TEST(HostileSettings, AFreeNodeNothingTouchesIsRefusedByName) {
+  const fs::path dir = scratch("stray", true);
+  std::ifstream in(CHUTE_SOURCE_DIR "/cases/pulley.toml");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string toml = text.str();
+  const std::string anchor = "right_end = [0.0, 0.0, -60.0]\n";
+  const size_t at = toml.find(anchor);
+  ASSERT_NE(at, std::string::npos);
+  toml.insert(at + anchor.size(), "stray = [5.0, 0.0, 0.0]\n");
+  const fs::path stray = dir / "stray.toml";
+  std::ofstream(stray) << toml;
+  expectRefused("stray node, implicit", "run " + stray.string(), "nodes.stray: 1 free node(s)");
+  expectRefused("stray node, explicit",
+                "run " + stray.string() + " --set solver.integrator='\"central_difference\"'",
+                "nodes.stray: 1 free node(s)");
+}
