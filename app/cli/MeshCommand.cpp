@@ -96,6 +96,13 @@ std::string applyParameterFile(CLI::App& cmd, const std::string& file) {
     const std::string where = file + ":" + std::to_string(value.location().line()) + ": " + key;
     if (!opt || key == "config") return where + ": not an option of chute mesh parachute";
     if (opt->count() > 0) continue;  // the command line wins
+    // A number given as a TOML string ("8") is refused as the case reader refuses it: a parameter
+    // file's types are TOML's, not the command line's text.
+    const std::string type = opt->get_type_name();
+    const bool numeric = type == "INT" || type == "UINT" || type == "FLOAT" || type == "NUMBER";
+    if (numeric && (value.is_string() || (value.is_array() && !value.as_array().empty() &&
+                                          value.as_array()[0].is_string())))
+      return where + ": a number, not a string (write it without quotes)";
     std::vector<std::string> results;
     if (value.is_array()) {
       for (const auto& v : value.as_array())

@@ -473,3 +473,18 @@ TEST(HostileSettings, AFreeNodeNothingTouchesIsRefusedByName) {
                 "run " + stray.string() + " --set solver.integrator='\"central_difference\"'",
                 "nodes.stray: 1 free node(s)");
 }
+
+// `chute mesh parachute --config`: a number written as a TOML string is refused by name, as the
+// case reader refuses one, rather than read as the command line's text.
+TEST(HostileSettings, AParameterFileNumberGivenAsAStringIsRefused) {
+  const fs::path dir = scratch("config_string", true);
+  const fs::path config = dir / "p.toml";
+  std::ofstream(config) << "gores = \"8\"\ndiameter = 5.0\nline-length = 6.0\nelement-size = 0.5\n";
+  const Outcome o = runChute("mesh parachute --config " + config.string() + " --units si --out " +
+                             (dir / "p.msh").string());
+  std::printf("gores = \"8\" -> %d: %s", o.status, o.err.c_str());
+  EXPECT_EQ(o.status, 2);
+  EXPECT_EQ(lines(o.err), 1);
+  EXPECT_NE(o.err.find("p.toml:1: gores: a number, not a string"), std::string::npos) << o.err;
+  EXPECT_FALSE(fs::exists(dir / "p.msh"));
+}
