@@ -1,13 +1,8 @@
 #include "kernels/CableBatch.hpp"
 
-#include <cstring>
-
 #include "kernels/CableKernel.hpp"
+#include "kernels/LaneVectors.hpp"
 #include "kernels/Regularisations.hpp"
-
-// GCC warns that a 32-byte vector returned without AVX changes the calling convention; in this
-// file such vectors live only inside the inlined body, never across a call.
-#pragma GCC diagnostic ignored "-Wpsabi"
 
 namespace chute::kernels {
 
@@ -34,28 +29,15 @@ void clearCableLane(CableLanes& lanes, int lane) {
 }
 
 namespace {
-// GCC's vector extension, as in MembraneTriangleBatch.cpp: four doubles, four 64-bit masks.
-using V = double __attribute__((vector_size(8 * kCableLanes)));
-using M = std::int64_t __attribute__((vector_size(8 * kCableLanes)));
-
-[[gnu::always_inline]] inline V load(const double* p) {
-  V v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
-}
-[[gnu::always_inline]] inline M loadMask(const std::int64_t* p) {
-  M v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
-}
-[[gnu::always_inline]] inline V all(double s) {
-  return V{s, s, s, s};
-}
-[[gnu::always_inline]] inline V sqrt(const V& a) {
-  V r;
-  for (int l = 0; l < kCableLanes; ++l) r[l] = __builtin_sqrt(a[l]);
-  return r;
-}
+// The lanes' vectors and their helpers (kernels/LaneVectors.hpp).
+static_assert(kCableLanes == lanes::kLanes);
+using lanes::all;
+using lanes::load;
+using lanes::loadMask;
+using lanes::M;
+using lanes::sqrt;
+using lanes::store;
+using lanes::V;
 
 // CB1: cableForceOnly, the weight and lineDragNodeResidual lane by lane, each in its own
 // operations' order (Eigen's three-term sums and dot products run left to right).
@@ -111,9 +93,9 @@ using M = std::int64_t __attribute__((vector_size(8 * kCableLanes)));
     const V drag = none ? zero : k * u[c];
     const V a = (N * (zero - g) - weight) + drag;
     const V b = (N * (zero + g) - weight) + drag;
-    std::memcpy(f.v[0][c], &a, sizeof a);
-    std::memcpy(f.v[1][c], &b, sizeof b);
-    std::memcpy(f.drag[c], &drag, sizeof drag);
+    store(f.v[0][c], a);
+    store(f.v[1][c], b);
+    store(f.drag[c], drag);
   }
 }
 

@@ -1,12 +1,8 @@
 #include "kernels/MembraneTriangleBatch.hpp"
 
 #include <cstddef>
-#include <cstring>
 
-// GCC warns that a 32-byte vector returned without AVX changes the calling convention; in this
-// file such vectors live only inside the inlined body and its helpers, never across a call (the
-// helpers take them by reference: by value GCC notes the parameters' convention).
-#pragma GCC diagnostic ignored "-Wpsabi"
+#include "kernels/LaneVectors.hpp"
 
 namespace chute::kernels {
 
@@ -22,37 +18,16 @@ void setLane(MembraneTriangleLanes& lanes, int lane, const MembraneTriangleRecor
 }
 
 namespace {
-// GCC's vector extension: four doubles, and four 64-bit masks (all bits set: true). On the
-// baseline instruction set each operation is made of two SSE2 ones, on AVX2 of one.
-using V = double __attribute__((vector_size(8 * kTriangleLanes)));
-using M = std::int64_t __attribute__((vector_size(8 * kTriangleLanes)));
-
-[[gnu::always_inline]] inline V load(const double* p) {
-  V v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
-}
-[[gnu::always_inline]] inline M loadMask(const std::int64_t* p) {
-  M v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
-}
-[[gnu::always_inline]] inline void store(double* p, const V& v) {
-  std::memcpy(p, &v, sizeof v);
-}
-[[gnu::always_inline]] inline V all(double s) {
-  return V{s, s, s, s};
-}
-[[gnu::always_inline]] inline V sqrt(const V& a) {
-  V r;
-  for (int l = 0; l < kTriangleLanes; ++l) r[l] = __builtin_sqrt(a[l]);
-  return r;
-}
-[[gnu::always_inline]] inline V abs(const V& a) {
-  V r;
-  for (int l = 0; l < kTriangleLanes; ++l) r[l] = __builtin_fabs(a[l]);
-  return r;
-}
+// The lanes' vectors and their helpers (kernels/LaneVectors.hpp).
+static_assert(kTriangleLanes == lanes::kLanes);
+using lanes::abs;
+using lanes::all;
+using lanes::load;
+using lanes::loadMask;
+using lanes::M;
+using lanes::sqrt;
+using lanes::store;
+using lanes::V;
 
 // triangleFaceLoad (TriangleFaceLoads.hpp) lane by lane, the same operations in the same order,
 // from the lanes' edges x1 - x0, x2 - x0 already formed and the velocities at v.

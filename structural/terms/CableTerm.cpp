@@ -28,11 +28,8 @@ CableTerm::CableTerm(const Model& m) : m_(&m) {
     }
     const auto& c = m.cables[slot];
     const auto& mat = m.materials[c.material];
-    // addCableExplicitForce's weight, as cableGravity gives it.
-    const Vec3 weight = mat.density > 0.0 && m.hasGravity()
-                            ? Vec3(kernels::cableGravity(c.L, mat, m.gravity).head<3>())
-                            : Vec3::Zero();
-    kernels::setCableLane(lanes, lane, c.a, c.b, c.L, mat, weight, 0.0, Vec3::Zero());
+    kernels::setCableLane(lanes, lane, c.a, c.b, c.L, mat,
+                          line_assembly::cableLaneWeight(m, c.L, mat), 0.0, Vec3::Zero());
     laneCable_[slot] = static_cast<int>(slot);
     anyCut_ = anyCut_ || std::isfinite(m.lineSets[c.set].cutAt);
   }
@@ -82,15 +79,7 @@ void CableTerm::assembleLanes(const EvalPoint& p, SystemAssembler& out, bool wit
       }
       const bool dragged = withDrag && takenSlot_[b * kernels::kCableLanes + l] != 0;
       if (dragged) ++out.work().drag;
-      kernels::Vec6 r;
-      for (int k = 0; k < 3; ++k) r[k] = f.v[0][k][l], r[3 + k] = f.v[1][k][l];
-      const int a = lanes.nodes[l][0], bn = lanes.nodes[l][1];
-      out.add<2>({a, bn}, r, nullptr);
-      if (captured && dragged)
-        for (int k = 0; k < 3; ++k) {
-          (*captured)[3 * a + k] += f.drag[k][l];
-          (*captured)[3 * bn + k] += f.drag[k][l];
-        }
+      line_assembly::scatterCableLane(lanes, f, l, dragged ? captured : nullptr, out);
     }
   }
 }

@@ -7,6 +7,7 @@
 
 #include "assembly/SystemAssembler.hpp"
 #include "assembly/Term.hpp"
+#include "kernels/CableBatch.hpp"
 #include "kernels/CableKernel.hpp"
 #include "kernels/Regularisations.hpp"
 #include "model/Model.hpp"
@@ -80,6 +81,29 @@ inline bool explicitForcesOnly(const Model& m, const EvalPoint& p, const SystemA
     if (m.hasGravity()) r -= p.loadFactor * kernels::cableGravity(L, mat, m.gravity);
   }
   out.add<2>({a, b}, r, nullptr);
+}
+
+// CB1's lane of a cable of reference length L: addCableExplicitForce's weight per node, as
+// cableGravity gives it (zero without density or gravity).
+inline Vec3 cableLaneWeight(const Model& m, double L, const kernels::LineMaterial& mat) {
+  return mat.density > 0.0 && m.hasGravity()
+             ? Vec3(kernels::cableGravity(L, mat, m.gravity).head<3>())
+             : Vec3::Zero();
+}
+
+// Lane `lane` of a CB1 batch (cableForcesAndDrag's f) scattered through the assembler; its drag
+// also added to `drag` over all dofs (the energy balance's loads) unless nullptr.
+inline void scatterCableLane(const kernels::CableLanes& lanes, const kernels::CableLaneVectors& f,
+                             int lane, Eigen::VectorXd* drag, SystemAssembler& out) {
+  kernels::Vec6 r;
+  for (int k = 0; k < 3; ++k) r[k] = f.v[0][k][lane], r[3 + k] = f.v[1][k][lane];
+  const int a = lanes.nodes[lane][0], b = lanes.nodes[lane][1];
+  out.add<2>({a, b}, r, nullptr);
+  if (drag)
+    for (int k = 0; k < 3; ++k) {
+      (*drag)[3 * a + k] += f.drag[k][lane];
+      (*drag)[3 * b + k] += f.drag[k][lane];
+    }
 }
 
 // Internal force, inertia and gravity of one two-node cable, scattered through the assembler.

@@ -405,7 +405,6 @@ void SlidingGroupTerm::assembleInactiveLanes(const EvalPoint& p, SystemAssembler
     ++next;
   }
   if (!same || next != laneElements_.size()) {
-    const bool weighs = mat.density > 0.0 && m_->hasGravity();
     const double coefficient = withDrag ? drag_->coefficient : 0.0;
     const Vec3 wind = withDrag ? drag_->wind : Vec3::Zero();
     laneElements_.clear();
@@ -426,11 +425,8 @@ void SlidingGroupTerm::assembleInactiveLanes(const EvalPoint& p, SystemAssembler
       }
       const int k = laneElements_[slot];
       const double L = laneLengths_[slot];
-      // addCableExplicitForce's weight, as cableGravity gives it.
-      const Vec3 weight =
-          weighs ? Vec3(kernels::cableGravity(L, mat, m_->gravity).head<3>()) : Vec3::Zero();
-      kernels::setCableLane(lanes, lane, g.chain[k], g.chain[k + 1], L, mat, weight, coefficient,
-                            wind);
+      kernels::setCableLane(lanes, lane, g.chain[k], g.chain[k + 1], L, mat,
+                            line_assembly::cableLaneWeight(*m_, L, mat), coefficient, wind);
     }
     laneDrag_ = withDrag ? 1 : 0;
   }
@@ -447,15 +443,7 @@ void SlidingGroupTerm::assembleInactiveLanes(const EvalPoint& p, SystemAssembler
       ++out.work().lineElastic;
       if (mat.density > 0.0) ++out.work().lineMass;
       if (withDrag) ++out.work().drag;
-      kernels::Vec6 r;
-      for (int k = 0; k < 3; ++k) r[k] = f.v[0][k][l], r[3 + k] = f.v[1][k][l];
-      const int a = lanes.nodes[l][0], bn = lanes.nodes[l][1];
-      out.add<2>({a, bn}, r, nullptr);
-      if (captured)
-        for (int k = 0; k < 3; ++k) {
-          (*captured)[3 * a + k] += f.drag[k][l];
-          (*captured)[3 * bn + k] += f.drag[k][l];
-        }
+      line_assembly::scatterCableLane(lanes, f, l, captured, out);
     }
   }
 }
