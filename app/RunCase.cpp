@@ -364,22 +364,16 @@ void refuseUntouchedNodes(const CaseSpec& spec, const StructuralSystem& sys) {
   const auto& loose = sys.untouchedFreeNodes();
   if (loose.empty()) return;
   const Model& m = spec.model;
-  auto label = [&](int n) {
-    return m.nodeName[n].empty() ? "node " + std::to_string(n + 1) : "'" + m.nodeName[n] + "'";
-  };
-  std::string names;
-  for (size_t i = 0; i < loose.size() && i < 8; ++i) names += (i ? ", " : "") + label(loose[i]);
-  if (loose.size() > 8) names += " and " + std::to_string(loose.size() - 8) + " more";
   const int first = loose.front();
   const std::string key =
       !m.nodeName[first].empty() && spec.settings.count("nodes." + m.nodeName[first])
           ? "nodes." + m.nodeName[first]
           : "mesh.file";
-  throw std::runtime_error(whereIn(spec.settings, spec.file, key) + ": " +
-                           std::to_string(loose.size()) +
-                           " free node(s) in no element, load or point mass (" + names +
-                           "): with neither stiffness nor mass the equations are singular there "
-                           "(connect them, fix them under boundary.fixed, or remove them)");
+  throw std::runtime_error(
+      whereIn(spec.settings, spec.file, key) + ": " + std::to_string(loose.size()) +
+      " free node(s) in no element, load or point mass (" + nodeNames(m, loose) +
+      "): with neither stiffness nor mass the equations are singular there "
+      "(connect them, fix them under boundary.fixed, or remove them)");
 }
 }  // namespace
 

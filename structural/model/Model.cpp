@@ -6,6 +6,17 @@
 
 namespace chute {
 
+std::string nodeNames(const Model& m, const std::vector<int>& nodes) {
+  std::string names;
+  for (size_t i = 0; i < nodes.size() && i < 8; ++i) {
+    const int n = nodes[i];
+    names +=
+        (i ? ", " : "") + (m.nodeName[n].empty() ? "node " + std::to_string(n + 1) : m.nodeName[n]);
+  }
+  if (nodes.size() > 8) names += " and " + std::to_string(nodes.size() - 8) + " more";
+  return names;
+}
+
 std::vector<std::string> nodePartNames(const Model& m) {
   std::vector<std::string> part(m.numNodes());
   for (const auto& e : m.membranes)

@@ -189,6 +189,10 @@ struct Model {
 // set, line set or sliding group, else "point masses".
 std::vector<std::string> nodePartNames(const Model& m);
 
+// The nodes named for a message: each node's name ("node k", 1-based, for an unnamed one), the
+// first eight, then "and N more".
+std::string nodeNames(const Model& m, const std::vector<int>& nodes);
+
 // Equation numbering of the free dofs; constrained dofs map to -1.
 class DofMap {
  public:

@@ -11,10 +11,6 @@ namespace chute {
 
 namespace {
 
-std::string nodeLabel(const Model& m, int n) {
-  return m.nodeName[n].empty() ? "node " + std::to_string(n + 1) : m.nodeName[n];
-}
-
 // EX1's first half and EX2's velocity over all dofs: v_{n+1/2} = v_n + dt/2 a_n, x_{n+1} = x_n +
 // dt v_{n+1/2}, v* = v_n + dt a_n. The six buffers are distinct (the state's, the next state's,
 // the step's own): restrict on the parameters lets the compiler take two dofs at a time, which it
@@ -324,10 +320,7 @@ void CentralDifference::refuseMassless(const Eigen::VectorXd& massEq) const {
         break;
       }
   if (massless.empty()) return;
-  std::string names;
-  for (size_t i = 0; i < massless.size() && i < 8; ++i)
-    names += (i ? ", " : "") + nodeLabel(m, massless[i]);
-  if (massless.size() > 8) names += " and " + std::to_string(massless.size() - 8) + " more";
+  const std::string names = nodeNames(m, massless);
   // A mass that is not a number (a density or stiffness out of scale: E = 1e300 overflows the
   // mass scaling) is not a missing one: say which.
   bool notFinite = false;
