@@ -12,6 +12,7 @@
 
 #include "case/CaseSpec.hpp"
 #include "solver/StructuralSystem.hpp"
+#include "support/FusedAgainstApart.hpp"
 #include "support/LineGeometry.hpp"
 
 using namespace chute;
@@ -69,31 +70,17 @@ TEST(CableTerm, TakenLineDragIsTheCableAndDragTermsOnTheExplicitStep) {
           stretch * m.X[n] + (n == 0 ? Vec3::Zero() : Vec3(jitter(rng), jitter(rng), jitter(rng)));
       v.segment<3>(3 * n) = n == 0 ? Vec3::Zero() : Vec3(speed(rng), speed(rng), speed(rng));
     }
-    const Eigen::VectorXd zero = Eigen::VectorXd::Zero(x.size());
     const double t = 0.05 * trial;  // chain 3 cut from t > 0.3
-    const WorkCounters before = sys.work();
-    sys.captureStepLoads(true);
-    sys.assemble(EvalPoint::explicitForces(x, v, zero, t, 1e-4), false);
-    sys.captureStepLoads(false);
+    const auto g = chute::testing::fusedAgainstApart(sys, x, v, t);
     // Every element and every drag counted once, wherever evaluated.
     const int carried = t > 0.3 ? 15 : 20;
-    EXPECT_EQ(sys.work().lineElastic - before.lineElastic, carried);
-    EXPECT_EQ(sys.work().lineMass - before.lineMass, carried);
-    EXPECT_EQ(sys.work().drag - before.drag, 5 + 10 + 5);
-    const Eigen::VectorXd fused = sys.residual();
-    const Eigen::VectorXd* loads = sys.stepLoadsAt(t);
-    ASSERT_NE(loads, nullptr);
-    const EvalPoint state = EvalPoint::state(x, v, zero, t);
-    const Eigen::VectorXd separate = sys.gatherEquations(sys.residualOverAllDofs(state, true));
-    const Eigen::VectorXd separateLoads = sys.residualOverAllDofs(state, false);
-    const double scale = separate.cwiseAbs().maxCoeff();
-    const double loadScale = separateLoads.cwiseAbs().maxCoeff();
-    const double dr = (fused - separate).cwiseAbs().maxCoeff() / scale;
-    const double dl = (*loads - separateLoads).cwiseAbs().maxCoeff() / loadScale;
-    worstResidual = std::max(worstResidual, dr);
-    worstLoads = std::max(worstLoads, dl);
-    EXPECT_LE(dr, 1e-13) << "trial " << trial;
-    EXPECT_LE(dl, 1e-13) << "trial " << trial;
+    EXPECT_EQ(g.fused.lineElastic - g.before.lineElastic, carried);
+    EXPECT_EQ(g.fused.lineMass - g.before.lineMass, carried);
+    EXPECT_EQ(g.fused.drag - g.before.drag, 5 + 10 + 5);
+    worstResidual = std::max(worstResidual, g.residual);
+    worstLoads = std::max(worstLoads, g.loads);
+    EXPECT_LE(g.residual, 1e-13) << "trial " << trial;
+    EXPECT_LE(g.loads, 1e-13) << "trial " << trial;
   }
   std::printf(
       "explicit step with the cables' drag in the cables' pass against the terms apart: residual "
@@ -107,7 +94,6 @@ TEST(CableTerm, TakenLineDragOfTheC9IsTheTermsApartOnTheExplicitStep) {
   const Model& m = spec.model;
   StructuralSystem sys(m, spec.solver.search);
   StructuralState s = sys.initialState();
-  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(s.x.size());
   double worstResidual = 0.0, worstLoads = 0.0;
   for (int trial = 0; trial < 5; ++trial) {
     // The folded start, moved and stretched a little, with some motion (drag not zero).
@@ -118,26 +104,13 @@ TEST(CableTerm, TakenLineDragOfTheC9IsTheTermsApartOnTheExplicitStep) {
       v[d] = 2.0 * std::cos(0.21 * static_cast<double>(d) - trial);
     }
     sys.updateState(x);
-    const WorkCounters before = sys.work();
-    sys.captureStepLoads(true);
-    sys.assemble(EvalPoint::explicitForces(x, v, zero, 0.1, 1e-4), false);
-    sys.captureStepLoads(false);
-    const long drags = sys.work().drag - before.drag;
-    const Eigen::VectorXd fused = sys.residual();
-    const Eigen::VectorXd* loads = sys.stepLoadsAt(0.1);
-    ASSERT_NE(loads, nullptr);
-    const EvalPoint state = EvalPoint::state(x, v, zero, 0.1);
-    const WorkCounters apart = sys.work();
-    const Eigen::VectorXd separate = sys.gatherEquations(sys.residualOverAllDofs(state, true));
-    EXPECT_EQ(sys.work().drag - apart.drag, drags);  // every segment once, either way
-    const Eigen::VectorXd separateLoads = sys.residualOverAllDofs(state, false);
-    const double dr = (fused - separate).cwiseAbs().maxCoeff() / separate.cwiseAbs().maxCoeff();
-    const double dl =
-        (*loads - separateLoads).cwiseAbs().maxCoeff() / separateLoads.cwiseAbs().maxCoeff();
-    worstResidual = std::max(worstResidual, dr);
-    worstLoads = std::max(worstLoads, dl);
-    EXPECT_LE(dr, 1e-13) << "trial " << trial;
-    EXPECT_LE(dl, 1e-13) << "trial " << trial;
+    const auto g = chute::testing::fusedAgainstApart(sys, x, v, 0.1);
+    // Every segment counted once, either way.
+    EXPECT_EQ(g.apart.drag - g.fused.drag, g.fused.drag - g.before.drag);
+    worstResidual = std::max(worstResidual, g.residual);
+    worstLoads = std::max(worstLoads, g.loads);
+    EXPECT_LE(g.residual, 1e-13) << "trial " << trial;
+    EXPECT_LE(g.loads, 1e-13) << "trial " << trial;
   }
   std::printf(
       "C-9 with slider, explicit step with the lines' drag in the cables' and groups' passes "

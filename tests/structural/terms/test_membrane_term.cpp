@@ -14,6 +14,7 @@
 #include "assembly/SystemAssembler.hpp"
 #include "solver/StructuralSystem.hpp"
 #include "support/CupModel.hpp"
+#include "support/FusedAgainstApart.hpp"
 #include "terms/MembraneTerm.hpp"
 
 using namespace chute;
@@ -95,30 +96,16 @@ TEST(MembraneTerm, TakenFaceLoadsAreThePressureAndFaceDragTermsOnTheExplicitStep
       x.segment<3>(3 * n) = 1.05 * m.X[n] + Vec3(jitter(rng), jitter(rng), jitter(rng));
       v.segment<3>(3 * n) = Vec3(speed(rng), speed(rng), speed(rng));
     }
-    const Eigen::VectorXd zero = Eigen::VectorXd::Zero(x.size());
     const double t = 0.05 * trial;  // through the pressure's ramp
-    const WorkCounters before = sys.work();
-    sys.captureStepLoads(true);
-    sys.assemble(EvalPoint::explicitForces(x, v, zero, t, 1e-4), false);
-    sys.captureStepLoads(false);
+    const auto g = chute::testing::fusedAgainstApart(sys, x, v, t);
     // Every face counted once, wherever its loads were evaluated (no pressure at the ramp's
     // start: none counted, as PressureTerm counts).
-    EXPECT_EQ(sys.work().pressure - before.pressure, t > 0.0 ? 26 : 0);
-    EXPECT_EQ(sys.work().faceDrag - before.faceDrag, 26);
-    const Eigen::VectorXd fused = sys.residual();
-    const Eigen::VectorXd* loads = sys.stepLoadsAt(t);
-    ASSERT_NE(loads, nullptr);
-    const EvalPoint state = EvalPoint::state(x, v, zero, t);
-    const Eigen::VectorXd separate = sys.gatherEquations(sys.residualOverAllDofs(state, true));
-    const Eigen::VectorXd separateLoads = sys.residualOverAllDofs(state, false);
-    const double scale = separate.cwiseAbs().maxCoeff();
-    const double loadScale = separateLoads.cwiseAbs().maxCoeff();
-    const double dr = (fused - separate).cwiseAbs().maxCoeff() / scale;
-    const double dl = (*loads - separateLoads).cwiseAbs().maxCoeff() / loadScale;
-    worstResidual = std::max(worstResidual, dr);
-    worstLoads = std::max(worstLoads, dl);
-    EXPECT_LE(dr, 1e-13) << "trial " << trial;
-    EXPECT_LE(dl, 1e-13) << "trial " << trial;
+    EXPECT_EQ(g.fused.pressure - g.before.pressure, t > 0.0 ? 26 : 0);
+    EXPECT_EQ(g.fused.faceDrag - g.before.faceDrag, 26);
+    worstResidual = std::max(worstResidual, g.residual);
+    worstLoads = std::max(worstLoads, g.loads);
+    EXPECT_LE(g.residual, 1e-13) << "trial " << trial;
+    EXPECT_LE(g.loads, 1e-13) << "trial " << trial;
   }
   std::printf(
       "explicit step with the triangles' loads in the membranes' pass against the terms apart: "
