@@ -224,12 +224,13 @@ class Term {
   // assembly. It is per node: the same mass on each of a node's dofs, and never negative.
   virtual bool massChangesAtCommit() const { return false; }
   // The nodes that mass sits on (fixed for the run), and each one's mass as last committed,
-  // written to mass[i] for committedMassNodes()[i].
+  // at [i] for committedMassNodes()[i] (the term's own array, made as it commits: a pass that
+  // copied it out cost a pass over the canopy's nodes at every step).
   virtual const std::vector<int>& committedMassNodes() const {
     static const std::vector<int> none;
     return none;
   }
-  virtual void committedNodalMass(double* /*mass*/) const {}
+  virtual const double* committedNodalMass() const { return nullptr; }
   // Adds to S, per node, the row sum of this term's stiffness at positions x and time t that
   // bounds the explicit step's highest frequency, omega^2 <= max_i S_i / m_i (EX5-EX6); free[i]
   // says whether node i has a free dof (rows of fixed nodes are not part of the free system).

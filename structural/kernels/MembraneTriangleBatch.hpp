@@ -5,6 +5,7 @@
 // machine runs). One copy is built for the baseline instruction set and one for AVX2, taken at run
 // time (SimdCopies.hpp; docs/performance.md, "Four at a time").
 #include <array>
+#include <cstddef>
 #include <cstdint>
 
 #include "kernels/MembraneTriangleForce.hpp"
@@ -81,12 +82,9 @@ void membraneTriangleForcesAndLoadsAvx2(const double* x, const double* v,
                                         double (&loads)[3][kTriangleLanes]);
 
 // FL13: which lanes of a batch are the canopy's (all bits set; a missing lane of the last batch
-// is not), and for those where their nodes' records in the per-node sums begin, in doubles,
-// [node][lane]: each record A / 3 then |A| / 3 (TriangleFlowSums' nodeArea, share), added to in
-// place.
+// is not).
 struct alignas(32) TriangleFlowBatch {
   std::int64_t inFlow[kTriangleLanes];
-  int record[3][kTriangleLanes];
 };
 // The canopy's sums over the faces lane by lane (triangle k's in lane k mod 4).
 struct alignas(32) TriangleFlowAccumulators {
@@ -96,24 +94,36 @@ struct alignas(32) TriangleFlowAccumulators {
 
 // membraneTriangleForces with the airflow's loads of FL13 at the velocities v in the same pass: in
 // the canopy's lanes f gets each lane's nodal forces plus its load (membraneTriangleForce then
-// triangleFlowLoad added: their bits) and its sums are added to acc and to the records at
-// nodeSums + record, lane after lane, node after node (the triangles' order); elsewhere
-// the forces alone. loads[xyz][lane]: each lane's load alone.
+// triangleFlowLoad added: their bits) and its sums are added to acc; elsewhere the forces alone.
+// loads[xyz][lane]: each lane's load alone. records[4 l .. 4 l + 3]: lane l's A / 3 then |A| / 3
+// (TriangleFlowSums' nodeArea, share), written for every lane (the canopy's or not).
 void membraneTriangleForcesAndFlow(const double* x, const double* v, const MembraneTriangleLanes& t,
                                    const TriangleFlowBatch& batch, const TriangleFlowParameters& q,
                                    TriangleLaneVectors& f, double (&loads)[3][kTriangleLanes],
-                                   TriangleFlowAccumulators& acc, double* nodeSums);
+                                   TriangleFlowAccumulators& acc, double* records);
 void membraneTriangleForcesAndFlowBaseline(const double* x, const double* v,
                                            const MembraneTriangleLanes& t,
                                            const TriangleFlowBatch& batch,
                                            const TriangleFlowParameters& q, TriangleLaneVectors& f,
                                            double (&loads)[3][kTriangleLanes],
-                                           TriangleFlowAccumulators& acc, double* nodeSums);
+                                           TriangleFlowAccumulators& acc, double* records);
 void membraneTriangleForcesAndFlowAvx2(const double* x, const double* v,
                                        const MembraneTriangleLanes& t,
                                        const TriangleFlowBatch& batch,
                                        const TriangleFlowParameters& q, TriangleLaneVectors& f,
                                        double (&loads)[3][kTriangleLanes],
-                                       TriangleFlowAccumulators& acc, double* nodeSums);
+                                       TriangleFlowAccumulators& acc, double* records);
+
+// FL13's per-node shares after the pass: for each node i in [begin, end), the sum of the records
+// (four doubles each) at records + at[k], k from start[i] to start[i + 1], in that order, with its
+// fourth entry times perArea, written to out + stride i. One four-double addition a record
+// (dispatched: the AVX2 copy where the processor has it; each copy the same bits).
+void gatherTriangleRecords(const double* records, const int* start, const int* at, size_t begin,
+                           size_t end, double perArea, double* out, size_t stride);
+void gatherTriangleRecordsBaseline(const double* records, const int* start, const int* at,
+                                   size_t begin, size_t end, double perArea, double* out,
+                                   size_t stride);
+void gatherTriangleRecordsAvx2(const double* records, const int* start, const int* at, size_t begin,
+                               size_t end, double perArea, double* out, size_t stride);
 
 }  // namespace chute::kernels

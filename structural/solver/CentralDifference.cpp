@@ -99,7 +99,6 @@ CentralDifference::CentralDifference(StructuralSystem& sys, ExplicitSettings set
           if (const int e = sys.dofs().eq(n, k); e >= 0)
             c.equations.push_back(CommittedMass::Equation{e, index, sources[e] > 1});
       }
-      committedNodeMass_.resize(std::max(committedNodeMass_.size(), nodes.size()));
     }
     for (int e = 0; e < numEq; ++e) {
       if (sources[e] > 1) sharedMassEqs_.emplace_back(e, moving[e] != 0);
@@ -216,6 +215,11 @@ const Eigen::VectorXd& CentralDifference::lumpedMass(const Eigen::VectorXd& x, d
     basePositive_ = true;
     for (long e = 0; e < massBase_.size(); ++e)
       if (!moving[e] && !(massBase_[e] > 0.0)) basePositive_ = false;
+    for (CommittedMass& c : committedMass_) {
+      c.basePositive = true;
+      for (const auto& [first, index] : c.setNodes)
+        for (int k = 0; k < 3; ++k) c.basePositive &= massBase_[first + k] > 0.0;
+    }
     massBaseStale_ = false;
   }
   // A sliding element's lumped mass follows the slider's split (F10): evaluated at x (the
@@ -253,17 +257,26 @@ const Eigen::VectorXd& CentralDifference::lumpedMass(const Eigen::VectorXd& x, d
       bool positive = true;
       double* mass = cachedMass_.data();
       const double* base = massBase_.data();
-      const double* nodeMass = committedNodeMass_.data();
       double* varying = varyingMass_.data();
       for (const auto& [e, fromMoving] : sharedMassEqs_)
         varying[e] = fromMoving ? movingMassAssembler_.residual()[e] : 0.0;
       for (const CommittedMass& c : committedMass_) {
-        c.term->committedNodalMass(committedNodeMass_.data());
-        for (const auto& [first, index] : c.setNodes) {
-          const double m = nodeMass[index];
-          const double m0 = base[first] + m, m1 = base[first + 1] + m, m2 = base[first + 2] + m;
-          mass[first] = m0, mass[first + 1] = m1, mass[first + 2] = m2;
-          positive &= (m0 > 0.0) & (m1 > 0.0) & (m2 > 0.0);
+        const double* nodeMass = c.term->committedNodalMass();
+        if (c.basePositive) {
+          // A positive base plus a mass not negative is positive: one test per node.
+          for (const auto& [first, index] : c.setNodes) {
+            const double m = nodeMass[index];
+            mass[first] = base[first] + m, mass[first + 1] = base[first + 1] + m,
+            mass[first + 2] = base[first + 2] + m;
+            positive &= m >= 0.0;
+          }
+        } else {
+          for (const auto& [first, index] : c.setNodes) {
+            const double m = nodeMass[index];
+            const double m0 = base[first] + m, m1 = base[first + 1] + m, m2 = base[first + 2] + m;
+            mass[first] = m0, mass[first + 1] = m1, mass[first + 2] = m2;
+            positive &= (m0 > 0.0) & (m1 > 0.0) & (m2 > 0.0);
+          }
         }
         for (const auto& eq : c.equations) {
           if (eq.shared) {

@@ -118,10 +118,10 @@ class CentralDifference final : public TimeIntegrator {
     Term* term;
     std::vector<std::pair<int, int>> setNodes;  // (first equation, node index)
     std::vector<Equation> equations;
+    bool basePositive = false;  // the base mass positive on every equation of setNodes
   };
   std::vector<CommittedMass> committedMass_;
-  std::vector<double> committedNodeMass_;  // one term's nodal masses, as it writes them
-  std::vector<int> committedMassEqs_;      // every equation those terms' masses reach
+  std::vector<int> committedMassEqs_;  // every equation those terms' masses reach
   // The equations with more than one varying mass, each with whether a moving mass is one.
   std::vector<std::pair<int, bool>> sharedMassEqs_;
   Eigen::VectorXd varyingMass_;  // their varying masses' sums, by equation

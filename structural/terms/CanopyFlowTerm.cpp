@@ -3,12 +3,14 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 #include <map>
 #include <numbers>
 #include <stdexcept>
 #include <type_traits>
 
+#include "kernels/MembraneTriangleBatch.hpp"
 #include "terms/FaceLoadFusion.hpp"
 
 namespace chute {
@@ -140,6 +142,7 @@ CanopyFlowTerm::CanopyFlowTerm(const Model& m, int flow) : m_(&m), def_(&m.canop
               std::pow(1.0 + def_->initialInsideGauge / m.air.pressure, 1.0 / def_->gamma);
   inertiaMass_ = apparentMass(x0) + captured_;  // FL11: the air around it and the air inside
   committedShares_ = areaShares(x0);
+  formNodeMass();
   committedVolume_ = g.volume;
 }
 
@@ -206,14 +209,17 @@ void CanopyFlowTerm::closeOpenings(const Eigen::VectorXd& x, Geometry& g) const 
     Vec3 c = Vec3::Zero();
     for (int node : l.nodes) c += at(x, node);
     c /= n;
+    // The fan's tetrahedra with the origin, c . (x_a x x_b) / 6 each, sum to c . A / 3: with
+    // d = x - c, c . (x_a x x_b) = c . (d_a x d_b), the other products being normal to c.
     Vec3 A = Vec3::Zero();
     const size_t count = l.nodes.size();
     for (size_t i = 0; i < count; ++i) {
       int a = l.nodes[i], b = l.nodes[i + 1 < count ? i + 1 : 0];
       if (l.sign < 0.0) std::swap(a, b);
-      A += 0.5 * (at(x, a) - c).cross(at(x, b) - c);
-      g.volume += kernels::tetraVolume(c, at(x, a), at(x, b));
+      A += (at(x, a) - c).cross(at(x, b) - c);
     }
+    A *= 0.5;
+    g.volume += c.dot(A) * (1.0 / 3.0);
     return A;
   };
   g.mouth = close(mouth_);
@@ -323,10 +329,15 @@ void CanopyFlowTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
   keepStepEvaluation(p, evaluate(p.stepPositions(), p.v, &out, p.loadFactor, p.explicitStep));
 }
 
-void CanopyFlowTerm::committedNodalMass(double* mass) const {
+const double* CanopyFlowTerm::committedNodalMass() const {
   // FL11: the captured air moves with the canopy, each node carrying its area's share, both as
   // committed (lagged one step; the explicit step forms it alongside its assembly).
-  for (size_t i = 0; i < nodes_.size(); ++i) mass[i] = inertiaMass_ * committedShares_[i];
+  return nodeMass_.data();
+}
+
+void CanopyFlowTerm::formNodeMass() {
+  nodeMass_.resize(nodes_.size());
+  for (size_t i = 0; i < nodes_.size(); ++i) nodeMass_[i] = inertiaMass_ * committedShares_[i];
 }
 
 void CanopyFlowTerm::keepStepEvaluation(const EvalPoint& p, const Evaluation& e) {
@@ -361,21 +372,29 @@ kernels::TriangleFlowParameters CanopyFlowTerm::takenParameters(const EvalPoint&
   return q;
 }
 
-double* CanopyFlowTerm::takenRecords(int half) const {
-  std::vector<NodeSums>& records = half == 0 ? nodeSums_ : secondHalf_;
-  // The pass adds A / 3 and |A| / 3 (area, share): only they start from zero. The faces' loads
-  // are the membranes' (FL13): the records' force is neither written nor read on this path.
-  records.resize(nodes_.size());
-  for (NodeSums& n : records) n.area.setZero(), n.share = 0.0;
-  return records.data()->area.data();
+void CanopyFlowTerm::takeFaces(const std::vector<std::array<int, 3>>& triangleSlots) {
+  // Each node's triangles, in the triangles' order: where it gathers its records (FL13).
+  const size_t n = nodes_.size();
+  std::vector<int> count(n + 1, 0);
+  for (const auto& slots : triangleSlots)
+    if (slots[0] >= 0)
+      for (int s : slots) ++count[s + 1];
+  for (size_t i = 0; i < n; ++i) count[i + 1] += count[i];
+  nodeRecordsStart_ = count;
+  nodeRecords_.assign(count[n], 0);
+  for (size_t k = 0; k < triangleSlots.size(); ++k)
+    if (triangleSlots[k][0] >= 0)
+      for (int s : triangleSlots[k]) nodeRecords_[count[s]++] = 4 * static_cast<int>(k);
+  // Every lane of every batch writes its record, the missing lanes of the last one too.
+  faceRecords_.assign(4 * ((triangleSlots.size() + 3) / 4 * 4), 0.0);
+  nodeSums_.resize(n);
+  taken_ = true;
 }
 
 void CanopyFlowTerm::finishTakenPass(const EvalPoint& p, const FaceSums& sums,
                                      SystemAssembler& out) {
-  if (sums.area > 0.0)
-    for (NodeSums& n : nodeSums_) n.share /= sums.area;
-  keepStepEvaluation(p, complete(p.stepPositions(), sums, pass_.state, pass_.gauge, &out,
-                                 p.loadFactor, p.explicitStep, true, true));
+  finishTakenSums(p, sums);
+  finishTakenNodesOver(out, 0, nodes_.size());
 }
 
 void CanopyFlowTerm::finishTakenSums(const EvalPoint& p, const FaceSums& sums) {
@@ -425,21 +444,22 @@ void CanopyFlowTerm::addNodeLoads(SystemAssembler& out, size_t begin, size_t end
 }
 
 void CanopyFlowTerm::finishTakenNodes(SystemAssembler& out, int half) {
-  // Each half of the nodes: its two records added, its share over the whole area, its loads, in
-  // one pass (the records merged as the loads read them).
-  const size_t n = nodes_.size(), begin = half == 0 ? 0 : n / 2, end = half == 0 ? n / 2 : n;
+  const size_t n = nodes_.size();
+  finishTakenNodesOver(out, half == 0 ? 0 : n / 2, half == 0 ? n / 2 : n);
+}
+
+void CanopyFlowTerm::finishTakenNodesOver(SystemAssembler& out, size_t begin, size_t end) {
+  // Each node's records gathered from its triangles' (in their order), its share over the whole
+  // area, its loads, in one pass; kept in nodeSums_ (the commit's shares, FL12's area vectors).
+  // A node's area and share are its record's first four doubles (NodeSums).
+  static_assert(offsetof(NodeSums, share) == 3 * sizeof(double));
   const double perArea = halves_.area > 0.0 ? 1.0 / halves_.area : 1.0;
-  const bool normalise = halves_.area > 0.0;
-  NodeSums* sums = nodeSums_.data();
-  const NodeSums* second = secondHalf_.data();
+  kernels::gatherTriangleRecords(faceRecords_.data(), nodeRecordsStart_.data(), nodeRecords_.data(),
+                                 begin, end, perArea, nodeSums_.data()->area.data(),
+                                 sizeof(NodeSums) / sizeof(double));
+  const NodeSums* sums = nodeSums_.data();
   addNodeLoadsOf(out, begin, end, halves_.insideGauge, halves_.loadFactor, halves_.canopyVelocity,
-                 true, [=](size_t i) -> const NodeSums& {
-                   NodeSums& sum = sums[i];
-                   sum.area += second[i].area;
-                   sum.share = normalise ? (sum.share + second[i].share) * perArea
-                                         : sum.share + second[i].share;
-                   return sum;
-                 });
+                 true, [=](size_t i) -> const NodeSums& { return sums[i]; });
 }
 
 CanopyFlowTerm::Figures CanopyFlowTerm::figuresAt(const Eigen::VectorXd& x,
@@ -463,16 +483,33 @@ double CanopyFlowTerm::AirBudget::rate(double M, const CanopyFlowTerm& term) con
 double CanopyFlowTerm::AirBudget::massAfter(double Mn, double dt,
                                             const CanopyFlowTerm& term) const {
   // FL9: implicit Euler, M = M_n + dt rate(M), solved exactly: the rate falls as M (and with it
-  // the inside pressure) rises, so the residual is monotone and bisection finds its one root
+  // the inside pressure) rises, so the residual is monotone and a bracket holds its one root
   // however stiff the orifice and cloth laws are (a linearised step overshoots an orifice's
-  // square root by its whole distance).
+  // square root by its whole distance). Inside the bracket, regula falsi with the Illinois
+  // modification: the end that stays twice has its residual halved, so both ends close in
+  // (bisection alone took about 50 evaluations of the rate, one pow each, a step; this 5 to 10,
+  // the same root to 1e-15).
   auto residual = [&](double M) { return M - Mn - dt * rate(M, term); };
-  double lo = Mn, hi = Mn;
-  for (int i = 0; i < 200 && residual(lo) > 0.0; ++i) lo *= 0.5;
-  for (int i = 0; i < 200 && residual(hi) < 0.0; ++i) hi *= 2.0;
-  for (int i = 0; i < 100 && hi - lo > 1e-15 * hi; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (residual(mid) < 0.0 ? lo : hi) = mid;
+  double lo = Mn, hi = Mn, rlo = residual(lo), rhi = rlo;
+  for (int i = 0; i < 200 && rlo > 0.0; ++i) rhi = rlo, hi = lo, lo *= 0.5, rlo = residual(lo);
+  for (int i = 0; i < 200 && rhi < 0.0; ++i) rlo = rhi, lo = hi, hi *= 2.0, rhi = residual(hi);
+  if (rlo == 0.0) return lo;
+  if (rhi == 0.0) return hi;
+  int kept = 0;  // the end that stayed at the last point: -1 lo, +1 hi
+  for (int i = 0; i < 200 && hi - lo > 1e-15 * hi; ++i) {
+    double mid = lo + (hi - lo) * (rlo / (rlo - rhi));
+    if (!(mid > lo && mid < hi)) mid = 0.5 * (lo + hi);  // round-off at the ends
+    const double r = residual(mid);
+    if (r == 0.0) return mid;
+    if (r < 0.0) {
+      lo = mid, rlo = r;
+      if (kept == 1) rhi *= 0.5;
+      kept = 1;
+    } else {
+      hi = mid, rhi = r;
+      if (kept == -1) rlo *= 0.5;
+      kept = -1;
+    }
   }
   return 0.5 * (lo + hi);
 }
@@ -635,12 +672,14 @@ void CanopyFlowTerm::commit(const CommitPoint& c) {
   // from m_a s_i to m_a' s_i' at the velocities they have, in one pass.
   auto commitShares = [&](auto share) {
     double gained = 0.0;
+    const double inertia = inertiaMass_;
+    double* nodeMass = nodeMass_.data();
+    double* committed = committedShares_.data();
     for (size_t i = 0; i < nodes_.size(); ++i) {
-      const double s = share(i);
-      if (c.v)
-        gained +=
-            (inertiaMass_ * s - before * committedShares_[i]) * at(*c.v, nodes_[i]).squaredNorm();
-      committedShares_[i] = s;
+      const double s = share(i), m = inertia * s;
+      if (c.v) gained += (m - before * committed[i]) * at(*c.v, nodes_[i]).squaredNorm();
+      committed[i] = s;
+      nodeMass[i] = m;
     }
     if (c.v) supplied_ += 0.5 * gained;
   };
@@ -673,6 +712,7 @@ void CanopyFlowTerm::load(HistoryReader& h) {
   const double volume = h.finiteReal();
   captured_ = captured, inertiaMass_ = inertia, massRate_ = rate, supplied_ = supplied;
   committedShares_ = std::move(shares);
+  formNodeMass();
   committedVolume_ = volume;
 }
 

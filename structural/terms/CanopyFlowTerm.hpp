@@ -32,7 +32,7 @@ class CanopyFlowTerm final : public Term {
   // FL11: the air's mass moves with the canopy's nodes by the shares committed with the step.
   bool massChangesAtCommit() const override { return true; }
   const std::vector<int>& committedMassNodes() const override { return nodes_; }
-  void committedNodalMass(double* mass) const override;
+  const double* committedNodalMass() const override;
   // FL12: the captured air is a gas spring over the whole canopy, K = (gamma p / V) a a^T.
   double frequencySquaredBound(const Eigen::VectorXd& x, double t,
                                const std::vector<double>& nodalMass) const override;
@@ -69,12 +69,14 @@ class CanopyFlowTerm final : public Term {
   // FL13: the membrane term takes the faces' loads on the explicit step's forces
   // (FaceLoadFusion.hpp fusedFaceLoads), when every face is a triangle: takenParameters gives the
   // canopy-wide state for kernels::triangleFlowLoad, the membranes' pass (whole, or in two halves
-  // at once) adds each triangle's shares to the per-node records of takenRecords (at the term's
-  // node slots: slotOf; each half its own), and finishTakenPass makes the rest of the evaluation
-  // (the openings, the captured air's update, the inside pressure's and the entrained air's loads
-  // per node into out) as assemble would have. assemble then adds nothing on those evaluations.
+  // at once) writes each triangle's shares (A / 3, |A| / 3) to its record in faceRecords, and
+  // finishTakenPass makes the rest of the evaluation (each node's shares gathered from its
+  // triangles' records, the openings, the captured air's update, the inside pressure's and the
+  // entrained air's loads per node into out) as assemble would have. assemble then adds nothing
+  // on those evaluations. takeFaces: the membranes' triangles in their pass's order, each with
+  // its nodes' slots (slotOf), or -1 for one not the canopy's.
   bool trianglesOnly() const;
-  void takeFaces() { taken_ = true; }
+  void takeFaces(const std::vector<std::array<int, 3>>& triangleSlots);
   int slotOf(int node) const { return slot_[node]; }
   struct FaceSums {
     double volume = 0.0, area = 0.0;
@@ -82,16 +84,15 @@ class CanopyFlowTerm final : public Term {
   };
   // Also keeps the canopy-wide state and the start's gauge for finishTakenPass / finishTakenSums.
   kernels::TriangleFlowParameters takenParameters(const EvalPoint& p);
-  // The records of half 0 or 1, zeroed: at slot s, the returned + kNodeSumsStride s, A / 3 then
-  // |A| / 3 (kernels::TriangleFlowBatch).
-  static constexpr int kNodeSumsStride = 8;
-  double* takenRecords(int half) const;
+  // Triangle k's record at 4 k: A / 3, then |A| / 3 (kernels::membraneTriangleForcesAndFlow).
+  double* faceRecords() { return faceRecords_.data(); }
   void finishTakenPass(const EvalPoint& p, const FaceSums& sums, SystemAssembler& out);
   // After a pass in two halves: the evaluation from both halves' sums (on one thread), then each
   // half of the nodes' records merged and their loads added (half 0 and 1, on either thread, at
   // once: each writes its own nodes).
   void finishTakenSums(const EvalPoint& p, const FaceSums& sums);
   void finishTakenNodes(SystemAssembler& out, int half);
+  void finishTakenNodesOver(SystemAssembler& out, size_t begin, size_t end);
 
  private:
   struct Loop {
@@ -188,6 +189,8 @@ class CanopyFlowTerm final : public Term {
   // Each node's share of the area at the last commit (FL11's inertia, FL1's canopy velocity), and
   // the volume (FL9's cloth linearisation).
   std::vector<double> committedShares_;
+  std::vector<double> nodeMass_;  // inertiaMass_ times committedShares_ (committedNodalMass)
+  void formNodeMass();
   double committedVolume_ = 0.0;
   // Of the last evaluation of a step (not history: made again by the next step's evaluation).
   // The captured mass an explicit step's evaluation found at the step's end, and the step's end
@@ -214,9 +217,10 @@ class CanopyFlowTerm final : public Term {
     double unused;          // one cache line per node
   };
   mutable std::vector<NodeSums> nodeSums_;
-  mutable std::vector<NodeSums> secondHalf_;  // the second half's records (FL13)
-  static_assert(sizeof(Eigen::Vector3d) == 3 * sizeof(double) &&
-                sizeof(NodeSums) == kNodeSumsStride * sizeof(double));
+  // FL13: the triangles' records, and each node's records (their offsets) from start[i] to
+  // start[i + 1].
+  std::vector<double> faceRecords_;
+  std::vector<int> nodeRecordsStart_, nodeRecords_;
   mutable double scratchVolume_ = 0.0;
   mutable double scratchTime_ = std::numeric_limits<double>::quiet_NaN();
 };

@@ -207,7 +207,7 @@ void MembraneTerm::assembleTrianglesWithFlow(const EvalPoint& p, SystemAssembler
   // The whole pass makes the airflow's parameters; the halves have them (beforeHalves).
   if (!flowHalves_) flowParameters_ = flow_->takenParameters(p);
   const kernels::TriangleFlowParameters& q = flowParameters_;
-  double* records = flow_->takenRecords(half);
+  double* records = flow_->faceRecords();        // triangle k's at 4 k: each half writes its own
   Eigen::VectorXd* captured = out.fusedLoads();  // the energy balance's loads, when kept
   // The canopy's sums lane by lane, triangle k in lane k mod 4 whichever path runs (the same
   // bits), added up once the faces are done (flowSums). On the stack while the pass runs, kept
@@ -234,11 +234,9 @@ void MembraneTerm::assembleTrianglesWithFlow(const EvalPoint& p, SystemAssembler
         const size_t lane = k % kLanes;
         acc.volume[lane] += o.volume, acc.area[lane] += o.area;
         acc.cloth[lane] += o.cloth, acc.dCloth[lane] += o.dCloth;
-        for (int slot : flowSlots_[k]) {
-          double* record = records + CanopyFlowTerm::kNodeSumsStride * slot;
-          for (int c = 0; c < 3; ++c) record[c] += o.nodeArea[c];
-          record[3] += o.share;
-        }
+        double* record = records + 4 * k;
+        for (int c = 0; c < 3; ++c) record[c] = o.nodeArea[c];
+        record[3] = o.share;
       }
       scatterTriangle(t, r, inFlow ? f : nullptr, captured, weighed, p.loadFactor, out);
     }
@@ -249,7 +247,7 @@ void MembraneTerm::assembleTrianglesWithFlow(const EvalPoint& p, SystemAssembler
       kernels::TriangleLaneVectors fs;
       double f[3][kLanes];
       kernels::membraneTriangleForcesAndFlow(x, v, triangleLanes_[b], flowLanes_[b], q, fs, f, acc,
-                                             records);
+                                             records + 4 * first);
       for (int l = 0; l < lanes; ++l)
         scatterLane(fs, f, l, explicitTriangles_[first + l],
                     captured && flowLanes_[b].inFlow[l] != 0, captured, weighed, p.loadFactor, out);
@@ -290,11 +288,9 @@ bool MembraneTerm::takeCanopyFlow(CanopyFlowTerm& flow) {
       const size_t k = b * kLanes + l;
       const bool in = k < flowSlots_.size() && flowSlots_[k][0] >= 0;
       flowLanes_[b].inFlow[l] = in ? -1 : 0;
-      for (int i = 0; i < 3; ++i)
-        flowLanes_[b].record[i][l] = in ? CanopyFlowTerm::kNodeSumsStride * flowSlots_[k][i] : 0;
     }
   flow_ = &flow;
-  flow.takeFaces();
+  flow.takeFaces(flowSlots_);
   return true;
 }
 

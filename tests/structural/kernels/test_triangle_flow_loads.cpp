@@ -118,8 +118,8 @@ TEST(TriangleFlowLoads, AreTheAirflowsFaceLawAndSumsAtTheStepsPositions) {
 
 TEST(TriangleFlowLoads, FourAtATimeInTheMembranesPassAreTheTrianglesOneAtATimeBitForBit) {
   // Batches of four triangles, some lanes not the canopy's; the lanes' sums go to accumulators
-  // and per-node records that already hold sums (some nodes shared between lanes), which the
-  // triangles one at a time then add to in the same order.
+  // that already hold sums, which the triangles one at a time then add to in the same order, and
+  // each lane's shares to its record.
   std::mt19937 rng(53);
   std::uniform_real_distribution<double> jitter(-0.4, 0.4), any(-10.0, 10.0);
   const double stretch[][3] = {{1.04, 1.02, 0.01}, {1.05, 0.97, 0.005}, {0.95, 0.97, 0.0}};
@@ -131,7 +131,6 @@ TEST(TriangleFlowLoads, FourAtATimeInTheMembranesPassAreTheTrianglesOneAtATimeBi
       {"baseline", &membraneTriangleForcesAndFlowBaseline},
       {"dispatched", &membraneTriangleForcesAndFlow}};
   if (avx2Available()) copies.emplace_back("avx2", &membraneTriangleForcesAndFlowAvx2);
-  constexpr int kStride = 6, kRecords = 5;  // records of four doubles, two unused between
   int compared = 0;
   for (int batch = 0; batch < 1500; ++batch) {
     const TriangleFlowParameters q = randomFlow(rng, batch % 3);
@@ -150,7 +149,6 @@ TEST(TriangleFlowLoads, FourAtATimeInTheMembranesPassAreTheTrianglesOneAtATimeBi
       for (int i = 0; i < 3; ++i) vs[l][i] = randomVector(rng, 20.0);
       recs[l] = membraneTriangleRecord(ref, kFabric, (batch + l) % 3 != 0);
       flow.inFlow[l] = (batch + l) % 5 == 4 ? 0 : -1;  // some lanes not the canopy's
-      for (int i = 0; i < 3; ++i) flow.record[i][l] = kStride * ((3 * l + i + batch) % kRecords);
       const std::array<int, 3> nodes = {8 + l, 4 + l, l};
       setLane(lanes, l, recs[l], nodes);
       for (int i = 0; i < 3; ++i)
@@ -160,15 +158,12 @@ TEST(TriangleFlowLoads, FourAtATimeInTheMembranesPassAreTheTrianglesOneAtATimeBi
         }
     }
     TriangleFlowAccumulators start;
-    double records[kStride * kRecords];
     for (int l = 0; l < kTriangleLanes; ++l)
       start.volume[l] = any(rng), start.area[l] = any(rng), start.cloth[l] = any(rng),
       start.dCloth[l] = any(rng);
-    for (double& r : records) r = any(rng);
     // One at a time.
     TriangleFlowAccumulators oneAcc = start;
-    double oneRecords[kStride * kRecords];
-    std::copy(std::begin(records), std::end(records), oneRecords);
+    double oneRecords[4 * kTriangleLanes];
     double one[kTriangleLanes][3][3], oneLoad[kTriangleLanes][3];
     for (int l = 0; l < kTriangleLanes; ++l) {
       double force[9];
@@ -179,21 +174,17 @@ TEST(TriangleFlowLoads, FourAtATimeInTheMembranesPassAreTheTrianglesOneAtATimeBi
       for (int i = 0; i < 3; ++i)
         for (int c = 0; c < 3; ++c)
           one[l][i][c] = flow.inFlow[l] ? force[3 * i + c] + oneLoad[l][c] : force[3 * i + c];
+      for (int c = 0; c < 3; ++c) oneRecords[4 * l + c] = o.nodeArea[c];
+      oneRecords[4 * l + 3] = o.share;
       if (!flow.inFlow[l]) continue;
       oneAcc.volume[l] += o.volume, oneAcc.area[l] += o.area;
       oneAcc.cloth[l] += o.cloth, oneAcc.dCloth[l] += o.dCloth;
-      for (int i = 0; i < 3; ++i) {
-        double* rec = oneRecords + flow.record[i][l];
-        for (int c = 0; c < 3; ++c) rec[c] += o.nodeArea[c];
-        rec[3] += o.share;
-      }
     }
     for (const auto& [name, copy] : copies) {
       TriangleLaneVectors f;
       double load[3][kTriangleLanes];
       TriangleFlowAccumulators acc = start;
-      double got[kStride * kRecords];
-      std::copy(std::begin(records), std::end(records), got);
+      double got[4 * kTriangleLanes];
       copy(x, v, lanes, flow, q, f, load, acc, got);
       auto same = [&](double a, double b, const char* what, int l) {
         ASSERT_EQ(std::bit_cast<std::uint64_t>(a), std::bit_cast<std::uint64_t>(b))
@@ -209,7 +200,54 @@ TEST(TriangleFlowLoads, FourAtATimeInTheMembranesPassAreTheTrianglesOneAtATimeBi
         same(acc.cloth[l], oneAcc.cloth[l], "cloth", l);
         same(acc.dCloth[l], oneAcc.dCloth[l], "cloth derivative", l);
       }
-      for (int k = 0; k < kStride * kRecords; ++k) same(got[k], oneRecords[k], "record", k);
+      for (int k = 0; k < 4 * kTriangleLanes; ++k) same(got[k], oneRecords[k], "record", k / 4);
+    }
+  }
+  std::printf("%d entries compared bit for bit (%zu copies%s)\n", compared, copies.size(),
+              avx2Available() ? ", AVX2 among them" : ", no AVX2 here");
+}
+
+TEST(TriangleFlowLoads, EachNodesRecordsGatheredInOrderAreTheSumsOneAtATimeBitForBit) {
+  // FL13's per-node shares after the pass: random records, each node with 0 to 9 of them in a
+  // random order (some shared between nodes), summed record after record, the share scaled.
+  std::mt19937 rng(61);
+  std::uniform_real_distribution<double> any(-10.0, 10.0);
+  std::uniform_int_distribution<int> many(0, 9);
+  using Copy =
+      void (*)(const double*, const int*, const int*, size_t, size_t, double, double*, size_t);
+  std::vector<std::pair<const char*, Copy>> copies = {{"baseline", &gatherTriangleRecordsBaseline},
+                                                      {"dispatched", &gatherTriangleRecords}};
+  if (avx2Available()) copies.emplace_back("avx2", &gatherTriangleRecordsAvx2);
+  constexpr int kRecords = 40, kNodes = 300, kStride = 8;
+  int compared = 0;
+  for (int trial = 0; trial < 50; ++trial) {
+    std::vector<double> records(4 * kRecords);
+    for (double& r : records) r = any(rng);
+    std::vector<int> start = {0}, at;
+    for (int i = 0; i < kNodes; ++i) {
+      const int n = many(rng);
+      for (int k = 0; k < n; ++k)
+        at.push_back(4 * std::uniform_int_distribution<int>(0, kRecords - 1)(rng));
+      start.push_back(static_cast<int>(at.size()));
+    }
+    const double perArea = 1.0 / (1.0 + std::abs(any(rng)));
+    const size_t begin = trial % 7, end = kNodes - trial % 5;
+    std::vector<double> want(kStride * kNodes, -1.0);
+    for (size_t i = begin; i < end; ++i) {
+      double sum[4] = {0.0, 0.0, 0.0, 0.0};
+      for (int k = start[i]; k < start[i + 1]; ++k)
+        for (int c = 0; c < 4; ++c) sum[c] += records[at[k] + c];
+      for (int c = 0; c < 3; ++c) want[kStride * i + c] = sum[c];
+      want[kStride * i + 3] = sum[3] * perArea;
+    }
+    for (const auto& [name, copy] : copies) {
+      std::vector<double> got(kStride * kNodes, -1.0);
+      copy(records.data(), start.data(), at.data(), begin, end, perArea, got.data(), kStride);
+      for (size_t k = 0; k < got.size(); ++k) {
+        ASSERT_EQ(std::bit_cast<std::uint64_t>(got[k]), std::bit_cast<std::uint64_t>(want[k]))
+            << name << " entry " << k;
+        ++compared;
+      }
     }
   }
   std::printf("%d entries compared bit for bit (%zu copies%s)\n", compared, copies.size(),

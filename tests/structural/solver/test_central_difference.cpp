@@ -134,10 +134,10 @@ struct MovingMass final : Term {
 };
 struct CommittedMass final : Term {
   std::vector<int> nodes;
-  std::vector<double> mass;
+  std::vector<double> mass, now;
   double scale = 1.0, growth;
   CommittedMass(std::vector<int> n, std::vector<double> m, double g)
-      : nodes(std::move(n)), mass(std::move(m)), growth(g) {}
+      : nodes(std::move(n)), mass(std::move(m)), now(mass), growth(g) {}
   const char* name() const override { return "committed_mass"; }
   void addEnergy(const Eigen::VectorXd&, const Eigen::VectorXd&, double,
                  EnergyBreakdown&) const override {}
@@ -145,10 +145,11 @@ struct CommittedMass final : Term {
   void assemble(const EvalPoint&, SystemAssembler&) override {}
   bool massChangesAtCommit() const override { return true; }
   const std::vector<int>& committedMassNodes() const override { return nodes; }
-  void committedNodalMass(double* m) const override {
-    for (size_t i = 0; i < nodes.size(); ++i) m[i] = scale * mass[i];
+  const double* committedNodalMass() const override { return now.data(); }
+  void commit(const CommitPoint&) override {
+    scale *= growth;
+    for (size_t i = 0; i < nodes.size(); ++i) now[i] = scale * mass[i];
   }
-  void commit(const CommitPoint&) override { scale *= growth; }
 };
 
 }  // namespace
