@@ -4,6 +4,7 @@
 // where (cx, cv, ca) are the integrator's derivatives of the evaluation-point quantities with
 // respect to the unknown positions. The integrator knows nothing of what a term models.
 #include <Eigen/Core>
+#include <functional>
 #include <vector>
 
 #include "assembly/EventSource.hpp"
@@ -11,6 +12,11 @@
 #include "model/History.hpp"
 
 namespace chute {
+
+// Runs its argument with 0 and with 1, at once where the system has two threads (each call's
+// writes its own): a term's per-node pass in two halves, its partial sums added in a fixed order,
+// gives the same bits on one thread and on two (StructuralSystem::inTwoHalves).
+using InHalves = std::function<void(const std::function<void(int)>&)>;
 
 // Where the terms are evaluated: positions, velocities and accelerations, the time, the
 // integrator's derivatives (cx, cv, ca) and what each kind of evaluation asks of the terms. Made
@@ -57,6 +63,8 @@ struct EvalPoint {
   // Every term's Term::updateCouplings has just run at these positions x (StructuralSystem's
   // assembly): a term that keeps lists by position need not check them again.
   bool couplingsUpdated = false;
+  // Given to Term::beforeHalves only (its passes run before the halves, on no runner's thread).
+  const InHalves* inHalves = nullptr;
 
   // The state (x, v, a) at t as it is: residual r(x, v, a, t), Jacobian dr/dx (output, the
   // energy balance, checks).
@@ -156,6 +164,7 @@ struct CommitPoint {
   double dt = 0.0;
   double tForces = 0.0;
   const Eigen::VectorXd* v = nullptr;  // the end velocities, where the integrator has them
+  const InHalves* inHalves = nullptr;  // set by the system for its terms
 };
 
 // What a term may adapt to the integrator that steps it, told once before the first step

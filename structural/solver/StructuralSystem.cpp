@@ -277,7 +277,11 @@ void StructuralSystem::assembleParts(const EvalPoint& at, bool wantMatrix,
     secondAssembler_.beginWithoutClearing(false);
   else
     secondAssembler_.begin(wantMatrix);
-  if (halved_) halved_->beforeHalves(p, assembler_);
+  if (halved_) {
+    EvalPoint before = p;
+    before.inHalves = &inTwoHalves_;
+    halved_->beforeHalves(before, assembler_);
+  }
   // alongside() on whichever thread finishes its part first (the other one's part is the longer).
   std::atomic<bool> taken{false};
   auto then = [&] {
@@ -438,7 +442,9 @@ EnergyBreakdown StructuralSystem::energyOnTwoThreads(const Eigen::VectorXd& x,
 }
 
 void StructuralSystem::commit(const CommitPoint& c) {
-  for (const auto& t : terms_) t->commit(c);
+  CommitPoint at = c;
+  if (!at.inHalves) at.inHalves = &inTwoHalves_;
+  for (const auto& t : terms_) t->commit(at);
 }
 void StructuralSystem::revert() {
   for (const auto& t : terms_) t->revert();

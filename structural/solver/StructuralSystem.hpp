@@ -23,6 +23,9 @@ class StructuralSystem {
   // (loads supplied by a coupled flow solver), which join the sparsity pattern like the others.
   StructuralSystem(const Model& model, TermOptions options,
                    std::vector<std::unique_ptr<Term>> extraTerms = {});
+  // Not copied or moved: inTwoHalves_ holds this.
+  StructuralSystem(const StructuralSystem&) = delete;
+  StructuralSystem& operator=(const StructuralSystem&) = delete;
 
   const Model& model() const { return *model_; }
   const DofMap& dofs() const { return dofs_; }
@@ -204,6 +207,10 @@ class StructuralSystem {
                      bool forHalves);
   SystemAssembler secondAssembler_;
   std::unique_ptr<TwoPartRunner> runner_;  // only with a second part
+  // The halves a term's pass is split into (CommitPoint::inHalves, EvalPoint::inHalves).
+  const InHalves inTwoHalves_ = [this](const std::function<void(int)>& f) {
+    runTwo([&] { f(0); }, [&] { f(1); });
+  };
   Timings timings_;
   mutable long energyEvaluations_ = 0;
 };

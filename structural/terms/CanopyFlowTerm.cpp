@@ -354,7 +354,7 @@ bool CanopyFlowTerm::trianglesOnly() const {
 }
 
 kernels::TriangleFlowParameters CanopyFlowTerm::takenParameters(const EvalPoint& p) {
-  pass_.state = flowState(p.v);
+  pass_.state = flowState(p.v, p.inHalves);
   pass_.gauge = startGauge();
   const kernels::CanopyFlowState& s = pass_.state;
   kernels::TriangleFlowParameters q;
@@ -514,19 +514,33 @@ double CanopyFlowTerm::AirBudget::massAfter(double Mn, double dt,
   return 0.5 * (lo + hi);
 }
 
-kernels::CanopyFlowState CanopyFlowTerm::flowState(const Eigen::VectorXd& v) const {
+kernels::CanopyFlowState CanopyFlowTerm::flowState(const Eigen::VectorXd& v,
+                                                   const InHalves* inHalves) const {
   const double rho = m_->air.density;
   // FL1: the relative flow of the canopy as a whole; the canopy's velocity the mean of its
-  // nodes' by their shares of its area at the step's start.
-  // By component in locals, the same sums (an Eigen 3-vector accumulated through the loop was
-  // stored and reloaded at every node).
-  double cv[3] = {0.0, 0.0, 0.0};
-  const double* vd = v.data();
-  const double* share = committedShares_.data();
-  const int* node = nodes_.data();
-  for (size_t i = 0; i < nodes_.size(); ++i)
-    for (int c = 0; c < 3; ++c) cv[c] += share[i] * vd[3 * node[i] + c];
-  const Vec3 canopyVelocity(cv[0], cv[1], cv[2]);
+  // nodes' by their shares of its area at the step's start: over two halves of the nodes (at
+  // once where the system has two threads), their sums added in order.
+  // By component in locals (an Eigen 3-vector accumulated through the loop was stored and
+  // reloaded at every node).
+  double part[2][3] = {};
+  auto sumHalf = [&](int half) {
+    const size_t n = nodes_.size(), begin = half == 0 ? 0 : n / 2, end = half == 0 ? n / 2 : n;
+    double cv[3] = {0.0, 0.0, 0.0};
+    const double* vd = v.data();
+    const double* share = committedShares_.data();
+    const int* node = nodes_.data();
+    for (size_t i = begin; i < end; ++i)
+      for (int c = 0; c < 3; ++c) cv[c] += share[i] * vd[3 * node[i] + c];
+    for (int c = 0; c < 3; ++c) part[half][c] = cv[c];
+  };
+  if (inHalves) {
+    (*inHalves)(sumHalf);
+  } else {
+    sumHalf(0);
+    sumHalf(1);
+  }
+  const Vec3 canopyVelocity(part[0][0] + part[1][0], part[0][1] + part[1][1],
+                            part[0][2] + part[1][2]);
   const Vec3 U = m_->air.wind - canopyVelocity;
   const double speed = U.norm();
   kernels::CanopyFlowState s;
@@ -669,26 +683,34 @@ void CanopyFlowTerm::commit(const CommitPoint& c) {
   inertiaMass_ = apparentMassOfVolume(volume) + captured_;
   massRate_ = c.dt > 0.0 ? (inertiaMass_ - before) / c.dt : 0.0;
   // The new shares committed, and the kinetic energy the nodes' apparent masses gain in changing
-  // from m_a s_i to m_a' s_i' at the velocities they have, in one pass.
-  auto commitShares = [&](auto share) {
-    double gained = 0.0;
+  // from m_a s_i to m_a' s_i' at the velocities they have, in one pass (in two halves, at once
+  // where the system has two threads; their sums added in order).
+  std::vector<double> made;
+  if (!evaluatedHere) made = areaShares(c.x);
+  const double* madeShares = evaluatedHere ? nullptr : made.data();
+  double gained[2] = {0.0, 0.0};
+  auto commitHalf = [&](int half) {
+    const size_t n = nodes_.size(), begin = half == 0 ? 0 : n / 2, end = half == 0 ? n / 2 : n;
     const double inertia = inertiaMass_;
+    const NodeSums* sums = nodeSums_.data();
     double* nodeMass = nodeMass_.data();
     double* committed = committedShares_.data();
-    for (size_t i = 0; i < nodes_.size(); ++i) {
-      const double s = share(i), m = inertia * s;
-      if (c.v) gained += (m - before * committed[i]) * at(*c.v, nodes_[i]).squaredNorm();
+    double g = 0.0;
+    for (size_t i = begin; i < end; ++i) {
+      const double s = madeShares ? madeShares[i] : sums[i].share, m = inertia * s;
+      if (c.v) g += (m - before * committed[i]) * at(*c.v, nodes_[i]).squaredNorm();
       committed[i] = s;
       nodeMass[i] = m;
     }
-    if (c.v) supplied_ += 0.5 * gained;
+    gained[half] = g;
   };
-  if (evaluatedHere) {
-    commitShares([&](size_t i) { return nodeSums_[i].share; });
+  if (c.inHalves) {
+    (*c.inHalves)(commitHalf);
   } else {
-    const std::vector<double> made = areaShares(c.x);
-    commitShares([&](size_t i) { return made[i]; });
+    commitHalf(0);
+    commitHalf(1);
   }
+  if (c.v) supplied_ += 0.5 * (gained[0] + gained[1]);
   committedVolume_ = volume;
 }
 

@@ -148,7 +148,8 @@ class CanopyFlowTerm final : public Term {
   // Its parts: the canopy-wide state at velocities v (FL1, the inside gauge left 0), the inside
   // gauge of the step's start (the cloth's linearisation, FL9), and what follows the pass over
   // the faces (sums; per-node sums in nodeSums_ when out is given).
-  kernels::CanopyFlowState flowState(const Eigen::VectorXd& v) const;
+  kernels::CanopyFlowState flowState(const Eigen::VectorXd& v,
+                                     const InHalves* inHalves = nullptr) const;
   double startGauge() const;
   // loads: an evaluation for the loads (out: where the per-node ones go, or nullptr to add them
   // later with addNodeLoads); otherwise the figures alone. facesTaken: the membranes' pass made
