@@ -288,6 +288,13 @@ class Term {
                              EnergyBreakdown& e, int half) const {
     if (half == 0) addEnergy(x, v, t, e);
   }
+  // addStiffnessBound in the same two halves, each half's bounds added to S; together
+  // addStiffnessBound's, to round-off.
+  virtual void addStiffnessBoundHalf(const Eigen::VectorXd& x, double t,
+                                     const std::vector<char>& free, std::vector<double>& S,
+                                     int half) const {
+    if (half == 0) addStiffnessBound(x, t, free, S);
+  }
 
   // ---- history (model/History.hpp) ----
   // commit(): the converged step becomes the state later steps start from; revert(): the trial

@@ -373,7 +373,14 @@ double CentralDifference::chooseStep(double lastStep, const Eigen::VectorXd& x, 
   const Eigen::VectorXd& massEq = lumpedMass(x, t);
   std::vector<double> S;
   if (boundAheadT_ == t && boundAheadX_.size() == x.size() && boundAheadX_ == x) {
-    S = std::move(boundAhead_);  // made alongside the last step's assembly at this (x, t)
+    // Made alongside the last step's assembly at this (x, t); in parts, positionStiffnessBound's
+    // sum of them.
+    if (boundInParts_) {
+      S = std::move(boundParts_[0]);
+      for (size_t i = 0; i < S.size(); ++i) S[i] += boundParts_[1][i];
+    } else {
+      S = std::move(boundAhead_);
+    }
     sys_->addStateStiffnessBound(x, t, S);
   } else {
     S = sys_->stiffnessBound(x, t);
@@ -505,18 +512,25 @@ NewtonReport CentralDifference::advance(StructuralState& s, double dt) {
     // changes the fixed mass) alongside the assembly, on the thread that finishes its part first:
     // it reads the positions and the sliding states, as the assembly does, and writes only its
     // own. Kept, rather than asked for again: a second call compares all positions to find it.
+    // With two parts, each part's terms' bound after that part, on its thread (the membranes'
+    // halves: one on each), summed when the next step's estimate takes them (chooseStep).
+    const bool parts = sys_->hasTwoParts();
     auto alongside = [&] {
       mass = &lumpedMass(n.x, n.t);
-      if (boundAheadWanted_) {
-        boundAhead_ = sys_->positionStiffnessBound(n.x, n.t);
-        boundAheadX_ = n.x;
-        boundAheadT_ = n.t;
-      }
+      if (boundAheadWanted_ && !parts) boundAhead_ = sys_->positionStiffnessBound(n.x, n.t);
+    };
+    const std::function<void(int)> afterPart = [&](int part) {
+      if (boundAheadWanted_) sys_->positionStiffnessBoundPart(n.x, n.t, part, boundParts_[part]);
     };
     if (halves)
-      sys_->assembleForHalves(p, alongside);
+      sys_->assembleForHalves(p, alongside, &afterPart);
     else
-      sys_->assemble(p, false, alongside);
+      sys_->assemble(p, false, alongside, &afterPart);
+    if (boundAheadWanted_) {
+      boundAheadX_ = n.x;
+      boundAheadT_ = n.t;
+      boundInParts_ = parts;
+    }
   } else {
     sys_->assemble(p, false);
   }

@@ -163,6 +163,8 @@ class CentralDifference final : public TimeIntegrator {
   // that read their state (sliding groups, contact) at that (x, t).
   bool boundAheadWanted_ = false;
   std::vector<double> boundAhead_;
+  std::vector<double> boundParts_[2];  // the two parts' (StructuralSystem::hasTwoParts)
+  bool boundInParts_ = false;
   Eigen::VectorXd boundAheadX_;
   double boundAheadT_ = -1.0;
 };

@@ -138,10 +138,30 @@ std::vector<double> StructuralSystem::stiffnessBound(const Eigen::VectorXd& x, d
 
 std::vector<double> StructuralSystem::positionStiffnessBound(const Eigen::VectorXd& x,
                                                              double t) const {
-  std::vector<double> S(model_->numNodes(), 0.0);
+  std::vector<double> S;
+  if (hasTwoParts()) {
+    std::vector<double> second;
+    positionStiffnessBoundPart(x, t, 0, S);
+    positionStiffnessBoundPart(x, t, 1, second);
+    for (size_t i = 0; i < S.size(); ++i) S[i] += second[i];
+    return S;
+  }
+  S.assign(model_->numNodes(), 0.0);
   for (const auto& term : terms_)
     if (term->stiffnessBoundOfPositions()) term->addStiffnessBound(x, t, freeNode_, S);
   return S;
+}
+
+void StructuralSystem::positionStiffnessBoundPart(const Eigen::VectorXd& x, double t, int part,
+                                                  std::vector<double>& S) const {
+  S.assign(model_->numNodes(), 0.0);
+  for (Term* term : part == 0 ? firstPart_ : secondPart_) {
+    if (!term->stiffnessBoundOfPositions()) continue;
+    if (term == halved_)
+      term->addStiffnessBoundHalf(x, t, freeNode_, S, part);
+    else
+      term->addStiffnessBound(x, t, freeNode_, S);
+  }
 }
 
 void StructuralSystem::addStateStiffnessBound(const Eigen::VectorXd& x, double t,
@@ -178,17 +198,19 @@ int StructuralSystem::updateState(const Eigen::VectorXd& x) {
 }
 
 void StructuralSystem::assemble(const EvalPoint& p, bool wantMatrix) {
-  assemble(p, wantMatrix, nullptr);
+  assemble(p, wantMatrix, nullptr, nullptr);
 }
 
 void StructuralSystem::assemble(const EvalPoint& at, bool wantMatrix,
-                                const std::function<void()>& alongside) {
-  assembleParts(at, wantMatrix, alongside, false);
+                                const std::function<void()>& alongside,
+                                const std::function<void(int)>* afterPart) {
+  assembleParts(at, wantMatrix, alongside, false, afterPart);
 }
 
 void StructuralSystem::assembleForHalves(const EvalPoint& at,
-                                         const std::function<void()>& alongside) {
-  assembleParts(at, false, alongside, true);
+                                         const std::function<void()>& alongside,
+                                         const std::function<void(int)>* afterPart) {
+  assembleParts(at, false, alongside, true, afterPart);
 }
 
 void StructuralSystem::residualNotSummed() {
@@ -218,7 +240,8 @@ void StructuralSystem::useResidualInHalves(const std::function<void(int, int)>& 
 }
 
 void StructuralSystem::assembleParts(const EvalPoint& at, bool wantMatrix,
-                                     const std::function<void()>& alongside, bool forHalves) {
+                                     const std::function<void()>& alongside, bool forHalves,
+                                     const std::function<void(int)>* afterPart) {
   ScopedTimer timer(timings_.assembly);
   sumPending_ = false;
   ++timings_.assemblies;
@@ -291,11 +314,13 @@ void StructuralSystem::assembleParts(const EvalPoint& at, bool wantMatrix,
       [&] {
         if (split) assembler_.clearResidual();
         assemblePart(firstPart_, assembler_, partLoads_[0], 0);
+        if (afterPart) (*afterPart)(0);
         then();
       },
       [&] {
         if (split) secondAssembler_.clearResidual();
         assemblePart(secondPart_, secondAssembler_, partLoads_[1], 1);
+        if (afterPart) (*afterPart)(1);
         then();
       });
   if (halved_) {

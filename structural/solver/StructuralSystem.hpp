@@ -55,6 +55,13 @@ class StructuralSystem {
   // and give the same bits.
   std::vector<double> stiffnessBound(const Eigen::VectorXd& x, double t) const;
   std::vector<double> positionStiffnessBound(const Eigen::VectorXd& x, double t) const;
+  // Where the assembly has two parts (hasTwoParts): positionStiffnessBound is made as each part's
+  // sums (the part's terms in order, the halved term's half in each), the second part's then
+  // added node by node to the first's. One part's, into S (sized and zeroed here), so that each
+  // may be made on its own thread (after its part of an assembly: assemble's afterPart).
+  bool hasTwoParts() const { return !secondPart_.empty(); }
+  void positionStiffnessBoundPart(const Eigen::VectorXd& x, double t, int part,
+                                  std::vector<double>& S) const;
   void addStateStiffnessBound(const Eigen::VectorXd& x, double t, std::vector<double>& S) const;
   // The largest of the terms' bounds on the squared frequencies of modes over many nodes
   // (Term::frequencySquaredBound), given the lumped nodal masses.
@@ -68,12 +75,15 @@ class StructuralSystem {
   // assembly without a split): work that reads what the assembly reads and writes nothing it
   // touches (the explicit step's lumped mass of the sliding elements, EX2), so that the same bits
   // come out on whichever thread it runs.
-  void assemble(const EvalPoint& p, bool wantMatrix, const std::function<void()>& alongside);
+  // afterPart(part), where given and the assembly has two parts: after each part, on its thread.
+  void assemble(const EvalPoint& p, bool wantMatrix, const std::function<void()>& alongside,
+                const std::function<void(int)>* afterPart = nullptr);
   // The explicit step's assembly (residual only) whose residual is used in halves of the
   // equations, one on each thread: each part's residual is cleared on its own thread, and the
   // two parts' sum is left to useResidualInHalves, which makes it half by half just before each
   // half is used (no pass over all equations of its own). residual() is not to be read between.
-  void assembleForHalves(const EvalPoint& p, const std::function<void()>& alongside);
+  void assembleForHalves(const EvalPoint& p, const std::function<void()>& alongside,
+                         const std::function<void(int)>* afterPart = nullptr);
   // use(begin, end) over equations [0, n/2) here and [n/2, n) on the second thread (one after the
   // other without one), each half of the residual complete when it is called. use must touch only
   // what belongs to its equations.
@@ -204,7 +214,7 @@ class StructuralSystem {
   Term* halved_ = nullptr;   // in both parts, each assembling half (Term::assemblesInHalves)
   bool sumPending_ = false;  // assembleForHalves left the parts' residuals to be summed
   void assembleParts(const EvalPoint& p, bool wantMatrix, const std::function<void()>& alongside,
-                     bool forHalves);
+                     bool forHalves, const std::function<void(int)>* afterPart);
   SystemAssembler secondAssembler_;
   std::unique_ptr<TwoPartRunner> runner_;  // only with a second part
   // The halves a term's pass is split into (CommitPoint::inHalves, EvalPoint::inHalves).

@@ -363,8 +363,20 @@ void MembraneTerm::makeBound() const {
 void MembraneTerm::addStiffnessBound(const Eigen::VectorXd& x, double /*t*/,
                                      const std::vector<char>& /*free*/,
                                      std::vector<double>& S) const {
+  addStiffnessBoundOver(x, 0, m_->membranes.size(), S);
+}
+
+void MembraneTerm::addStiffnessBoundHalf(const Eigen::VectorXd& x, double /*t*/,
+                                         const std::vector<char>& /*free*/, std::vector<double>& S,
+                                         int half) const {
+  const size_t n = m_->membranes.size(), middle = n / 2;
+  addStiffnessBoundOver(x, half == 0 ? 0 : middle, half == 0 ? middle : n, S);
+}
+
+void MembraneTerm::addStiffnessBoundOver(const Eigen::VectorXd& x, size_t begin, size_t end,
+                                         std::vector<double>& S) const {
   makeBound();
-  for (size_t k = 0; k < m_->membranes.size(); ++k) {
+  for (size_t k = begin; k < end; ++k) {
     const auto& e = m_->membranes[k];
     if (!(bound_[k].perNode > 0.0)) continue;
     const double perNode =  // EX6m

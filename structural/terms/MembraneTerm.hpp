@@ -48,6 +48,8 @@ class MembraneTerm final : public Term {
   void prepareFor(const IntegrationTraits& traits) override;
   void addStiffnessBound(const Eigen::VectorXd& x, double t, const std::vector<char>& free,
                          std::vector<double>& S) const override;
+  void addStiffnessBoundHalf(const Eigen::VectorXd& x, double t, const std::vector<char>& free,
+                             std::vector<double>& S, int half) const override;
   double assemblyCost() const override;
   bool assemblesApart() const override { return true; }
   // The explicit step's triangles in two halves of their batches (the quads with the second);
@@ -184,6 +186,8 @@ class MembraneTerm final : public Term {
   // The reference part of each element's stable-step bound (EX6m), made for explicit steps.
   mutable std::vector<kernels::MembraneBoundReference> bound_;
   void makeBound() const;
+  void addStiffnessBoundOver(const Eigen::VectorXd& x, size_t begin, size_t end,
+                             std::vector<double>& S) const;
   // addEnergy over elements [begin, end) (the whole, or a half of addEnergyHalf).
   void addEnergyOver(const Eigen::VectorXd& x, const Eigen::VectorXd& v, size_t begin, size_t end,
                      EnergyBreakdown& e) const;
