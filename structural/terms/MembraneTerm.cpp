@@ -88,6 +88,20 @@ void MembraneTerm::makeExplicitTriangles() {
     const std::array<double, 4> share = massSharesOf(k);  // with or without gravity
     for (int i = 0; i < 3; ++i) t.share[i] = share[i];
   }
+  // The lumped triangles' masses per node (M4), summed in the triangles' order: their kinetic and
+  // gravity energy node by node (addNodeEnergyOver).
+  if (m_->massKind == kernels::MassKind::Lumped) {
+    std::vector<double> mass(m_->numNodes(), 0.0);
+    std::vector<char> has(m_->numNodes(), 0);
+    for (size_t k = 0; k < m_->membranes.size(); ++k) {
+      const auto& e = m_->membranes[k];
+      if (e.numNodes != 3 || m_->membraneMaterials[e.material].density <= 0.0) continue;
+      const ExplicitTriangle& t = explicitTriangles_[slot_[k]];
+      for (int i = 0; i < 3; ++i) mass[t.nodes[i]] += t.share[i], has[t.nodes[i]] = 1;
+    }
+    for (int n = 0; n < m_->numNodes(); ++n)
+      if (has[n]) triangleNodeMass_.emplace_back(n, mass[n]);
+  }
   constexpr size_t kLanes = kernels::kTriangleLanes;
   triangleLanes_.resize((explicitTriangles_.size() + kLanes - 1) / kLanes);
   for (size_t b = 0; b < triangleLanes_.size(); ++b)
@@ -592,15 +606,36 @@ const std::vector<MembraneTerm::ElementState>& MembraneTerm::elementStates() con
 void MembraneTerm::addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v, double,
                              EnergyBreakdown& en) const {
   addEnergyOver(x, v, 0, m_->membranes.size(), en);
+  addNodeEnergyOver(x, v, 0, triangleNodeMass_.size(), en);
 }
 
 void MembraneTerm::addEnergyHalf(const Eigen::VectorXd& x, const Eigen::VectorXd& v, double,
                                  EnergyBreakdown& en, int half) const {
   const size_t n = m_->membranes.size(), middle = n / 2;
-  if (half == 0)
+  const size_t nodes = triangleNodeMass_.size(), nodesMiddle = nodes / 2;
+  if (half == 0) {
     addEnergyOver(x, v, 0, middle, en);
-  else
+    addNodeEnergyOver(x, v, 0, nodesMiddle, en);
+  } else {
     addEnergyOver(x, v, middle, n, en);
+    addNodeEnergyOver(x, v, nodesMiddle, nodes, en);
+  }
+}
+
+void MembraneTerm::addNodeEnergyOver(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
+                                     size_t begin, size_t end, EnergyBreakdown& en) const {
+  // M4: a lumped mass's kinetic energy (1/2) sum m_i |v_i|^2 and gravity's potential
+  // -sum m_i g . x_i node by node, each node's mass its triangles' shares (as a sum over the
+  // triangles, to round-off; a pass over the triangles had cost more than their forces' pass).
+  const Eigen::Vector3d g = m_->gravity;
+  double kinetic = 0.0, gravity = 0.0;
+  for (size_t i = begin; i < end; ++i) {
+    const auto& [node, mass] = triangleNodeMass_[i];
+    kinetic += mass * v.segment<3>(3 * node).squaredNorm();
+    gravity += mass * g.dot(x.segment<3>(3 * node));
+  }
+  en.kinetic += 0.5 * kinetic;
+  en.gravity -= gravity;
 }
 
 void MembraneTerm::addEnergyOver(const Eigen::VectorXd& x, const Eigen::VectorXd& v, size_t begin,
@@ -646,8 +681,7 @@ void MembraneTerm::addEnergyOver(const Eigen::VectorXd& x, const Eigen::VectorXd
       one(refs3_[slot_[k]], e, std::integral_constant<int, 3>{});
       continue;
     }
-    // one() for a triangle of lumped mass, the same bits: the energy from the explicit record, the
-    // lumped mass's diagonal its row sums, the shares (M4).
+    // A triangle of lumped mass: its strain energy from the explicit record (one()'s bits).
     const size_t slot = static_cast<size_t>(slot_[k]);
     const ExplicitTriangle& t = explicitTriangles_[slot];
     const double* xd = x.data();
@@ -661,15 +695,7 @@ void MembraneTerm::addEnergyOver(const Eigen::VectorXd& x, const Eigen::VectorXd
       en.strain += kernels::membraneTriangleEnergy(xd + 3 * t.nodes[0], xd + 3 * t.nodes[1],
                                                    xd + 3 * t.nodes[2], t.force);
     }
-    if (m_->membraneMaterials[e.material].density <= 0.0) continue;
-    Eigen::Matrix<double, 9, 1> vv, Mv;
-    for (int i = 0; i < 3; ++i) {
-      vv.segment<3>(3 * i) = v.segment<3>(3 * t.nodes[i]);
-      Mv.segment<3>(3 * i) = t.share[i] * vv.segment<3>(3 * i);
-    }
-    en.kinetic += 0.5 * vv.dot(Mv);
-    for (int i = 0; i < 3; ++i)
-      en.gravity -= t.share[i] * m_->gravity.dot(x.segment<3>(3 * t.nodes[i]));
+    // Its kinetic and gravity energy: node by node (addNodeEnergyOver).
   }
 }
 
