@@ -46,6 +46,12 @@ class CableTerm final : public Term, public EventSource {
   std::vector<char> takenSlot_;  // per lane slot: its cable's drag taken
   bool anyCut_ = false;          // a cable's set is cut at some time
   bool dragTaken_ = false;       // takeLineDrag took at least one cable's drag
+  // With a lumped mass, each node's mass from the cables whose set is not gone (addEnergy), for
+  // the sets gone when it was made.
+  const std::vector<std::pair<int, double>>& nodeMassAt(double t) const;
+  mutable std::vector<std::pair<int, double>> nodeMass_;
+  mutable std::vector<char> nodeMassGone_;
+  mutable bool nodeMassMade_ = false;
 };
 
 }  // namespace chute

@@ -69,10 +69,15 @@ void assembleCable(const Model& m, int a, int b, double L, int material, const E
   out.add<2>({a, b}, r, wantJ ? &J : nullptr);
 }
 
+double cableStrainEnergy(const Model& m, int a, int b, double L, int material,
+                         const Eigen::VectorXd& x) {
+  return kernels::cableForce(pos(x, a), pos(x, b), L, m.materials[material], false).energy;
+}
+
 void cableEnergy(const Model& m, int a, int b, double L, int material, const Eigen::VectorXd& x,
                  const Eigen::VectorXd& v, EnergyBreakdown& e) {
   const auto& mat = m.materials[material];
-  e.strain += kernels::cableForce(pos(x, a), pos(x, b), L, mat, false).energy;
+  e.strain += cableStrainEnergy(m, a, b, L, material, x);
   if (mat.density > 0.0) {
     const Vec6 vv = gather2(v, a, b);
     e.kinetic += 0.5 * vv.dot(kernels::cableMassTimes(L, mat, m.massKind, vv));

@@ -113,5 +113,8 @@ void assembleCable(const Model& m, int a, int b, double L, int material, const E
 // Strain, kinetic and gravity energy of one two-node cable.
 void cableEnergy(const Model& m, int a, int b, double L, int material, const Eigen::VectorXd& x,
                  const Eigen::VectorXd& v, EnergyBreakdown& e);
+// Its strain energy alone (cableEnergy's first term, the same bits).
+double cableStrainEnergy(const Model& m, int a, int b, double L, int material,
+                         const Eigen::VectorXd& x);
 
 }  // namespace chute::line_assembly
