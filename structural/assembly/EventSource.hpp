@@ -39,7 +39,12 @@ class EventSource {
   // `motion` is given at the nodes of the watchers' couplings, zero elsewhere).
   // A source notes the kinks passed, for the next updateState, and may move xEnd by a negligible
   // amount onto a kink reached. Only sources that say they watch the motion are asked.
+  // The noting first, for every source (noteExplicitMotion: it reads x and motion and writes only
+  // the source's own state, so the sources' notes may run on two threads at once), then each
+  // source's afterExplicitMotion in order (the moves onto kinks, which may touch shared nodes).
   virtual bool watchesExplicitMotion() const { return false; }
+  virtual void noteExplicitMotion(const Eigen::VectorXd& /*x*/, const Eigen::VectorXd& /*motion*/) {
+  }
   virtual void afterExplicitMotion(const Eigen::VectorXd& /*x*/, const Eigen::VectorXd& /*motion*/,
                                    Eigen::VectorXd& /*xEnd*/) {}
   // Round-off floor of a Newton update at the last assembly (length units): a very short, stiff

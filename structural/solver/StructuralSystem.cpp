@@ -183,6 +183,15 @@ void StructuralSystem::afterExplicitMotion(const Eigen::VectorXd& x, Eigen::Vect
   // for the few nodes they read.
   if (motion_.size() != xEnd.size()) motion_.setZero(xEnd.size());
   for (int d : watchedDofs_) motion_[d] = xEnd[d] - x[d];
+  // The notes in two halves of the sources, at once where there are two threads (each writes
+  // its own state; none reads what another's note or move writes: x and motion_ stay as they
+  // are), then the moves in order.
+  const size_t n = events_.size();
+  auto note = [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i)
+      if (events_[i]->watchesExplicitMotion()) events_[i]->noteExplicitMotion(x, motion_);
+  };
+  runTwo([&] { note(0, n / 2); }, [&] { note(n / 2, n); });
   for (auto* e : events_)
     if (e->watchesExplicitMotion()) e->afterExplicitMotion(x, motion_, xEnd);
 }

@@ -50,9 +50,11 @@ class SlidingGroupTerm final : public Term, public EventSource {
   // left a slider within kExplicitArrivalFraction of one (the node placed a hair ahead of it, as
   // at an implicit arrival, RG2).
   bool watchesExplicitMotion() const override { return !condensed_; }
-  void afterExplicitMotion(const Eigen::VectorXd& x, const Eigen::VectorXd& motion,
-                           Eigen::VectorXd& xEnd) override {
+  void noteExplicitMotion(const Eigen::VectorXd& x, const Eigen::VectorXd& motion) override {
     state_.notePassages(x, motion);
+  }
+  void afterExplicitMotion(const Eigen::VectorXd& /*x*/, const Eigen::VectorXd& /*motion*/,
+                           Eigen::VectorXd& xEnd) override {
     state_.arriveAtNodes(*m_, xEnd, kernels::kExplicitArrivalFraction, kernels::kSeparationFraction,
                          true);
   }
