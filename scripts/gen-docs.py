@@ -82,6 +82,9 @@ MD_PAGES = [
     ("two_threads_whole_step.md", "Both threads on more of the explicit step, one sitting"),
     ("c9_slider_real_time_2026-11-28.md",
      "The C-9 slider case as shipped: line elements four at a time and mass scaling, one sitting"),
+    ("serial_work_2026-11-28.md",
+     "Both threads on the step's serial work, and the airflow's per-step cost, one sitting"),
+    ("threads_generated_c9.md", "One thread against two on the generated C-9 (`bench/speed/threads.py`)"),
 ]
 
 
