@@ -88,8 +88,8 @@ class CanopyFlowTerm final : public Term {
   double* faceRecords() { return faceRecords_.data(); }
   void finishTakenPass(const EvalPoint& p, const FaceSums& sums, SystemAssembler& out);
   // After a pass in two halves: the evaluation from both halves' sums (on one thread), then each
-  // half of the nodes' records merged and their loads added (half 0 and 1, on either thread, at
-  // once: each writes its own nodes).
+  // half of the nodes' records gathered and their loads added (half 0 and 1, on either thread, at
+  // once: each writes its own nodes); finishTakenNodesOver: the nodes [begin, end) so.
   void finishTakenSums(const EvalPoint& p, const FaceSums& sums);
   void finishTakenNodes(SystemAssembler& out, int half);
   void finishTakenNodesOver(SystemAssembler& out, size_t begin, size_t end);
