@@ -15,9 +15,11 @@
 #include "app/cli/Command.hpp"
 #include "app/cli/Dispatch.hpp"
 #include "app/cli/VersionText.hpp"
+#include "solver/LinearSolver.hpp"
 
 int main(int argc, char** argv) {
   using namespace chute::cli;
+  chute::releaseBlasThreads();
   // `chute run` handles SIGINT / SIGTERM from its first instruction (checkpoint, valid output);
   // the other verbs keep the default (they end at once).
   if (argc > 1 && std::string_view(argv[1]) == "run") chute::installStopHandlers();

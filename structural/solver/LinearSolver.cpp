@@ -3,6 +3,7 @@
 #include <dlfcn.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cstdlib>
 
 namespace chute {
@@ -15,14 +16,35 @@ namespace {
 // 5.2 s with 2 threads at load 6 on 2 cores; at 178k, 1 thread 2.07 s against 2.45 s with 2
 // (bench/README.md). So one thread, unless the user set OPENBLAS_NUM_THREADS or
 // OMP_NUM_THREADS. Looked up at run time: with another BLAS it is a no-op.
+// Set by releaseBlasThreads: one thread already, and none running (setting it again would start
+// OpenBLAS's pool anew: its set function re-creates a pool that was shut down).
+std::atomic<bool> blasReleased{false};
+
 void chooseBlasThreads(int /*equations*/) {
   if (std::getenv("OPENBLAS_NUM_THREADS") || std::getenv("OMP_NUM_THREADS")) return;
+  if (blasReleased.load()) return;
   using SetThreads = void (*)(int);
   static const auto set =
       reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
   if (set) set(1);
 }
 }  // namespace
+
+void releaseBlasThreads() {
+  if (std::getenv("OPENBLAS_NUM_THREADS") || std::getenv("OMP_NUM_THREADS")) return;
+  // OpenBLAS's own entry points, looked up at run time. With one thread set first, its
+  // single-threaded calls start none again (nor does chooseBlasThreads after this);
+  // blas_thread_shutdown_ (what OpenBLAS itself calls around a fork) joins the idle ones. Measured on the C-9 slider case, two threads: the same
+  // as running it with OPENBLAS_NUM_THREADS=1, 0.957 of the wall time with the spinning pool.
+  using SetThreads = void (*)(int);
+  using Shutdown = int (*)();
+  const auto set = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
+  const auto shutdown = reinterpret_cast<Shutdown>(dlsym(RTLD_DEFAULT, "blas_thread_shutdown_"));
+  if (!set || !shutdown) return;
+  set(1);
+  shutdown();
+  blasReleased.store(true);
+}
 
 LinearSolver::LinearSolver(bool preferCholesky, Timings& timings)
     : kind_(preferCholesky ? Kind::Cholmod : Kind::Umfpack),

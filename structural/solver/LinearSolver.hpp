@@ -15,6 +15,12 @@
 
 namespace chute {
 
+// The BLAS library's idle threads stopped, unless the user asked for threads (OPENBLAS_NUM_THREADS
+// or OMP_NUM_THREADS set): OpenBLAS starts them when it is loaded and they spin for about 0.1 s
+// on the cores the explicit step's two threads use, while chute's solvers use one BLAS thread
+// (LinearSolver.cpp). A no-op with another BLAS. Called by the command first thing.
+void releaseBlasThreads();
+
 class LinearSolver {
  public:
   enum class Kind { Cholmod, Umfpack, SymmetricPart };
