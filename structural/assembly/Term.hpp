@@ -4,7 +4,9 @@
 // where (cx, cv, ca) are the integrator's derivatives of the evaluation-point quantities with
 // respect to the unknown positions. The integrator knows nothing of what a term models.
 #include <Eigen/Core>
+#include <cstddef>
 #include <functional>
+#include <utility>
 #include <vector>
 
 #include "assembly/EventSource.hpp"
@@ -17,6 +19,21 @@ namespace chute {
 // writes its own): a term's per-node pass in two halves, its partial sums added in a fixed order,
 // gives the same bits on one thread and on two (StructuralSystem::inTwoHalves).
 using InHalves = std::function<void(const std::function<void(int)>&)>;
+
+// Half 0 or 1 of n items, as the system splits them: [0, n/2) and [n/2, n).
+inline std::pair<size_t, size_t> halfOf(size_t n, int half) {
+  return half == 0 ? std::pair<size_t, size_t>{0, n / 2} : std::pair<size_t, size_t>{n / 2, n};
+}
+// each(0) and each(1): at once through inHalves where the system gave it, else one after the
+// other (the same bits either way, when each writes its own).
+inline void forBothHalves(const InHalves* inHalves, const std::function<void(int)>& each) {
+  if (inHalves) {
+    (*inHalves)(each);
+  } else {
+    each(0);
+    each(1);
+  }
+}
 
 // Where the terms are evaluated: positions, velocities and accelerations, the time, the
 // integrator's derivatives (cx, cv, ca) and what each kind of evaluation asks of the terms. Made

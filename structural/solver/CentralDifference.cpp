@@ -377,7 +377,7 @@ double CentralDifference::chooseStep(double lastStep, const Eigen::VectorXd& x, 
     // sum of them.
     if (boundInParts_) {
       S = std::move(boundParts_[0]);
-      for (size_t i = 0; i < S.size(); ++i) S[i] += boundParts_[1][i];
+      StructuralSystem::addBoundPart(S, boundParts_[1]);
     } else {
       S = std::move(boundAhead_);
     }

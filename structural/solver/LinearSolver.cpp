@@ -16,13 +16,16 @@ namespace {
 // 5.2 s with 2 threads at load 6 on 2 cores; at 178k, 1 thread 2.07 s against 2.45 s with 2
 // (bench/README.md). So one thread, unless the user set OPENBLAS_NUM_THREADS or
 // OMP_NUM_THREADS. Looked up at run time: with another BLAS it is a no-op.
+bool blasThreadsAsked() {
+  return std::getenv("OPENBLAS_NUM_THREADS") || std::getenv("OMP_NUM_THREADS");
+}
+
 // Set by releaseBlasThreads: one thread already, and none running (setting it again would start
 // OpenBLAS's pool anew: its set function re-creates a pool that was shut down).
 std::atomic<bool> blasReleased{false};
 
 void chooseBlasThreads(int /*equations*/) {
-  if (std::getenv("OPENBLAS_NUM_THREADS") || std::getenv("OMP_NUM_THREADS")) return;
-  if (blasReleased.load()) return;
+  if (blasThreadsAsked() || blasReleased.load()) return;
   using SetThreads = void (*)(int);
   static const auto set =
       reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
@@ -31,11 +34,12 @@ void chooseBlasThreads(int /*equations*/) {
 }  // namespace
 
 void releaseBlasThreads() {
-  if (std::getenv("OPENBLAS_NUM_THREADS") || std::getenv("OMP_NUM_THREADS")) return;
+  if (blasThreadsAsked()) return;
   // OpenBLAS's own entry points, looked up at run time. With one thread set first, its
   // single-threaded calls start none again (nor does chooseBlasThreads after this);
-  // blas_thread_shutdown_ (what OpenBLAS itself calls around a fork) joins the idle ones. Measured on the C-9 slider case, two threads: the same
-  // as running it with OPENBLAS_NUM_THREADS=1, 0.957 of the wall time with the spinning pool.
+  // blas_thread_shutdown_ (what OpenBLAS itself calls around a fork) joins the idle ones.
+  // Measured on the C-9 slider case, two threads: 0.934 of the wall time with the spinning pool
+  // (OPENBLAS_NUM_THREADS=1 in the environment: 0.957).
   using SetThreads = void (*)(int);
   using Shutdown = int (*)();
   const auto set = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));

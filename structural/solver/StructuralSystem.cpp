@@ -143,13 +143,17 @@ std::vector<double> StructuralSystem::positionStiffnessBound(const Eigen::Vector
     std::vector<double> second;
     positionStiffnessBoundPart(x, t, 0, S);
     positionStiffnessBoundPart(x, t, 1, second);
-    for (size_t i = 0; i < S.size(); ++i) S[i] += second[i];
+    addBoundPart(S, second);
     return S;
   }
   S.assign(model_->numNodes(), 0.0);
   for (const auto& term : terms_)
     if (term->stiffnessBoundOfPositions()) term->addStiffnessBound(x, t, freeNode_, S);
   return S;
+}
+
+void StructuralSystem::addBoundPart(std::vector<double>& first, const std::vector<double>& second) {
+  for (size_t i = 0; i < first.size(); ++i) first[i] += second[i];
 }
 
 void StructuralSystem::positionStiffnessBoundPart(const Eigen::VectorXd& x, double t, int part,
@@ -186,12 +190,10 @@ void StructuralSystem::afterExplicitMotion(const Eigen::VectorXd& x, Eigen::Vect
   // The notes in two halves of the sources, at once where there are two threads (each writes
   // its own state; none reads what another's note or move writes: x and motion_ stay as they
   // are), then the moves in order.
-  const size_t n = events_.size();
-  auto note = [&](size_t begin, size_t end) {
-    for (size_t i = begin; i < end; ++i)
+  inHalves(static_cast<int>(events_.size()), [&](int begin, int end) {
+    for (int i = begin; i < end; ++i)
       if (events_[i]->watchesExplicitMotion()) events_[i]->noteExplicitMotion(x, motion_);
-  };
-  runTwo([&] { note(0, n / 2); }, [&] { note(n / 2, n); });
+  });
   for (auto* e : events_)
     if (e->watchesExplicitMotion()) e->afterExplicitMotion(x, motion_, xEnd);
 }

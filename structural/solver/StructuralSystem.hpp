@@ -62,6 +62,8 @@ class StructuralSystem {
   bool hasTwoParts() const { return !secondPart_.empty(); }
   void positionStiffnessBoundPart(const Eigen::VectorXd& x, double t, int part,
                                   std::vector<double>& S) const;
+  // The second part's bound added to the first's, node by node: positionStiffnessBound's sum.
+  static void addBoundPart(std::vector<double>& first, const std::vector<double>& second);
   void addStateStiffnessBound(const Eigen::VectorXd& x, double t, std::vector<double>& S) const;
   // The largest of the terms' bounds on the squared frequencies of modes over many nodes
   // (Term::frequencySquaredBound), given the lumped nodal masses.

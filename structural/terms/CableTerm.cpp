@@ -117,18 +117,11 @@ void CableTerm::addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v, do
   for (const auto& c : m_->cables)
     if (!m_->lineSets[c.set].goneAt(t))
       e.strain += cableStrainEnergy(*m_, c.a, c.b, c.L, c.material, x);
-  const std::vector<std::pair<int, double>>& nodes = nodeMassAt(t);
-  const Eigen::Vector3d g = m_->gravity;
-  double kinetic = 0.0, gravity = 0.0;
-  for (const auto& [node, mass] : nodes) {
-    kinetic += mass * v.segment<3>(3 * node).squaredNorm();
-    gravity += mass * g.dot(x.segment<3>(3 * node));
-  }
-  e.kinetic += 0.5 * kinetic;
-  e.gravity -= gravity;
+  const NodeMasses& nodes = nodeMassAt(t);
+  addNodeMassEnergy(nodes, 0, nodes.size(), m_->gravity, x, v, e);
 }
 
-const std::vector<std::pair<int, double>>& CableTerm::nodeMassAt(double t) const {
+const NodeMasses& CableTerm::nodeMassAt(double t) const {
   // Made again only when the sets gone at t are not those it was made for (a cut).
   std::vector<char> gone(m_->lineSets.size());
   for (size_t s = 0; s < gone.size(); ++s) gone[s] = m_->lineSets[s].goneAt(t) ? 1 : 0;
@@ -142,9 +135,7 @@ const std::vector<std::pair<int, double>>& CableTerm::nodeMassAt(double t) const
     mass[c.a] += half, mass[c.b] += half;
     has[c.a] = has[c.b] = 1;
   }
-  nodeMass_.clear();
-  for (int n = 0; n < m_->numNodes(); ++n)
-    if (has[n]) nodeMass_.emplace_back(n, mass[n]);
+  nodeMass_ = nodesWithMass(mass, has);
   nodeMassGone_ = std::move(gone);
   nodeMassMade_ = true;
   return nodeMass_;

@@ -8,6 +8,7 @@
 #include "kernels/CableBatch.hpp"
 #include "model/Model.hpp"
 #include "terms/LineDragFusion.hpp"
+#include "terms/NodeMassEnergy.hpp"
 
 namespace chute {
 
@@ -48,8 +49,8 @@ class CableTerm final : public Term, public EventSource {
   bool dragTaken_ = false;       // takeLineDrag took at least one cable's drag
   // With a lumped mass, each node's mass from the cables whose set is not gone (addEnergy), for
   // the sets gone when it was made.
-  const std::vector<std::pair<int, double>>& nodeMassAt(double t) const;
-  mutable std::vector<std::pair<int, double>> nodeMass_;
+  const NodeMasses& nodeMassAt(double t) const;
+  mutable NodeMasses nodeMass_;
   mutable std::vector<char> nodeMassGone_;
   mutable bool nodeMassMade_ = false;
 };

@@ -444,8 +444,8 @@ void CanopyFlowTerm::addNodeLoads(SystemAssembler& out, size_t begin, size_t end
 }
 
 void CanopyFlowTerm::finishTakenNodes(SystemAssembler& out, int half) {
-  const size_t n = nodes_.size();
-  finishTakenNodesOver(out, half == 0 ? 0 : n / 2, half == 0 ? n / 2 : n);
+  const auto [begin, end] = halfOf(nodes_.size(), half);
+  finishTakenNodesOver(out, begin, end);
 }
 
 void CanopyFlowTerm::finishTakenNodesOver(SystemAssembler& out, size_t begin, size_t end) {
@@ -523,8 +523,8 @@ kernels::CanopyFlowState CanopyFlowTerm::flowState(const Eigen::VectorXd& v,
   // By component in locals (an Eigen 3-vector accumulated through the loop was stored and
   // reloaded at every node).
   double part[2][3] = {};
-  auto sumHalf = [&](int half) {
-    const size_t n = nodes_.size(), begin = half == 0 ? 0 : n / 2, end = half == 0 ? n / 2 : n;
+  forBothHalves(inHalves, [&](int half) {
+    const auto [begin, end] = halfOf(nodes_.size(), half);
     double cv[3] = {0.0, 0.0, 0.0};
     const double* vd = v.data();
     const double* share = committedShares_.data();
@@ -532,13 +532,7 @@ kernels::CanopyFlowState CanopyFlowTerm::flowState(const Eigen::VectorXd& v,
     for (size_t i = begin; i < end; ++i)
       for (int c = 0; c < 3; ++c) cv[c] += share[i] * vd[3 * node[i] + c];
     for (int c = 0; c < 3; ++c) part[half][c] = cv[c];
-  };
-  if (inHalves) {
-    (*inHalves)(sumHalf);
-  } else {
-    sumHalf(0);
-    sumHalf(1);
-  }
+  });
   const Vec3 canopyVelocity(part[0][0] + part[1][0], part[0][1] + part[1][1],
                             part[0][2] + part[1][2]);
   const Vec3 U = m_->air.wind - canopyVelocity;
@@ -689,8 +683,8 @@ void CanopyFlowTerm::commit(const CommitPoint& c) {
   if (!evaluatedHere) made = areaShares(c.x);
   const double* madeShares = evaluatedHere ? nullptr : made.data();
   double gained[2] = {0.0, 0.0};
-  auto commitHalf = [&](int half) {
-    const size_t n = nodes_.size(), begin = half == 0 ? 0 : n / 2, end = half == 0 ? n / 2 : n;
+  forBothHalves(c.inHalves, [&](int half) {
+    const auto [begin, end] = halfOf(nodes_.size(), half);
     const double inertia = inertiaMass_;
     const NodeSums* sums = nodeSums_.data();
     double* nodeMass = nodeMass_.data();
@@ -703,13 +697,7 @@ void CanopyFlowTerm::commit(const CommitPoint& c) {
       nodeMass[i] = m;
     }
     gained[half] = g;
-  };
-  if (c.inHalves) {
-    (*c.inHalves)(commitHalf);
-  } else {
-    commitHalf(0);
-    commitHalf(1);
-  }
+  });
   if (c.v) supplied_ += 0.5 * (gained[0] + gained[1]);
   committedVolume_ = volume;
 }

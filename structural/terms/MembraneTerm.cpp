@@ -89,7 +89,7 @@ void MembraneTerm::makeExplicitTriangles() {
     for (int i = 0; i < 3; ++i) t.share[i] = share[i];
   }
   // The lumped triangles' masses per node (M4), summed in the triangles' order: their kinetic and
-  // gravity energy node by node (addNodeEnergyOver).
+  // gravity energy node by node (NodeMassEnergy.hpp).
   if (m_->massKind == kernels::MassKind::Lumped) {
     std::vector<double> mass(m_->numNodes(), 0.0);
     std::vector<char> has(m_->numNodes(), 0);
@@ -99,8 +99,7 @@ void MembraneTerm::makeExplicitTriangles() {
       const ExplicitTriangle& t = explicitTriangles_[slot_[k]];
       for (int i = 0; i < 3; ++i) mass[t.nodes[i]] += t.share[i], has[t.nodes[i]] = 1;
     }
-    for (int n = 0; n < m_->numNodes(); ++n)
-      if (has[n]) triangleNodeMass_.emplace_back(n, mass[n]);
+    triangleNodeMass_ = nodesWithMass(mass, has);
   }
   constexpr size_t kLanes = kernels::kTriangleLanes;
   triangleLanes_.resize((explicitTriangles_.size() + kLanes - 1) / kLanes);
@@ -383,8 +382,8 @@ void MembraneTerm::addStiffnessBound(const Eigen::VectorXd& x, double /*t*/,
 void MembraneTerm::addStiffnessBoundHalf(const Eigen::VectorXd& x, double /*t*/,
                                          const std::vector<char>& /*free*/, std::vector<double>& S,
                                          int half) const {
-  const size_t n = m_->membranes.size(), middle = n / 2;
-  addStiffnessBoundOver(x, half == 0 ? 0 : middle, half == 0 ? middle : n, S);
+  const auto [begin, end] = halfOf(m_->membranes.size(), half);
+  addStiffnessBoundOver(x, begin, end, S);
 }
 
 void MembraneTerm::addStiffnessBoundOver(const Eigen::VectorXd& x, size_t begin, size_t end,
@@ -606,36 +605,15 @@ const std::vector<MembraneTerm::ElementState>& MembraneTerm::elementStates() con
 void MembraneTerm::addEnergy(const Eigen::VectorXd& x, const Eigen::VectorXd& v, double,
                              EnergyBreakdown& en) const {
   addEnergyOver(x, v, 0, m_->membranes.size(), en);
-  addNodeEnergyOver(x, v, 0, triangleNodeMass_.size(), en);
+  addNodeMassEnergy(triangleNodeMass_, 0, triangleNodeMass_.size(), m_->gravity, x, v, en);
 }
 
 void MembraneTerm::addEnergyHalf(const Eigen::VectorXd& x, const Eigen::VectorXd& v, double,
                                  EnergyBreakdown& en, int half) const {
-  const size_t n = m_->membranes.size(), middle = n / 2;
-  const size_t nodes = triangleNodeMass_.size(), nodesMiddle = nodes / 2;
-  if (half == 0) {
-    addEnergyOver(x, v, 0, middle, en);
-    addNodeEnergyOver(x, v, 0, nodesMiddle, en);
-  } else {
-    addEnergyOver(x, v, middle, n, en);
-    addNodeEnergyOver(x, v, nodesMiddle, nodes, en);
-  }
-}
-
-void MembraneTerm::addNodeEnergyOver(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
-                                     size_t begin, size_t end, EnergyBreakdown& en) const {
-  // M4: a lumped mass's kinetic energy (1/2) sum m_i |v_i|^2 and gravity's potential
-  // -sum m_i g . x_i node by node, each node's mass its triangles' shares (as a sum over the
-  // triangles, to round-off; a pass over the triangles had cost more than their forces' pass).
-  const Eigen::Vector3d g = m_->gravity;
-  double kinetic = 0.0, gravity = 0.0;
-  for (size_t i = begin; i < end; ++i) {
-    const auto& [node, mass] = triangleNodeMass_[i];
-    kinetic += mass * v.segment<3>(3 * node).squaredNorm();
-    gravity += mass * g.dot(x.segment<3>(3 * node));
-  }
-  en.kinetic += 0.5 * kinetic;
-  en.gravity -= gravity;
+  const auto [begin, end] = halfOf(m_->membranes.size(), half);
+  addEnergyOver(x, v, begin, end, en);
+  const auto [nodesBegin, nodesEnd] = halfOf(triangleNodeMass_.size(), half);
+  addNodeMassEnergy(triangleNodeMass_, nodesBegin, nodesEnd, m_->gravity, x, v, en);
 }
 
 void MembraneTerm::addEnergyOver(const Eigen::VectorXd& x, const Eigen::VectorXd& v, size_t begin,
@@ -695,7 +673,7 @@ void MembraneTerm::addEnergyOver(const Eigen::VectorXd& x, const Eigen::VectorXd
       en.strain += kernels::membraneTriangleEnergy(xd + 3 * t.nodes[0], xd + 3 * t.nodes[1],
                                                    xd + 3 * t.nodes[2], t.force);
     }
-    // Its kinetic and gravity energy: node by node (addNodeEnergyOver).
+    // Its kinetic and gravity energy: node by node (addNodeMassEnergy).
   }
 }
 

@@ -14,6 +14,7 @@
 #include "model/Model.hpp"
 #include "terms/CanopyFlowTerm.hpp"
 #include "terms/FaceLoadFusion.hpp"
+#include "terms/NodeMassEnergy.hpp"
 
 namespace chute {
 
@@ -91,7 +92,7 @@ class MembraneTerm final : public Term {
   };
   std::vector<ExplicitTriangle> explicitTriangles_;  // made with the term
   // With a lumped mass: each node of a triangle with mass, and its triangles' shares' sum (M4).
-  std::vector<std::pair<int, double>> triangleNodeMass_;
+  NodeMasses triangleNodeMass_;
   // The same records four at a time for the explicit step (kernels/MembraneTriangleBatch.hpp):
   // batch b holds triangles 4 b .. 4 b + 3, the last batch's missing lanes its last triangle
   // again. And the quads, which the explicit step takes after the triangles.
@@ -193,8 +194,6 @@ class MembraneTerm final : public Term {
   // addEnergy over elements [begin, end) (the whole, or a half of addEnergyHalf).
   void addEnergyOver(const Eigen::VectorXd& x, const Eigen::VectorXd& v, size_t begin, size_t end,
                      EnergyBreakdown& e) const;
-  void addNodeEnergyOver(const Eigen::VectorXd& x, const Eigen::VectorXd& v, size_t begin,
-                         size_t end, EnergyBreakdown& en) const;
   // Positions of the last assembly, and whether states_' principal values are still to be
   // computed from them.
   Eigen::VectorXd lastX_;
