@@ -205,7 +205,16 @@ before a step that estimates its stable step, the stiffness bound at those posit
 terms whose bound is a function of positions and time alone (`Term::stiffnessBoundOfPositions`:
 membranes, cables; the sliding groups' and contact's bounds read their state and are added after
 it, in every estimate, so that the sum is the same made alongside or in place); the energy balance's load
-residual and energy run one on each thread (`StructuralSystem::runTwo`). Each is done by one
+residual and energy run one on each thread (`StructuralSystem::runTwo`). The sliders' work
+at the step's new positions (EX3: the notes of nodes passed, the moves onto nodes reached, the
+search, the moves at the step's end; `StructuralSystem::settleExplicitMotion`) runs in two parts
+of the sliding groups that share no free node (`solver/TwoPartSplit`: on the C-9 the four
+grommets' lines, seven each; the confluence they all reach is held), each part's groups in
+order, the same bits as all of them in order
+(`C9Slider.SettlingTheSlidersInTwoPartsGivesTheBitsOfTheSourcesInOrder`); their commits
+likewise, in two parts by cost (`Term::commitsApart`). A job
+reaches the worker through tickets it polls, each on a cache line of its own, the mutex taken only
+by a thread that stopped polling and sleeps. Each is done by one
 thread in its own order, so none changes a bit (`GeneratedFlight.OneThreadAndTwoFlyTheSameBits`:
 a folded generated flight, rows and steps bit for bit). On the generated 12k and 24k C-9 two
 threads run 1.45x and 1.35x faster than one (whole process; target 1.7x; 1.47-1.56x before the
@@ -222,8 +231,10 @@ busy loops, the explicit C-9 (0.5 s) took 4.4-5.5 s on two threads against 3.3-3
 mode (`summary.json`: `system.assemblies_on_two_threads` and
 `system.assemblies_split_on_one_thread`) and keeps two threads unless one was more than 15 %
 faster (window medians), timing the other again every 32 windows, and after a switch to one
-thread after 2, 4, 8, ... windows; since the parts' results do not depend on the mode, this
-changes no bit. At start-up the BLAS library's worker spins on the second core for about 0.1 s:
+thread after 2, 4, 8, ... windows; where two threads were more than 1.25 times faster at each
+timing of one, one thread is timed again after 64, 128, then 256 windows (at every 32, 3 % of the
+C-9 slider case's assemblies ran on one thread); since the parts' results do not depend on the
+mode, this changes no bit. At start-up the BLAS library's worker spins on the second core for about 0.1 s:
 two threads timed then lost to one, and keeping the faster outright for 32 windows put a third
 of a generated C-9 run (0.06 s, 12k triangles) on one thread (1.54-1.74 s in the run against
 1.34-1.39 s now, six runs each). Under two busy loops that run takes 3.09-3.25 s with the runner

@@ -32,6 +32,7 @@ class EventSource {
   // Kinks passed by prescribed motion, whose time needs no locating (a driven slider passing a
   // node), crossed by the motion from `from` to `to`: the change is noted for the next
   // updateState, and `to` may be adjusted to the new state. Returns how many changes were noted.
+  // drivesKinks() is fixed when the source is made (the system asks once).
   virtual bool drivesKinks() const { return false; }
   virtual int crossDriven(const Eigen::VectorXd& /*from*/, Eigen::VectorXd& /*to*/) { return 0; }
   // Explicit steps, which have no iterations that would land a kink on a step's end (EX3): the

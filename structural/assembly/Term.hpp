@@ -289,15 +289,16 @@ class Term {
   // (StructuralSystem::splitAssembly): assembleHalf(p, out, 0) and (p, out, 1), at once on two
   // threads or one after the other, each into its part's assembler, writing only data of its own
   // half, after beforeHalves(p, out) on the first thread with the first part's assembler; then,
-  // once both are done, afterHalves(p) on the first thread, and afterHalvesPart(p, out, half) for
-  // each half again with its part's assembler (at once or one after the other).
+  // once both are done, afterHalves(p) on the first thread, and, where it returned true,
+  // afterHalvesPart(p, out, half) for each half again with its part's assembler (at once or one
+  // after the other; a hand-over to the second thread costs about 0.5 us, so none for nothing).
   // Together what assemble() gives, to round-off. Only for a term that assemblesApart.
   virtual bool assemblesInHalves() const { return false; }
   virtual void assembleHalf(const EvalPoint& p, SystemAssembler& out, int half) {
     if (half == 0) assemble(p, out);
   }
   virtual void beforeHalves(const EvalPoint& /*p*/, const SystemAssembler& /*out*/) {}
-  virtual void afterHalves(const EvalPoint& /*p*/) {}
+  virtual bool afterHalves(const EvalPoint& /*p*/) { return false; }
   virtual void afterHalvesPart(const EvalPoint& /*p*/, SystemAssembler& /*out*/, int /*half*/) {}
   // addEnergy in the same two halves (the energy balance's evaluation on two threads): each
   // half's sums added to e; together addEnergy's, to round-off.
@@ -320,6 +321,11 @@ class Term {
   // forged). A term that remembers nothing between steps keeps the defaults.
   virtual bool hasHistory() const { return false; }
   virtual void commit(const CommitPoint& /*c*/) {}
+  // Whether commit() reads only c, the model and the term's own state and writes only its own
+  // state, and no other term's commit reads that state: such terms' commits may run after the
+  // others', on the explicit step's two threads at once (StructuralSystem::commit). Such a commit
+  // does not use c.inHalves.
+  virtual bool commitsApart() const { return false; }
   virtual void revert() {}
   virtual void save(History& /*h*/) const {}
   virtual void load(HistoryReader& /*h*/) {}

@@ -15,14 +15,25 @@ namespace {
 // Measured on the C-9: 1 ms cost implicit runs 8 % more CPU and explicit runs no wall time.
 constexpr auto kSpin = std::chrono::microseconds(300);
 
+inline void pause() {
+#if defined(__x86_64__) || defined(__i386__)
+  __builtin_ia32_pause();  // spin-wait hint: leaves the core's resources to its sibling
+#endif
+}
+
+// The clock is read only once the first polls found nothing: most waits of the explicit step
+// end within them, and a clock read costs about as much as the hand-over itself.
 template <class Ready>
 bool spinUntil(Ready ready) {
+  constexpr int kFirstPolls = 64;
+  for (int k = 0; k < kFirstPolls; ++k) {
+    if (ready()) return true;
+    pause();
+  }
   const auto until = std::chrono::steady_clock::now() + kSpin;
   for (int k = 0;; ++k) {
     if (ready()) return true;
-#if defined(__x86_64__) || defined(__i386__)
-    __builtin_ia32_pause();  // spin-wait hint: leaves the core's resources to its sibling
-#endif
+    pause();
     if ((k & 63) == 63 && std::chrono::steady_clock::now() > until) return false;
   }
 }
@@ -31,6 +42,10 @@ bool spinUntil(Ready ready) {
 // kept: two threads unless one is clearly faster (on a loaded machine it was 25-40 %,
 // docs/performance.md).
 constexpr double kSerialMargin = 1.15;
+// How much faster two threads must be for one thread to be timed ever more rarely (choose()):
+// an idle machine's explicit C-9 assemblies run about 1.6 times faster on two.
+constexpr double kClearMargin = 1.25;
+constexpr int kProbeEveryClear = 256;
 
 bool twoThreadsAllowed() {
   const char* env = std::getenv("CHUTE_THREADS");
@@ -48,31 +63,39 @@ TwoPartRunner::~TwoPartRunner() {
   if (!worker_.joinable()) return;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    quit_ = true;
+    quit_.store(true);
   }
   wake_.notify_one();
   worker_.join();
 }
 
+// The sleeping side sets its flag and then reads the ticket, the other side writes the ticket
+// and then reads the flag (all sequentially consistent): at least one of them sees the other's
+// write, so a sleeper is either woken or never sleeps. The flag is set under the mutex that the
+// waker takes before it notifies, so the notification cannot fall between the sleeper's test and
+// its wait.
 void TwoPartRunner::work() {
   unsigned seen = 0;
+  auto posted = [&] { return posted_.load() != seen || quit_.load(); };
   for (;;) {
-    if (!spinUntil([&] { return posted_.load(std::memory_order_acquire) != seen || quit_; })) {
+    if (!spinUntil(posted)) {
       std::unique_lock<std::mutex> lock(mutex_);
-      wake_.wait(lock, [&] { return posted_.load(std::memory_order_acquire) != seen || quit_; });
+      workerSleeps_.store(true);
+      wake_.wait(lock, posted);
+      workerSleeps_.store(false);
     }
-    if (quit_) return;
+    if (quit_.load()) return;
     seen = posted_.load(std::memory_order_acquire);
     try {
       (*job_)();
     } catch (...) {
       failure_ = std::current_exception();
     }
-    {
+    finished_.store(seen);
+    if (callerSleeps_.load()) {
       std::lock_guard<std::mutex> lock(mutex_);
-      finished_.store(seen, std::memory_order_release);
+      done_.notify_one();
     }
-    done_.notify_one();
   }
 }
 
@@ -94,7 +117,14 @@ bool TwoPartRunner::choose() {
   // BLAS library's worker spins on the second core for about 0.1 s after start-up: two threads
   // timed then lost to one, which then ran 32 windows, a third of a generated C-9 run); a loaded
   // machine settles at kProbeEvery.
-  if (two)
+  // Two threads clearly faster than one (by kClearMargin) at each timing of one thread: one
+  // thread is timed again after 64, 128, then 256 windows (each such window cost the C-9 slider
+  // case 16 assemblies on one thread: 3 % of its assemblies at every 32 windows).
+  if (two && kClearMargin * median_[1] <= median_[0])
+    probeEvery_ = probed_ && !mode_
+                      ? std::min(2 * std::max(probeEvery_, kProbeEvery), kProbeEveryClear)
+                      : std::max(probeEvery_, kProbeEvery);
+  else if (two)
     probeEvery_ = kProbeEvery;
   else if (mode_ && probed_)
     probeEvery_ = std::min(2 * probeEvery_, kProbeEvery);
@@ -142,13 +172,12 @@ void TwoPartRunner::runConcurrently(const std::function<void()>& first,
                                     const std::function<void()>& second) {
   failure_ = nullptr;
   job_ = &second;
-  unsigned ticket = 0;
-  {
+  const unsigned ticket = posted_.load(std::memory_order_relaxed) + 1;
+  posted_.store(ticket);
+  if (workerSleeps_.load()) {
     std::lock_guard<std::mutex> lock(mutex_);
-    ticket = posted_.load(std::memory_order_relaxed) + 1;
-    posted_.store(ticket, std::memory_order_release);
+    wake_.notify_one();
   }
-  wake_.notify_one();
   std::exception_ptr mine;
   try {
     first();
@@ -156,9 +185,12 @@ void TwoPartRunner::runConcurrently(const std::function<void()>& first,
     mine = std::current_exception();
   }
   // Wait for the worker even when first() threw: second() still uses the caller's objects.
-  if (!spinUntil([&] { return finished_.load(std::memory_order_acquire) == ticket; })) {
+  auto finished = [&] { return finished_.load() == ticket; };
+  if (!spinUntil(finished)) {
     std::unique_lock<std::mutex> lock(mutex_);
-    done_.wait(lock, [&] { return finished_.load(std::memory_order_acquire) == ticket; });
+    callerSleeps_.store(true);
+    done_.wait(lock, finished);
+    callerSleeps_.store(false);
   }
   job_ = nullptr;
   if (mine) std::rethrow_exception(mine);

@@ -47,11 +47,19 @@ class TwoPartRunner {
   void record(bool concurrentCall, double seconds);
 
   std::thread worker_;
+  // The hand-over of a job and of its end: tickets that the waiting thread polls, and the mutex
+  // and condition variables only for a thread that stopped polling and sleeps (its flag set
+  // under the mutex). On the fast path neither thread takes the mutex: the C-9's explicit step
+  // hands the worker eight jobs of a few microseconds each (docs/performance.md, "Two threads").
+  // Each ticket on a cache line of its own, so that polling one does not pull the other away.
   std::mutex mutex_;
   std::condition_variable wake_, done_;
   const std::function<void()>* job_ = nullptr;
   std::exception_ptr failure_;
-  std::atomic<unsigned> posted_{0}, finished_{0};
+  alignas(64) std::atomic<unsigned> posted_{0};
+  alignas(64) std::atomic<unsigned> finished_{0};
+  alignas(64) std::atomic<bool> workerSleeps_{false};
+  std::atomic<bool> callerSleeps_{false};
   std::atomic<bool> quit_{false};
   // Mode choice: the mode of the current window, its calls' times, the last median of each.
   // The median, not the mean: a call that waited for the worker's wake-up or lost its core for a

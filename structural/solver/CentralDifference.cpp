@@ -26,6 +26,20 @@ void predict(int nd, double dt, const double* __restrict x, const double* __rest
   }
 }
 
+// The same with EX7's damped positions x_{n+1} + beta v* in the same pass (the dofs the step
+// moves afterwards are made again where they move).
+void predictDamped(int nd, double dt, double beta, const double* __restrict x,
+                   const double* __restrict v, const double* __restrict a, double* __restrict vHalf,
+                   double* __restrict xNext, double* __restrict vStar, double* __restrict xDamped) {
+  const double halfStep = 0.5 * dt;
+  for (int d = 0; d < nd; ++d) {
+    vHalf[d] = v[d] + halfStep * a[d];
+    xNext[d] = x[d] + dt * vHalf[d];
+    vStar[d] = v[d] + dt * a[d];
+    xDamped[d] = xNext[d] + beta * vStar[d];
+  }
+}
+
 // EX1's second half over one run of free dofs with consecutive equations: a_{n+1} = -r / m,
 // v_{n+1} = v_{n+1/2} + dt/2 a_{n+1}. Returns the sum of the run's x, a and v times 0: x 0 is 0
 // for a finite x and NaN for an infinity or a NaN, so the sum is 0 exactly when all are finite
@@ -476,31 +490,44 @@ NewtonReport CentralDifference::advance(StructuralState& s, double dt) {
     else
       pass(0, nd);
   };
+  // EX2 with the velocity-dependent forces (drag, mass damping) at the forward-Euler
+  // prediction v_{n+1} ~ v_n + dt a_n (second-order local error), and EX7's stiffness-
+  // proportional damping as the internal forces at x + beta v: those positions in the same pass,
+  // made again below at the dofs that move after it.
+  const bool damped = settings_.stiffnessDamping > 0.0;
+  const double beta = settings_.stiffnessDamping;
+  if (damped && xEval_.size() != nd) xEval_.resize(nd);
   overDofs([&](int b, int e) {
-    predict(e - b, dt, s.x.data() + b, s.v.data() + b, s.a.data() + b, vHalf_.data() + b,
-            n.x.data() + b, vStar_.data() + b);
+    if (damped)
+      predictDamped(e - b, dt, beta, s.x.data() + b, s.v.data() + b, s.a.data() + b,
+                    vHalf_.data() + b, n.x.data() + b, vStar_.data() + b, xEval_.data() + b);
+    else
+      predict(e - b, dt, s.x.data() + b, s.v.data() + b, s.a.data() + b, vHalf_.data() + b,
+              n.x.data() + b, vStar_.data() + b);
   });
   sys_->prescribeMotion(n);
   // EX3: hand-over checked every step. A driven slider is handed over where its path passes a
   // node; a free slider whose part to an end node turns round over the step has passed that
   // node and is handed over to the neighbour there (notePassages), applied by the search below.
-  if (sys_->drivesKinks()) sys_->crossDriven(s.x, n.x);
-  // Sliders whose motion passed or reached a node over the step (notePassages, arriveAtNodes).
-  sys_->afterExplicitMotion(s.x, n.x);
-  sys_->updateState(n.x);
-  sys_->onConverged(n.x);  // a slider landing on a node is handed over at commit
-  // EX2 with the velocity-dependent forces (drag, mass damping) at the forward-Euler
-  // prediction v_{n+1} ~ v_n + dt a_n (second-order local error), and EX7's stiffness-
-  // proportional damping as the internal forces at x + beta v.
+  const bool driven = sys_->drivesKinks();
+  if (driven) sys_->crossDriven(s.x, n.x);
+  // Sliders whose motion passed or reached a node over the step (notePassages, arriveAtNodes),
+  // the search, and a slider landing on a node handed over at commit (onConverged).
+  const bool movedElsewhere = sys_->settleExplicitMotion(s.x, n.x);
   for (int d : sys_->constrainedDofs()) vStar_[d] = n.v[d];
   if (zeroDofs_.size() != nd) zeroDofs_ = Eigen::VectorXd::Zero(nd);
-  const bool damped = settings_.stiffnessDamping > 0.0;
   if (damped) {
-    if (xEval_.size() != nd) xEval_.resize(nd);
-    const double beta = settings_.stiffnessDamping;
-    overDofs([&](int b, int e) {
-      xEval_.segment(b, e - b) = n.x.segment(b, e - b) + beta * vStar_.segment(b, e - b);
-    });
+    // Moved since the pass: the constrained dofs (prescribeMotion), the watchers' (the moves onto
+    // nodes), and wherever a driven slider or another source moved a node (all of them again).
+    auto again = [&](int d) { xEval_[d] = n.x[d] + beta * vStar_[d]; };
+    if (driven || movedElsewhere) {
+      overDofs([&](int b, int e) {
+        for (int d = b; d < e; ++d) again(d);
+      });
+    } else {
+      for (int d : sys_->constrainedDofs()) again(d);
+      for (int d : sys_->watchedDofs()) again(d);
+    }
   }
   // EX2: the forces at a = 0; the step's length for RG8.
   const EvalPoint p =

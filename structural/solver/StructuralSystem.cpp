@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "solver/TwoPartSplit.hpp"
+
 namespace chute {
 
 StructuralSystem::StructuralSystem(const Model& model, TermOptions options,
@@ -20,6 +22,8 @@ StructuralSystem::StructuralSystem(const Model& model, TermOptions options,
   for (const auto& t : terms_) {
     if (auto* e = t->events()) {
       events_.push_back(e);
+      eventTerms_.push_back(t.get());
+      drivesKinks_ = drivesKinks_ || e->drivesKinks();
       if (e->watchesExplicitMotion()) {
         watchesExplicitMotion_ = true;
         markCoupledNodes(*t, watched);
@@ -53,6 +57,48 @@ StructuralSystem::StructuralSystem(const Model& model, TermOptions options,
   }
   assembler_.buildPattern(cliques);
   splitAssembly();
+  splitSettling(freeNode_);
+  std::vector<Term*> apart;
+  for (const auto& t : terms_)
+    if (t->commitsApart()) apart.push_back(t.get());
+  if (apart.size() >= 2) {
+    std::vector<int> own(apart.size());
+    std::vector<double> cost(apart.size());
+    for (size_t i = 0; i < apart.size(); ++i)
+      own[i] = static_cast<int>(i), cost[i] = std::max(1.0, apart[i]->assemblyCost());
+    const TwoPartSplit split = splitInTwo(own, cost);
+    for (int p = 0; p < 2; ++p)
+      for (int i : split.part[p]) commitParts_[p].push_back(apart[i]);
+  }
+}
+
+// The watchers grouped by the free nodes of their couplings (the nodes they read and move), the
+// groups dealt into two parts by the watchers' assembly costs (for the sliding groups, their
+// elements and sliders: what their notes, searches and moves go over). On the C-9 with its slider
+// the 28 lines fall into the four grommets' groups of seven (the confluence, which they all reach,
+// is fixed); a free confluence makes one group, and the notes alone are then made in halves.
+void StructuralSystem::splitSettling(const std::vector<char>& freeNodes) {
+  std::vector<int> watchers;
+  for (size_t i = 0; i < events_.size(); ++i)
+    if (events_[i]->watchesExplicitMotion()) watchers.push_back(static_cast<int>(i));
+  if (watchers.size() < 2) return;
+  std::vector<std::vector<int>> nodesOf;
+  std::vector<double> cost;
+  for (int i : watchers) {
+    std::vector<std::vector<int>> cliques;
+    eventTerms_[i]->addCouplings(cliques);
+    nodesOf.emplace_back();
+    for (const auto& c : cliques) nodesOf.back().insert(nodesOf.back().end(), c.begin(), c.end());
+    cost.push_back(std::max(1.0, eventTerms_[i]->assemblyCost()));
+  }
+  const TwoPartSplit split = splitInTwo(groupsBySharedFreeNodes(nodesOf, freeNodes), cost);
+  if (!split.split()) return;
+  for (int p = 0; p < 2; ++p)
+    for (int k : split.part[p]) settleParts_[p].push_back(watchers[k]);
+  settleFused_ = true;
+  for (const auto& t : terms_)
+    if (t->searchesPerUpdate() > 0 && !(t->events() && t->events()->watchesExplicitMotion()))
+      settleFused_ = false;
 }
 
 // Terms that read only the model and state no assembly writes (Term::assemblesApart) may be
@@ -181,21 +227,54 @@ double StructuralSystem::frequencySquaredBound(const Eigen::VectorXd& x, double 
   return w2;
 }
 
-void StructuralSystem::afterExplicitMotion(const Eigen::VectorXd& x, Eigen::VectorXd& xEnd) {
-  if (!watchesExplicitMotion_) return;
-  // The motion at the watchers' nodes only (zero elsewhere): a pass over every dof at every step
-  // for the few nodes they read.
-  if (motion_.size() != xEnd.size()) motion_.setZero(xEnd.size());
-  for (int d : watchedDofs_) motion_[d] = xEnd[d] - x[d];
-  // The notes in two halves of the sources, at once where there are two threads (each writes
-  // its own state; none reads what another's note or move writes: x and motion_ stay as they
-  // are), then the moves in order.
-  inHalves(static_cast<int>(events_.size()), [&](int begin, int end) {
-    for (int i = begin; i < end; ++i)
-      if (events_[i]->watchesExplicitMotion()) events_[i]->noteExplicitMotion(x, motion_);
-  });
-  for (auto* e : events_)
-    if (e->watchesExplicitMotion()) e->afterExplicitMotion(x, motion_, xEnd);
+bool StructuralSystem::settleExplicitMotion(const Eigen::VectorXd& x, Eigen::VectorXd& xEnd) {
+  if (watchesExplicitMotion_) {
+    // The motion at the watchers' nodes only (zero elsewhere): a pass over every dof at every
+    // step for the few nodes they read.
+    if (motion_.size() != xEnd.size()) motion_.setZero(xEnd.size());
+    for (int d : watchedDofs_) motion_[d] = xEnd[d] - x[d];
+  }
+  if (!settleParts_[1].empty()) {
+    // Each part's watchers in order; no watcher reads a node that one of the other part moves
+    // (splitSettling), and the notes read x and motion_ alone, so the bits are those of the
+    // sources one after the other.
+    auto settle = [&](int part) {
+      const auto& ids = settleParts_[part];
+      for (int i : ids) events_[i]->noteExplicitMotion(x, motion_);
+      for (int i : ids) events_[i]->afterExplicitMotion(x, motion_, xEnd);
+      if (!settleFused_) return;
+      for (int i : ids)
+        if (eventTerms_[i]->searchesPerUpdate() > 0) eventTerms_[i]->updateState(xEnd);
+      for (int i : ids) events_[i]->onConverged(xEnd);
+    };
+    if (!settleFused_) {
+      runTwo([&] { settle(0); }, [&] { settle(1); });
+    } else {
+      ScopedTimer timer(timings_.search);
+      ++timings_.searches;
+      for (const auto& t : terms_) assembler_.work().sliderSearch += t->searchesPerUpdate();
+      runTwo([&] { settle(0); }, [&] { settle(1); });
+      // The other sources' moves at the step's end (the watchers' are made).
+      bool elsewhere = false;
+      for (size_t i = 0; i < events_.size(); ++i)
+        if (!events_[i]->watchesExplicitMotion()) elsewhere |= events_[i]->onConverged(xEnd);
+      return elsewhere;
+    }
+  } else if (watchesExplicitMotion_) {
+    // The notes in two halves of the sources, at once where there are two threads (each writes
+    // its own state; none reads what another's note or move writes: x and motion_ stay as they
+    // are), then the moves in order.
+    inHalves(static_cast<int>(events_.size()), [&](int begin, int end) {
+      for (int i = begin; i < end; ++i)
+        if (events_[i]->watchesExplicitMotion()) events_[i]->noteExplicitMotion(x, motion_);
+    });
+    for (auto* e : events_)
+      if (e->watchesExplicitMotion()) e->afterExplicitMotion(x, motion_, xEnd);
+  }
+  updateState(xEnd);
+  bool elsewhere = false;
+  for (auto* e : events_) elsewhere |= e->onConverged(xEnd) && !e->watchesExplicitMotion();
+  return elsewhere;
 }
 
 int StructuralSystem::updateState(const Eigen::VectorXd& x) {
@@ -334,8 +413,7 @@ void StructuralSystem::assembleParts(const EvalPoint& at, bool wantMatrix,
         if (afterPart) (*afterPart)(1);
         then();
       });
-  if (halved_) {
-    halved_->afterHalves(p);
+  if (halved_ && halved_->afterHalves(p)) {
     auto part = [&](SystemAssembler& out, Eigen::VectorXd& loads, int half) {
       out.captureFusedLoads(capture ? &loads : nullptr);
       halved_->afterHalvesPart(p, out, half);
@@ -422,8 +500,7 @@ bool StructuralSystem::crossNow(Eigen::VectorXd& x) {
 }
 
 bool StructuralSystem::drivesKinks() const {
-  return std::any_of(events_.begin(), events_.end(),
-                     [](const auto* e) { return e->drivesKinks(); });
+  return drivesKinks_;
 }
 
 int StructuralSystem::crossDriven(const Eigen::VectorXd& from, Eigen::VectorXd& to) {
@@ -480,7 +557,16 @@ EnergyBreakdown StructuralSystem::energyOnTwoThreads(const Eigen::VectorXd& x,
 void StructuralSystem::commit(const CommitPoint& c) {
   CommitPoint at = c;
   if (!at.inHalves) at.inHalves = &inTwoHalves_;
-  for (const auto& t : terms_) t->commit(at);
+  if (commitParts_[0].empty()) {
+    for (const auto& t : terms_) t->commit(at);
+    return;
+  }
+  for (const auto& t : terms_)
+    if (!t->commitsApart()) t->commit(at);
+  auto part = [&](int p) {
+    for (Term* t : commitParts_[p]) t->commit(at);
+  };
+  runTwo([&] { part(0); }, [&] { part(1); });
 }
 void StructuralSystem::revert() {
   for (const auto& t : terms_) t->revert();

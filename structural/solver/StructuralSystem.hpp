@@ -132,8 +132,17 @@ class StructuralSystem {
   int crossDriven(const Eigen::VectorXd& from, Eigen::VectorXd& to);
   double displacementFloor() const;
   // An explicit step moved the positions from x to xEnd (EX3): the sources that watch the motion
-  // note the kinks passed and may move xEnd onto one reached.
-  void afterExplicitMotion(const Eigen::VectorXd& x, Eigen::VectorXd& xEnd);
+  // note the kinks passed and may move xEnd onto one reached (afterExplicitMotion), then every
+  // term's updateState and every source's onConverged at xEnd. The same bits as those three one
+  // after the other: where the watchers fall into groups that share no free node, the groups in
+  // two parts (settleParts_), each part's watchers doing all of it in order, the parts at once
+  // on two threads. Returns whether a source that does not watch the motion moved xEnd
+  // (onConverged); else only the watchers' nodes (watchedDofs) moved.
+  bool settleExplicitMotion(const Eigen::VectorXd& x, Eigen::VectorXd& xEnd);
+  // Whether settleExplicitMotion has two parts (watchers in groups that share no free node).
+  bool settlesInTwoParts() const { return !settleParts_[1].empty(); }
+  // The dofs of the nodes of the watchers' couplings.
+  const std::vector<int>& watchedDofs() const { return watchedDofs_; }
 
   // Nodal forces over all dofs at a converged state (for output): the support reactions
   // (the residual at constrained dofs, zero elsewhere) and the applied loads (gravity, pressure,
@@ -196,7 +205,17 @@ class StructuralSystem {
   std::vector<EventSource*> events_;
   bool watchesExplicitMotion_ = false;
   std::vector<int> watchedDofs_;  // the dofs of the watchers' nodes (their couplings')
-  Eigen::VectorXd motion_;        // afterExplicitMotion's, at watchedDofs_
+  Eigen::VectorXd motion_;        // settleExplicitMotion's, at watchedDofs_
+  // settleExplicitMotion's parts: watchers (events_ indices) whose groups share no free node.
+  // Fused: every term with a search is a watcher, so the parts also make the searches and the
+  // moves onto nodes at the step's end; else those follow for all terms in order.
+  std::vector<int> settleParts_[2];
+  std::vector<Term*> eventTerms_;  // events_[i]'s term
+  bool drivesKinks_ = false;       // some source does (EventSource::drivesKinks, fixed)
+  bool settleFused_ = false;
+  void splitSettling(const std::vector<char>& freeNodes);
+  // commit()'s terms that commit apart (Term::commitsApart), in two parts; empty: none or one.
+  std::vector<Term*> commitParts_[2];
   // captureStepLoads: the loads' residual of each part (the first's then their sum) and the time
   // of that sum (NaN: none).
   bool captureLoads_ = false;

@@ -567,8 +567,10 @@ void MembraneTerm::beforeHalves(const EvalPoint& p, const SystemAssembler& out) 
   if (flowHalves_) flowParameters_ = flow_->takenParameters(p);  // both halves read them
 }
 
-void MembraneTerm::afterHalves(const EvalPoint& p) {
-  if (flowHalves_) flow_->finishTakenSums(p, flowSums(true));
+bool MembraneTerm::afterHalves(const EvalPoint& p) {
+  if (!flowHalves_) return false;
+  flow_->finishTakenSums(p, flowSums(true));
+  return true;  // the airflow's per-node loads (afterHalvesPart)
 }
 
 void MembraneTerm::afterHalvesPart(const EvalPoint& /*p*/, SystemAssembler& out, int half) {

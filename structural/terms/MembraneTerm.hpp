@@ -58,7 +58,7 @@ class MembraneTerm final : public Term {
   bool assemblesInHalves() const override { return true; }
   void assembleHalf(const EvalPoint& p, SystemAssembler& out, int half) override;
   void beforeHalves(const EvalPoint& p, const SystemAssembler& out) override;
-  void afterHalves(const EvalPoint& p) override;
+  bool afterHalves(const EvalPoint& p) override;
   void afterHalvesPart(const EvalPoint& p, SystemAssembler& out, int half) override;
   // P2: takes the pressure and face drag of the triangles whose set has at most one of each (and
   // one at least), to add to their forces on the explicit step's evaluations (fusedFaceLoads());

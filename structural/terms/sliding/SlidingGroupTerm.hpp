@@ -80,6 +80,8 @@ class SlidingGroupTerm final : public Term, public EventSource {
   // Sliders with friction: the converged split at x is found (docs/friction.md) and committed.
   bool hasHistory() const override { return true; }
   void commit(const CommitPoint& c) override;
+  // Its own state from c and the model only (the lines through one grommet commit side by side).
+  bool commitsApart() const override { return true; }
   void revert() override { state_.revert(); }
   void save(History& h) const override;
   void load(HistoryReader& h) override;
