@@ -14,6 +14,7 @@
 #include "app/StopSignals.hpp"
 #include "app/cli/Command.hpp"
 #include "app/cli/Dispatch.hpp"
+#include "app/cli/RenderPlugin.hpp"
 #include "app/cli/VersionText.hpp"
 #include "solver/LinearSolver.hpp"
 
@@ -34,8 +35,9 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", versionText(),
                        "print chute's version, build, compiler and library versions and exit");
   app.require_subcommand(1);
-  const std::vector<Command> commands = {addRunCommand(app),           addRenderCommand(app),
-                                         addPlotCommand(app),          addCoupleCommand(app),
-                                         addIntersectionsCommand(app), addMeshForwardCommand(app)};
+  std::vector<Command> commands = {addRunCommand(app)};
+  addRenderForwardCommands(app, commands);  // in the render plugin (RenderPlugin.hpp)
+  commands.push_back(addCoupleCommand(app));
+  commands.push_back(addMeshForwardCommand(app));
   return dispatch(app, commands, argc, argv);
 }

@@ -32,10 +32,8 @@ struct Command {
 };
 
 Command addRunCommand(CLI::App& app);
-Command addRenderCommand(CLI::App& app);
-Command addPlotCommand(CLI::App& app);
 Command addCoupleCommand(CLI::App& app);
-Command addIntersectionsCommand(CLI::App& app);
+// render, plot and intersections: in the render plugin (RenderPlugin.hpp).
 Command addMeshCommand(CLI::App& app);                   // in the gmsh plugin
 std::function<int()> addMeshGeoCommand(CLI::App& mesh);  // `chute mesh geo`, in the plugin
 Command addMeshForwardCommand(CLI::App& app);            // in `chute`: forwards to the plugin

@@ -14,6 +14,7 @@
 
 #include "VtuSeries.hpp"
 #include "app/cli/Command.hpp"
+#include "app/cli/RenderPlugin.hpp"
 #include "render/IntersectionFrameFile.hpp"
 
 namespace chute::cli {

@@ -9,6 +9,7 @@
 
 #include "app/cli/Command.hpp"
 #include "app/cli/ImageSize.hpp"
+#include "app/cli/RenderPlugin.hpp"
 #include "io/InputFile.hpp"
 #include "render/ImageOutput.hpp"
 #include "render/ProbeCsv.hpp"

@@ -8,6 +8,7 @@
 
 #include "app/cli/Command.hpp"
 #include "app/cli/ImageSize.hpp"
+#include "app/cli/RenderPlugin.hpp"
 #include "render/ImageOutput.hpp"
 #include "render/SnapshotRenderer.hpp"
 
