@@ -131,7 +131,7 @@ CentralDifference::CentralDifference(StructuralSystem& sys, ExplicitSettings set
   if (sys.numEquations() > 0) {
     const Eigen::VectorXd massEq = lumpedMass(x0_, 0.0, false);  // without the added mass
     const auto S = sys.stiffnessBound(x0_, 0.0);
-    const auto mass = nodalMass(massEq);
+    const std::vector<double> mass = nodalMass(massEq);
     const std::vector<double> nodalSteps = recordNodalSteps(S, mass);
     if (settings_.massScalingQuantile > 0.0 && !nodalSteps.empty())
       // The nodes whose own step is below the quantile's get the mass that lifts it there.
@@ -322,16 +322,17 @@ const Eigen::VectorXd& CentralDifference::lumpedMass(const Eigen::VectorXd& x, d
   return cachedMass_;
 }
 
-std::vector<double> CentralDifference::nodalMass(const Eigen::VectorXd& massEq) const {
-  const Model& m = sys_->model();
-  std::vector<double> mass(m.numNodes(), 0.0);
-  for (int n = 0; n < m.numNodes(); ++n) {
+const std::vector<double>& CentralDifference::nodalMass(const Eigen::VectorXd& massEq) {
+  const int nodes = sys_->model().numNodes();
+  nodalMass_.resize(nodes);
+  const DofMap& dofs = sys_->dofs();
+  for (int n = 0; n < nodes; ++n) {
     double least = std::numeric_limits<double>::infinity();
     for (int k = 0; k < 3; ++k)
-      if (const int e = sys_->dofs().eq(n, k); e >= 0) least = std::min(least, massEq[e]);
-    mass[n] = std::isfinite(least) ? least : 0.0;
+      if (const int e = dofs.eq(n, k); e >= 0) least = std::min(least, massEq[e]);
+    nodalMass_[n] = std::isfinite(least) ? least : 0.0;
   }
-  return mass;
+  return nodalMass_;
 }
 
 void CentralDifference::refuseMassless(const Eigen::VectorXd& massEq) const {
@@ -400,7 +401,7 @@ double CentralDifference::chooseStep(double lastStep, const Eigen::VectorXd& x, 
     S = sys_->stiffnessBound(x, t);
   }
   boundAheadT_ = -1.0;
-  const auto mass = nodalMass(massEq);
+  const std::vector<double>& mass = nodalMass(massEq);
   auto est = chute::stableStep(S, mass, freeNode_);
   // Modes over many nodes that the nodal bounds do not see (EX5).
   const double w2 = sys_->frequencySquaredBound(x, t, mass);

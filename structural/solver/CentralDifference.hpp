@@ -93,7 +93,10 @@ class CentralDifference final : public TimeIntegrator {
   const Eigen::VectorXd& lumpedMass(const Eigen::VectorXd& x, double t, bool check = true);
   Eigen::VectorXd massOf(const std::vector<Term*>& terms, const Eigen::VectorXd& x, double t);
   int cutSets(double t) const;  // line sets cut by time t
-  std::vector<double> nodalMass(const Eigen::VectorXd& massEq) const;
+  // The least of each node's free equations' masses (0: none), into a buffer kept from call to
+  // call (the step estimate asks every kStableStepEvery steps).
+  const std::vector<double>& nodalMass(const Eigen::VectorXd& massEq);
+  std::vector<double> nodalMass_;
   void refuseMassless(const Eigen::VectorXd& massEq) const;
 
   StructuralSystem* sys_;

@@ -488,3 +488,26 @@ TEST(HostileSettings, AParameterFileNumberGivenAsAStringIsRefused) {
   EXPECT_NE(o.err.find("p.toml:1: gores: a number, not a string"), std::string::npos) << o.err;
   EXPECT_FALSE(fs::exists(dir / "p.msh"));
 }
+
+// The verbs that draw or read frames back live in a plugin (app/cli/RenderPlugin.hpp): a run never
+// loads it, and a plugin that cannot be loaded is named in one line with status 1 (an
+// installation fault, docs/exit-codes.md).
+TEST(HostileSettings, TheRenderPluginIsLoadedOnlyByTheVerbsThatDraw) {
+  const std::string missing = "/nonexistent/libchute_render.so";
+  const std::string env = "CHUTE_RENDER_PLUGIN=" + missing + " ";
+  const fs::path out = scratch("plugin");
+  const Outcome run = chute::testing::runChute(
+      kChute, "run " + kBead + " --quiet --set solver.t_end=0.01 --out " + out.string(), env);
+  EXPECT_EQ(run.status, 0) << run.err;
+  for (const std::string verb : {"render", "plot", "intersections"}) {
+    const Outcome o = chute::testing::runChute(kChute, verb + " " + out.string(), env);
+    std::printf("%-14s without its plugin -> %d: %s", verb.c_str(), o.status, o.err.c_str());
+    EXPECT_EQ(o.status, 1) << verb;
+    EXPECT_EQ(lines(o.err), 1) << verb;
+    EXPECT_NE(o.err.find(missing), std::string::npos) << verb << ": " << o.err;
+  }
+  // With the plugin next to chute, the same verb runs (and refuses a run without a series).
+  const Outcome found = runChute("intersections " + out.string());
+  EXPECT_EQ(found.status, 2) << found.err;
+  EXPECT_NE(found.err.find("no .pvd series"), std::string::npos) << found.err;
+}
