@@ -85,6 +85,8 @@ MD_PAGES = [
     ("serial_work_2026-11-28.md",
      "Both threads on the step's serial work, and the airflow's per-step cost, one sitting"),
     ("threads_generated_c9.md", "One thread against two on the generated C-9 (`bench/speed/threads.py`)"),
+    ("settle_in_parts_2026-11-28.md",
+     "The sliders' settling and commits on both threads, and the render plugin, one sitting"),
 ]
 
 

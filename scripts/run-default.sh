@@ -3,7 +3,7 @@
 # slider (cases/c9_slider.toml, paper section 4) for 1.2 s of inflation: probes, the ParaView
 # series, side-view snapshots coloured by membrane stress and line force, and a skirt-radius plot,
 # all in out/c9_slider/. Extra arguments go to `chute run` (e.g. --set solver.t_end=2).
-# The flight takes about 1.7 s of wall time per simulated second on 2 idle cores (central
+# The flight takes about 1.4 s of wall time per simulated second on 2 idle cores (central
 # differences), plus the first build of chute (about 7 min of compiler time: some 4 min on two
 # idle cores).
 set -euo pipefail
