@@ -10,28 +10,17 @@
 #include "GmshPlugin.hpp"
 #include "MeshError.hpp"
 #include "MshReader.hpp"
+#include "io/PluginPath.hpp"
 
 namespace chute::mesh {
-
-namespace {
-std::string pluginPath() {
-  if (const char* p = std::getenv("CHUTE_GMSH_PLUGIN"); p && *p) return p;
-  std::error_code ec;
-  const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (!ec) {
-    const auto next = exe.parent_path() / "libchute_gmsh.so";
-    if (std::filesystem::exists(next, ec)) return next.string();
-  }
-  return CHUTE_GMSH_PLUGIN_PATH;  // the build tree's
-}
-}  // namespace
 
 const GmshPluginApi& gmshPlugin() {
   static std::mutex mutex;
   static const GmshPluginApi* api = nullptr;
   std::lock_guard lock(mutex);
   if (api) return *api;
-  const std::string path = pluginPath();
+  const std::string path =
+      pluginPath("CHUTE_GMSH_PLUGIN", "libchute_gmsh.so", CHUTE_GMSH_PLUGIN_PATH);
   // Never unloaded: gmsh finalises itself at exit.
   void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
   if (!handle) throw MeshError("cannot load gmsh support " + path + ": " + dlerror());

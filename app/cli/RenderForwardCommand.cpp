@@ -2,27 +2,15 @@
 // go, untouched, to the render plugin (RenderPlugin.hpp), which is loaded only for these verbs.
 #include <dlfcn.h>
 
-#include <cstdlib>
-#include <filesystem>
 #include <stdexcept>
 #include <string>
 
 #include "app/cli/RenderPlugin.hpp"
+#include "io/PluginPath.hpp"
 
 namespace chute::cli {
 
 namespace {
-
-std::string pluginPath() {
-  if (const char* p = std::getenv("CHUTE_RENDER_PLUGIN"); p && *p) return p;
-  std::error_code ec;
-  const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (!ec) {
-    const auto next = exe.parent_path() / "libchute_render.so";
-    if (std::filesystem::exists(next, ec)) return next.string();
-  }
-  return CHUTE_RENDER_PLUGIN_PATH;  // the build tree's
-}
 
 Command forward(CLI::App& app, const char* verb, const char* description) {
   auto* sub = app.add_subcommand(verb, description);
@@ -43,7 +31,8 @@ Command forward(CLI::App& app, const char* verb, const char* description) {
 const RenderPluginApi& renderPlugin() {
   static const RenderPluginApi* api = nullptr;
   if (api) return *api;
-  const std::string path = pluginPath();
+  const std::string path =
+      pluginPath("CHUTE_RENDER_PLUGIN", "libchute_render.so", CHUTE_RENDER_PLUGIN_PATH);
   // Never unloaded: VTK's factories and the virtual display live until exit.
   void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
   if (!handle) throw std::runtime_error("cannot load chute's rendering " + path + ": " + dlerror());
