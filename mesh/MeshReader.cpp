@@ -1,8 +1,5 @@
 // readMesh() for cases: .msh files through chute's own reader, nothing else; and the loader of the
 // gmsh plugin (GmshPlugin.hpp) that `chute mesh` runs in.
-#include <dlfcn.h>
-
-#include <cstdlib>
 #include <filesystem>
 #include <mutex>
 
@@ -10,7 +7,7 @@
 #include "GmshPlugin.hpp"
 #include "MeshError.hpp"
 #include "MshReader.hpp"
-#include "io/PluginPath.hpp"
+#include "io/Plugin.hpp"
 
 namespace chute::mesh {
 
@@ -22,15 +19,10 @@ const GmshPluginApi& gmshPlugin() {
   const std::string path =
       pluginPath("CHUTE_GMSH_PLUGIN", "libchute_gmsh.so", CHUTE_GMSH_PLUGIN_PATH);
   // Never unloaded: gmsh finalises itself at exit.
-  void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
-  if (!handle) throw MeshError("cannot load gmsh support " + path + ": " + dlerror());
-  using Entry = const GmshPluginApi* (*)();
-  const auto entry = reinterpret_cast<Entry>(dlsym(handle, "chute_gmsh_plugin"));
-  if (!entry) throw MeshError(path + " is not chute's gmsh plugin (no chute_gmsh_plugin)");
-  const GmshPluginApi* loaded = entry();
-  if (!loaded || loaded->version != kGmshPluginVersion)
-    throw MeshError(path + ": gmsh plugin of another version of chute (rebuild)");
-  api = loaded;
+  std::string why;
+  api = loadPlugin<GmshPluginApi>(path, "chute_gmsh_plugin", kGmshPluginVersion, "gmsh support",
+                                  "gmsh plugin", why);
+  if (!api) throw MeshError(why);
   return *api;
 }
 

@@ -37,5 +37,9 @@ Command addCoupleCommand(CLI::App& app);
 Command addMeshCommand(CLI::App& app);                   // in the gmsh plugin
 std::function<int()> addMeshGeoCommand(CLI::App& mesh);  // `chute mesh geo`, in the plugin
 Command addMeshForwardCommand(CLI::App& app);            // in `chute`: forwards to the plugin
+// A verb of a plugin, in `chute`: everything after the verb (--help included) goes, untouched, to
+// run(argc, argv) with argv = {"chute", verb, ...} (MeshForwardCommand.cpp).
+Command addForwardCommand(CLI::App& app, const char* verb, const char* description,
+                          std::function<int(int, char**)> run);
 
 }  // namespace chute::cli

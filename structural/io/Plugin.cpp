@@ -1,4 +1,6 @@
-#include "io/PluginPath.hpp"
+#include "io/Plugin.hpp"
+
+#include <dlfcn.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -15,6 +17,18 @@ std::string pluginPath(const char* environmentVariable, const char* fileName,
     if (std::filesystem::exists(next, ec)) return next.string();
   }
   return buildTreePath;
+}
+
+void* pluginSymbol(const std::string& path, const char* symbol, const std::string& what,
+                   const std::string& name, std::string& why) {
+  void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+  if (!handle) {
+    why = "cannot load " + what + " " + path + ": " + dlerror();
+    return nullptr;
+  }
+  void* entry = dlsym(handle, symbol);
+  if (!entry) why = path + " is not chute's " + name + " (no " + symbol + ")";
+  return entry;
 }
 
 }  // namespace chute
