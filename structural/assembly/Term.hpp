@@ -216,8 +216,8 @@ class Term {
   // Updates configuration-dependent state (e.g. the active sliding elements) for trial positions
   // x; returns how many discrete changes were made.
   virtual int updateState(const Eigen::VectorXd& /*x*/) { return 0; }
-  // How many searches one updateState() makes (0: it has no configuration-dependent state), for
-  // the work counters; a system without any skips the updates.
+  // How many searches one updateState() makes (0: it has no configuration-dependent state; fixed
+  // for the term's life), for the work counters; a system without any skips the updates.
   virtual long searchesPerUpdate() const { return 0; }
   virtual void assemble(const EvalPoint& p, SystemAssembler& out) = 0;
   // Energy of the state (x, v) at time t (after any event at t: a set cut at t is gone).

@@ -24,12 +24,17 @@ bool blasThreadsAsked() {
 // OpenBLAS's pool anew: its set function re-creates a pool that was shut down).
 std::atomic<bool> blasReleased{false};
 
-void chooseBlasThreads(int /*equations*/) {
-  if (blasThreadsAsked() || blasReleased.load()) return;
-  using SetThreads = void (*)(int);
+// OpenBLAS's thread count setter, looked up once (nullptr with another BLAS).
+using SetThreads = void (*)(int);
+SetThreads openblasSetThreads() {
   static const auto set =
       reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
-  if (set) set(1);
+  return set;
+}
+
+void chooseBlasThreads(int /*equations*/) {
+  if (blasThreadsAsked() || blasReleased.load()) return;
+  if (const auto set = openblasSetThreads()) set(1);
 }
 }  // namespace
 
@@ -40,9 +45,8 @@ void releaseBlasThreads() {
   // blas_thread_shutdown_ (what OpenBLAS itself calls around a fork) joins the idle ones.
   // Measured on the C-9 slider case, two threads: 0.934 of the wall time with the spinning pool
   // (OPENBLAS_NUM_THREADS=1 in the environment: 0.957).
-  using SetThreads = void (*)(int);
   using Shutdown = int (*)();
-  const auto set = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
+  const auto set = openblasSetThreads();
   const auto shutdown = reinterpret_cast<Shutdown>(dlsym(RTLD_DEFAULT, "blas_thread_shutdown_"));
   if (!set || !shutdown) return;
   set(1);

@@ -35,7 +35,7 @@ StructuralSystem::StructuralSystem(const Model& model, TermOptions options,
   for (int n = 0; n < model.numNodes(); ++n)
     if (watched[n])
       for (int k = 0; k < 3; ++k) watchedDofs_.push_back(3 * n + k);
-  for (const auto& t : terms_) searches_ = searches_ || t->searchesPerUpdate() > 0;
+  for (const auto& t : terms_) searchesPerUpdate_ += t->searchesPerUpdate();
   for (int d = 0; d < dofs_.numDofs(); ++d)
     if (dofs_.eqOfDof(d) < 0) constrainedDofs_.push_back(d);
   freeNode_.assign(model.numNodes(), 0);
@@ -243,17 +243,19 @@ bool StructuralSystem::settleExplicitMotion(const Eigen::VectorXd& x, Eigen::Vec
       for (int i : ids) events_[i]->noteExplicitMotion(x, motion_);
       for (int i : ids) events_[i]->afterExplicitMotion(x, motion_, xEnd);
       if (!settleFused_) return;
-      for (int i : ids)
-        if (eventTerms_[i]->searchesPerUpdate() > 0) eventTerms_[i]->updateState(xEnd);
+      if (searchesPerUpdate_ > 0)
+        for (int i : ids) eventTerms_[i]->updateState(xEnd);
       for (int i : ids) events_[i]->onConverged(xEnd);
     };
-    if (!settleFused_) {
+    auto bothParts = [&] {
       runTwo([&] { settle(0); }, [&] { settle(1); });
-    } else {
-      ScopedTimer timer(timings_.search);
-      ++timings_.searches;
-      for (const auto& t : terms_) assembler_.work().sliderSearch += t->searchesPerUpdate();
-      runTwo([&] { settle(0); }, [&] { settle(1); });
+      return 0;
+    };
+    if (settleFused_ && searchesPerUpdate_ > 0)
+      timedSearch(bothParts);
+    else
+      bothParts();
+    if (settleFused_) {
       // The other sources' moves at the step's end (the watchers' are made).
       bool elsewhere = false;
       for (size_t i = 0; i < events_.size(); ++i)
@@ -278,13 +280,19 @@ bool StructuralSystem::settleExplicitMotion(const Eigen::VectorXd& x, Eigen::Vec
 }
 
 int StructuralSystem::updateState(const Eigen::VectorXd& x) {
-  if (!searches_) return 0;  // no search without configuration-dependent state
+  if (searchesPerUpdate_ == 0) return 0;  // no search without configuration-dependent state
+  return timedSearch([&] {
+    int changes = 0;
+    for (const auto& t : terms_) changes += t->updateState(x);
+    return changes;
+  });
+}
+
+int StructuralSystem::timedSearch(const std::function<int()>& search) {
   ScopedTimer timer(timings_.search);
   ++timings_.searches;
-  for (const auto& t : terms_) assembler_.work().sliderSearch += t->searchesPerUpdate();
-  int changes = 0;
-  for (const auto& t : terms_) changes += t->updateState(x);
-  return changes;
+  assembler_.work().sliderSearch += searchesPerUpdate_;
+  return search();
 }
 
 void StructuralSystem::assemble(const EvalPoint& p, bool wantMatrix) {

@@ -221,7 +221,11 @@ class StructuralSystem {
   bool captureLoads_ = false;
   Eigen::VectorXd partLoads_[2];
   double capturedLoadsT_ = std::numeric_limits<double>::quiet_NaN();
-  bool searches_ = false;  // some term has configuration-dependent state (Term::updateState)
+  // The terms' searches per update (Term::searchesPerUpdate, fixed with each term); 0: no term
+  // has configuration-dependent state, and updates are skipped.
+  long searchesPerUpdate_ = 0;
+  // search() timed and counted as one update's searches (updateState, settleExplicitMotion).
+  int timedSearch(const std::function<int()>& search);
   std::vector<Term*> dynamicCouplings_;  // terms whose couplings move (contact)
   bool patternStale_ = false;            // their couplings changed since the pattern was built
   SystemAssembler assembler_;
