@@ -3,7 +3,7 @@
 # the case against itself with [[loads.canopy_flow]] replaced by a constant [[loads.pressure]]
 # (and the canopy probe dropped), and with the constant pressure and the face drag the generated
 # case had before (--pressure). Instructions per step from callgrind (two run lengths, their
-# difference: set-up cancels), and paired wall / cpu medians of whole runs (farm-bench).
+# difference: set-up cancels), and paired wall / cpu medians of whole runs (bench/paired.py).
 #   bench/flight/cost.sh [chute binary]   -> bench/results/flight_cost.md
 set -euo pipefail
 ROOT=$(cd "$(dirname "$0")/../.." && pwd)
@@ -39,8 +39,8 @@ per_step() {  # instructions per step of case $1 between t = 0.004 and 0.008
   python3 -c "print(($b - $a) / ($sb - $sa))"
 }
 IW=$(per_step with_flow); IO=$(per_step without_flow); IP=$(per_step pressure_face_drag)
-farm-bench -n 7 --timeout 600 --vs "$CHUTE run without_flow.toml --set solver.t_end=0.1 --out $W/wb --quiet" -- "$CHUTE" run with_flow.toml --set solver.t_end=0.1 --out $W/wa --quiet > bench.txt 2>&1
-farm-bench -n 7 --timeout 600 --vs "$CHUTE run pressure_face_drag.toml --set solver.t_end=0.1 --out $W/wd --quiet" -- "$CHUTE" run with_flow.toml --set solver.t_end=0.1 --out $W/wc --quiet > bench2.txt 2>&1
+python3 "$ROOT/bench/paired.py" -n 7 --a "$CHUTE run with_flow.toml --set solver.t_end=0.1 --out $W/wa --quiet" --b "$CHUTE run without_flow.toml --set solver.t_end=0.1 --out $W/wb --quiet" > bench.txt 2>&1
+python3 "$ROOT/bench/paired.py" -n 7 --a "$CHUTE run with_flow.toml --set solver.t_end=0.1 --out $W/wc --quiet" --b "$CHUTE run pressure_face_drag.toml --set solver.t_end=0.1 --out $W/wd --quiet" > bench2.txt 2>&1
 {
   echo "# The airflow's loads in an explicit step of the full-scale C-9"
   echo
