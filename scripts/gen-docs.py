@@ -87,6 +87,9 @@ MD_PAGES = [
     ("threads_generated_c9.md", "One thread against two on the generated C-9 (`bench/speed/threads.py`)"),
     ("settle_in_parts_2026-11-28.md",
      "The sliders' settling and commits on both threads, and the render plugin, one sitting"),
+    ("mass_scaling_flight.md",
+     "Selective mass scaling in the generated cases: flight figures and speed "
+     "(`bench/flight/mass_scaling_flight.py`)"),
 ]
 
 
@@ -258,9 +261,9 @@ wrinkling, pressure, face drag: gather, compute, scatter; built for the baseline
 and chute's whole explicit step (every term, lines included, the update, the energy balance, the
 stable step), CPU per triangle, one thread.
 [bench/results/lean_canopy_step.md](../bench/results/lean_canopy_step.md) (below): chute's step
-is 1.60-1.79 times the lean loop at 3.4k-24.5k triangles (1.73 at 12k, 1.60 at 24k; the target
-is 2.0), 70-72 ns per triangle and step, since the airflow's loads joined the membranes' pass
-(below; 1.87-2.04 and 78-82 ns before it, 99-110 ns at the start of an earlier day). Without AVX2 (`CHUTE_SIMD=baseline`,
+is 1.23-1.59 times the lean loop at 3.4k-24.5k triangles in its latest run (1.41 at 12k, 1.59 at
+24k; the target is 2.0), 92-108 ns per triangle and step against the lean loop's 66-75 ns on that
+day's host. Without AVX2 (`CHUTE_SIMD=baseline`,
 [bench/results/lean_canopy_step_baseline.md](../bench/results/lean_canopy_step_baseline.md)):
 2.18-2.29, 88-92 ns. The lean loop's own time moves by up to 15 % from run to run on this shared
 machine (40-47 ns), the ratio with it.
@@ -280,7 +283,11 @@ gathering six node vectors per face into lanes cost what the arithmetic saved; i
 membranes' kernel the positions are gathered already). Fewer steps:
 `solver.mass_scaling_quantile` (docs/explicit.md, selective mass scaling): on this parachute the
 least nodal step is 0.66-0.68 of the 1 % quantile, and scaling the 1 % that set it takes 1.4x
-fewer steps.
+fewer steps; the generated cases carry it (q = 0.01): steps per simulated second 24,000 at 24.5k
+triangles against 33,500 without, the exponents of steps and CPU per simulated second against
+triangles ^0.23 and ^1.29 against ^0.38 and ^1.44, and 1 s of the 12.4k and 24.5k C-9 on two
+threads 13.7 and 33.4 s of wall time against 19.1 and 45.6 s, their flight figures within
+round-off ([bench/results/mass_scaling_flight.md](../bench/results/mass_scaling_flight.md)).
 
 ## Four at a time
 

@@ -173,9 +173,34 @@ TEST(GeneratedFlight, EverySolverSettingOfTheGeneratedCaseSaysWhy) {
     ++settings;
     EXPECT_NE(line.find(" # "), std::string::npos) << "no reason given: " << line;
   }
-  // integrator, dt, stiffness_damping, t_end (the airflow's loads run with central differences
-  // only, so the implicit alternative's settings are not written)
-  EXPECT_EQ(settings, 4);
+  // integrator, dt, stiffness_damping, mass_scaling_quantile, t_end (the airflow's loads run
+  // with central differences only, so the implicit alternative's settings are not written)
+  EXPECT_EQ(settings, 5);
+}
+
+// The header's command line makes the file again: the case options given other than their
+// defaults are on it (a file regenerated from a header without --t-end ran 2 s instead of 10).
+TEST(GeneratedFlight, TheHeadersCommandCarriesTheCaseOptionsGiven) {
+  ParachuteSpec s = small(8, 1.5, 4);
+  s.start = "flat";
+  const std::string msh = ::testing::TempDir() + "header_options.msh";
+  const std::string toml = ::testing::TempDir() + "header_options.toml";
+  ParachuteCaseOptions o;
+  o.tEnd = 10.0;
+  o.dt = 1e-3;
+  o.clothPermeability = 50.0;
+  o.vtuInterval = 0.0;
+  writeParachuteCase(s, generateParachute(s, msh), toml, msh, o);
+  std::ifstream in(toml);
+  std::string first, command;
+  std::getline(in, first);
+  std::getline(in, command);
+  std::printf("%s\n", command.c_str());
+  for (const char* given :
+       {" --cloth-permeability 50", " --dt 0.001", " --t-end 10", " --vtu-interval 0"})
+    EXPECT_NE(command.find(given), std::string::npos) << given << " not in: " << command;
+  for (const char* byDefault : {"--probe-interval", "--ramp-time"})
+    EXPECT_EQ(command.find(byDefault), std::string::npos) << byDefault << " in: " << command;
 }
 
 // The flight figures of summary.json come from the columns RunOutput collects as it streams the
