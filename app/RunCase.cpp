@@ -442,6 +442,13 @@ RunResult runCase(const CaseSpec& spec, const RunOptions& options) {
   } catch (const OutputError& e) {
     // A full disk, a file size limit, a removed directory: what the output holds whole is named
     // from the files themselves (a row cut mid-number was cut off; a torn frame is not listed).
+    // The frames queued before the failure are written (or dropped) first, so that the count
+    // named is the one the .pvd holds when the run has ended; a second failure there is the
+    // same one, already being reported.
+    try {
+      out.flush();
+    } catch (const std::exception&) {
+    }
     const std::string whole = out.wholeSoFar();
     throw OutputError(fmt::format(
         "{}; stopped at t = {:.9g}{}{}; no summary.json", e.what(), state.t,
