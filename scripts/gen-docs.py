@@ -90,6 +90,7 @@ MD_PAGES = [
     ("mass_scaling_flight.md",
      "Selective mass scaling in the generated cases: flight figures and speed "
      "(`bench/flight/mass_scaling_flight.py`)"),
+    ("line_step_margin.md", "Suspension lines that set the explicit step (`bench/flight/line_step_margin.py`)"),
 ]
 
 

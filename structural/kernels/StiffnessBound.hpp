@@ -33,6 +33,23 @@ inline void addLineBound(int a, int b, double k, const std::vector<char>& free,
   S[b] += rowSum;
 }
 
+// The same with each end's row sum times its own factor (EX6l: a tension-only line's nodes that
+// no membrane touches take kHangingLineBound).
+inline void addLineBound(int a, int b, double k, const std::vector<char>& free,
+                         std::vector<double>& S, double factorA, double factorB) {
+  const double rowSum = k * ((free[a] ? 1.0 : 0.0) + (free[b] ? 1.0 : 0.0));
+  S[a] += factorA * rowSum;
+  S[b] += factorB * rowSum;
+}
+
+// EX6l: the bound at a tension-only line's node that hangs free of the fabric, times 1 / 0.85^2,
+// so that such a line's highest axial mode runs at 0.85 of the step the chain allows. A
+// suspension line flapping in the flow gained energy in that mode at the chain's step (with the
+// safety factor and the step's band, 0.81 of L / c): a generated 15 m canopy whose lines set the
+// step diverged in 3 of 16 runs that differ by round-off; at 0.72 of L / c none of 16 did
+// (docs/explicit.md, "Lines that set the step").
+inline constexpr double kHangingLineBound = 1.0 / (0.85 * 0.85);
+
 // Smallest altitude of triangle (a, b, c): twice its area over its longest edge.
 inline double smallestAltitude(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                const Eigen::Vector3d& c) {

@@ -16,6 +16,10 @@ using line_assembly::pos;
 
 // ---- CableTerm -------------------------------------------------------------------------------
 CableTerm::CableTerm(const Model& m) : m_(&m) {
+  hanging_.assign(static_cast<size_t>(m.numNodes()), 1);
+  for (const auto& e : m.membranes)
+    for (const int n : e.nodes)
+      if (n >= 0) hanging_[static_cast<size_t>(n)] = 0;
   if (!kernels::useAvx2()) return;  // the baseline copy of the lanes is slower than one by one
   const size_t n = m.cables.size(), batches = (n + kernels::kCableLanes - 1) / kernels::kCableLanes;
   lanes_.resize(batches);
@@ -145,8 +149,13 @@ void CableTerm::addStiffnessBound(const Eigen::VectorXd& /*x*/, double t,
                                   const std::vector<char>& free, std::vector<double>& S) const {
   for (const auto& c : m_->cables) {
     if (m_->lineSets[c.set].cutBy(t)) continue;
-    kernels::addLineBound(c.a, c.b, kernels::lineStiffness(m_->materials[c.material], c.L), free,
-                          S);  // EX6
+    const auto& mat = m_->materials[c.material];
+    // EX6; EX6l: a tension-only line's ends that hang free of the fabric with a margin.
+    auto factor = [&](int n) {
+      return mat.tensionOnly && hanging_[static_cast<size_t>(n)] ? kernels::kHangingLineBound : 1.0;
+    };
+    kernels::addLineBound(c.a, c.b, kernels::lineStiffness(mat, c.L), free, S, factor(c.a),
+                          factor(c.b));
   }
 }
 

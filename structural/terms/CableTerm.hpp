@@ -41,6 +41,7 @@ class CableTerm final : public Term, public EventSource {
   // drag where withDrag.
   void assembleLanes(const EvalPoint& p, SystemAssembler& out, bool withDrag);
   const Model* m_;
+  std::vector<char> hanging_;  // per node: touched by no membrane element (EX6l)
   // CB1's lanes (with AVX2 only) and per lane slot the cable in it (-1: none), in model order.
   std::vector<kernels::CableLanes> lanes_;
   std::vector<int> laneCable_;

@@ -48,10 +48,10 @@ std::string readFile(const fs::path& p) {
 
 // A straight chain of `bars` equal nylon-cord bars of length kBar along x (free unless fixed).
 constexpr double kBar = 0.5, kBarE = 4.0e6, kBarRho = 0.6, kBarArea = 3e-4;
-Model chainOfBars(int bars) {
+Model chainOfBars(int bars, bool tensionOnly = true) {
   Model m;
   for (int i = 0; i <= bars; ++i) m.addNode(Vec3(kBar * i, 0, 0));
-  m.materials.push_back({kBarE, kBarArea, kBarRho, true, 0.0});
+  m.materials.push_back({kBarE, kBarArea, kBarRho, tensionOnly, 0.0});
   m.lineSets.push_back({"chain"});
   for (int i = 0; i < bars; ++i) m.cables.push_back({i, i + 1, kBar, 0, 0});
   return m;
@@ -60,19 +60,23 @@ Model chainOfBars(int bars) {
 }  // namespace
 
 // EX5-EX6: a free chain of equal bars with lumped mass has its highest frequency 2 c / L
-// (c = sqrt(E / rho)); the nodal bound gives exactly the step L / c.
+// (c = sqrt(E / rho)); the nodal bound gives exactly the step L / c for trusses, and 0.85 of it
+// for tension-only lines that no membrane touches (EX6l).
 TEST(StableStep, ChainOfBarsIsLengthOverWaveSpeed) {
-  const Model m = chainOfBars(10);
-  const double L = kBar, E = kBarE, rho = kBarRho, A = kBarArea;
-  Eigen::VectorXd x(3 * m.numNodes());
-  for (int i = 0; i < m.numNodes(); ++i) x.segment<3>(3 * i) = m.X[i];
-  const auto S = StructuralSystem(m, SliderSearch::MaterialCoordinate).stiffnessBound(x, 0.0);
-  std::vector<double> mass(m.numNodes(), rho * A * L);
-  mass.front() = mass.back() = 0.5 * rho * A * L;
-  const auto est = stableStep(S, mass, std::vector<char>(m.numNodes(), 1));
-  const double expected = L / std::sqrt(E / rho);
-  std::printf("chain: estimate %.6e s, L / c = %.6e s\n", est.dt, expected);
-  EXPECT_NEAR(est.dt, expected, 1e-12 * expected);
+  for (const bool tensionOnly : {false, true}) {
+    const Model m = chainOfBars(10, tensionOnly);
+    const double L = kBar, E = kBarE, rho = kBarRho, A = kBarArea;
+    Eigen::VectorXd x(3 * m.numNodes());
+    for (int i = 0; i < m.numNodes(); ++i) x.segment<3>(3 * i) = m.X[i];
+    const auto S = StructuralSystem(m, SliderSearch::MaterialCoordinate).stiffnessBound(x, 0.0);
+    std::vector<double> mass(m.numNodes(), rho * A * L);
+    mass.front() = mass.back() = 0.5 * rho * A * L;
+    const auto est = stableStep(S, mass, std::vector<char>(m.numNodes(), 1));
+    const double expected = (tensionOnly ? 0.85 : 1.0) * L / std::sqrt(E / rho);
+    std::printf("chain of %s: estimate %.6e s, expected %.6e s (L / c = %.6e s)\n",
+                tensionOnly ? "cables" : "trusses", est.dt, expected, L / std::sqrt(E / rho));
+    EXPECT_NEAR(est.dt, expected, 1e-12 * expected);
+  }
 }
 
 // A step whose state is not finite fails (the run stops unstable with its last good state), and
@@ -265,6 +269,39 @@ TEST(StableStep, TriangleIsAltitudeOverDilatationalWaveSpeed) {
   EXPECT_NEAR(est.dt, h / cd, 1e-12 * h / cd);
   const auto stretched = stableStep(sys.stiffnessBound(1.1 * x, 0.0), mass, free);
   EXPECT_NEAR(stretched.dt, h / cd / 1.1, 1e-12 * h / cd);
+}
+
+// EX6l: a tension-only line hung from a membrane triangle: its end on the fabric keeps EX6's
+// bound, its free end takes 1 / 0.85^2 of it; a truss in its place keeps EX6 at both ends.
+TEST(StableStep, OnlyTheLinesEndsFreeOfTheFabricTakeTheMargin) {
+  for (const bool tensionOnly : {true, false}) {
+    Model m;
+    m.addNode(Vec3(0, 0, 0));
+    m.addNode(Vec3(1, 0, 0));
+    m.addNode(Vec3(0.2, 0.4, 0));
+    m.addNode(Vec3(0, 0, -2));
+    m.membraneMaterials.push_back({4.32e6, 0.3, 4e-4, 0.6});
+    m.membraneSets.push_back({"patch"});
+    MembraneElement e;
+    e.nodes = {0, 1, 2, -1};
+    e.material = 0;
+    e.set = 0;
+    m.membranes.push_back(e);
+    Eigen::VectorXd x(12);
+    for (int i = 0; i < 4; ++i) x.segment<3>(3 * i) = m.X[i];
+    const auto without = StructuralSystem(m, SliderSearch::MaterialCoordinate).stiffnessBound(x, 0);
+    const double E = 4.32e6, A = 3e-4, L = 2.0;
+    m.materials.push_back({E, A, 0.6, tensionOnly, 0.0});
+    m.lineSets.push_back({"line"});
+    m.cables.push_back({0, 3, L, 0, 0});
+    const auto with = StructuralSystem(m, SliderSearch::MaterialCoordinate).stiffnessBound(x, 0);
+    const double rowSum = 2.0 * E * A / L;  // EX6: k per free node touched, at both ends
+    const double onFabric = with[0] - without[0], hanging = with[3] - without[3];
+    std::printf("%s: on the fabric %.6g (EX6 %.6g), free end %.6g (x %.6f)\n",
+                tensionOnly ? "cable" : "truss", onFabric, rowSum, hanging, hanging / rowSum);
+    EXPECT_NEAR(onFabric, rowSum, 1e-9 * rowSum);
+    EXPECT_NEAR(hanging, rowSum * (tensionOnly ? 1.0 / (0.85 * 0.85) : 1.0), 1e-9 * rowSum);
+  }
 }
 
 // EX6: a frictionless slider approaching a node does not shrink the step. A V-shaped rope of
