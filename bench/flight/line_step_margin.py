@@ -16,7 +16,6 @@ Runs on one thread each, two at a time.
 """
 import argparse
 import concurrent.futures
-import json
 import os
 import statistics
 import subprocess
@@ -27,6 +26,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, os.path.dirname(HERE))
 from roundoff import damping_sets  # noqa: E402
+from chute_run import run_case  # noqa: E402
 
 CHUTE = os.path.join(ROOT, "build/bin/chute")
 D15 = ["--units", "si", "--gores", "28", "--diameter", "15", "--line-length", "12.75",
@@ -35,12 +35,7 @@ D15 = ["--units", "si", "--gores", "28", "--diameter", "15", "--line-length", "1
 
 
 def one(chute, case, out, sets):
-    cmd = [chute, "run", case, "--out", out, "--quiet"]
-    for s in sets:
-        cmd += ["--set", s]
-    subprocess.run(cmd, capture_output=True, env=dict(os.environ, CHUTE_THREADS="1"))
-    with open(os.path.join(out, "summary.json")) as f:
-        return json.load(f)
+    return run_case(chute, case, out, sets, env=dict(os.environ, CHUTE_THREADS="1"))[0]
 
 
 def ensemble(chute, case, work, tag, runs, sets):

@@ -35,6 +35,7 @@ ROOT = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, os.path.dirname(HERE))
 from roundoff import damping_sets  # noqa: E402
 from paired import paired  # noqa: E402
+import chute_run  # noqa: E402
 
 CHUTE = os.environ.get("CHUTE_BIN", os.path.join(ROOT, "build/bin/chute"))
 ENV = dict(os.environ, CHUTE_THREADS="1", CHUTE_BIN=CHUTE)
@@ -90,17 +91,7 @@ def table(title, per_q, figures, out):
 
 
 def run_case(case, out, sets):
-    cmd = [CHUTE, "run", case, "--out", out, "--quiet"]
-    for s in sets:
-        cmd += ["--set", s]
-    subprocess.run(cmd, capture_output=True, env=ENV)
-    with open(os.path.join(out, "summary.json")) as f:
-        s = json.load(f)
-    rows = []
-    if os.path.exists(os.path.join(out, "probes.csv")):
-        with open(os.path.join(out, "probes.csv")) as f:
-            rows = list(csv.DictReader(f))
-    return s, rows
+    return chute_run.run_case(CHUTE, case, out, sets, env=ENV)
 
 
 def parallel(jobs):

@@ -11,26 +11,19 @@ skirt.mean). The generated C-9: 1 s from line stretch with q = 0.01, against q =
 safety factor of 0.85 (how far a perturbation of the step alone moves its chaotic opening).
 """
 import argparse
-import csv
-import json
 import os
 import subprocess
+import sys
 import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from chute_run import run_case  # noqa: E402
 CHUTE = os.environ.get("CHUTE_BIN", os.path.join(ROOT, "build/bin/chute"))
 
 
 def run(case, out, sets):
-    cmd = [CHUTE, "run", case, "--out", out, "--quiet"]
-    for s in sets:
-        cmd += ["--set", s]
-    subprocess.run(cmd, check=True, capture_output=True)
-    with open(os.path.join(out, "summary.json")) as f:
-        s = json.load(f)
-    with open(os.path.join(out, "probes.csv")) as f:
-        rows = list(csv.DictReader(f))
-    return s, rows
+    return run_case(CHUTE, case, out, sets, check=True)
 
 
 def series(rows, key):

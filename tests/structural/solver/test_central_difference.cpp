@@ -57,6 +57,22 @@ Model chainOfBars(int bars, bool tensionOnly = true) {
   return m;
 }
 
+// The triangle (0,0,0), (1,0,0), (0.2,0.4,0) of one membrane material: the stable-step tests'.
+Model trianglePatch(double E, double nu, double t, double rho) {
+  Model m;
+  m.addNode(Vec3(0, 0, 0));
+  m.addNode(Vec3(1, 0, 0));
+  m.addNode(Vec3(0.2, 0.4, 0));
+  m.membraneMaterials.push_back({E, nu, t, rho});
+  m.membraneSets.push_back({"patch"});
+  MembraneElement e;
+  e.nodes = {0, 1, 2, -1};
+  e.material = 0;
+  e.set = 0;
+  m.membranes.push_back(e);
+  return m;
+}
+
 }  // namespace
 
 // EX5-EX6: a free chain of equal bars with lumped mass has its highest frequency 2 c / L
@@ -245,18 +261,8 @@ TEST(CentralDifference, PassesInHalvesAreTheWholePasses) {
 // A membrane triangle with its own lumped mass: h / c_d with c_d = sqrt(E / (rho (1 - nu^2))),
 // h its smallest altitude; stretched, the step shrinks with the stretch.
 TEST(StableStep, TriangleIsAltitudeOverDilatationalWaveSpeed) {
-  Model m;
   const double E = 4.32e6, nu = 0.3, t = 4e-4, rho = 0.6;
-  m.addNode(Vec3(0, 0, 0));
-  m.addNode(Vec3(1, 0, 0));
-  m.addNode(Vec3(0.2, 0.4, 0));
-  m.membraneMaterials.push_back({E, nu, t, rho});
-  m.membraneSets.push_back({"patch"});
-  MembraneElement e;
-  e.nodes = {0, 1, 2, -1};
-  e.material = 0;
-  e.set = 0;
-  m.membranes.push_back(e);
+  const Model m = trianglePatch(E, nu, t, rho);
   Eigen::VectorXd x(9);
   for (int i = 0; i < 3; ++i) x.segment<3>(3 * i) = m.X[i];
   const double area = 0.5 * 0.4, h = 2 * area / 1.0;  // longest edge: 0 -> 1
@@ -275,18 +281,8 @@ TEST(StableStep, TriangleIsAltitudeOverDilatationalWaveSpeed) {
 // bound, its free end takes 1 / 0.85^2 of it; a truss in its place keeps EX6 at both ends.
 TEST(StableStep, OnlyTheLinesEndsFreeOfTheFabricTakeTheMargin) {
   for (const bool tensionOnly : {true, false}) {
-    Model m;
-    m.addNode(Vec3(0, 0, 0));
-    m.addNode(Vec3(1, 0, 0));
-    m.addNode(Vec3(0.2, 0.4, 0));
+    Model m = trianglePatch(4.32e6, 0.3, 4e-4, 0.6);
     m.addNode(Vec3(0, 0, -2));
-    m.membraneMaterials.push_back({4.32e6, 0.3, 4e-4, 0.6});
-    m.membraneSets.push_back({"patch"});
-    MembraneElement e;
-    e.nodes = {0, 1, 2, -1};
-    e.material = 0;
-    e.set = 0;
-    m.membranes.push_back(e);
     Eigen::VectorXd x(12);
     for (int i = 0; i < 4; ++i) x.segment<3>(3 * i) = m.X[i];
     const auto without = StructuralSystem(m, SliderSearch::MaterialCoordinate).stiffnessBound(x, 0);
