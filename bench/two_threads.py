@@ -8,7 +8,9 @@ bench/results/two_threads.md and prints it.
     python3 bench/two_threads.py --before /path/to/old/build/bin/chute [--runs 3] [--t-end 1.0]
     CHUTE_THREADS=1 python3 bench/two_threads.py ...   # the same two parts on one thread
 """
-import argparse, json, os, resource, statistics, subprocess, tempfile, time
+import argparse, json, os, statistics, tempfile, time
+
+from paired import timed
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 CASE = os.path.join(ROOT, "cases", "c9_slider.toml")
@@ -23,14 +25,9 @@ def run(chute, sets, t_end):
                "--set", "output.vtu.write=false"]
         for s in sets:
             cmd += ["--set", s]
-        r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
-        t0 = time.monotonic()
-        subprocess.run(cmd, check=True)
-        wall = time.monotonic() - t0
-        r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
+        wall, cpu, _ = timed(cmd)
         s = json.load(open(os.path.join(out, "summary.json")))
         assert s["status"] == "completed", s["status"]
-        cpu = (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime)
         return wall, cpu, s["steps"]
 
 

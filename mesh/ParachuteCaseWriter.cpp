@@ -151,9 +151,10 @@ void writeHeader(std::ostream& f, const CaseContext& c, const GeneratedParachute
   auto option = [&](const char* flag, double value, double byDefault) {
     if (value != byDefault) f << " " << flag << " " << num(value);
   };
-  if (!c.legacyPressure)
+  if (c.legacyPressure)
+    option("--ramp-time", c.o.rampTime, defaults.rampTime);
+  else
     option("--cloth-permeability", c.o.clothPermeability, defaults.clothPermeability);
-  if (c.legacyPressure) option("--ramp-time", c.o.rampTime, defaults.rampTime);
   option("--dt", c.o.dt, defaults.dt);
   option("--t-end", c.o.tEnd, defaults.tEnd);
   option("--probe-interval", c.o.probeInterval, defaults.probeInterval);

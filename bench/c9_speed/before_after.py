@@ -14,7 +14,10 @@ Writes bench/results/c9_speed_before_after.md.
     nice /usr/bin/python3 bench/c9_speed/before_after.py --before-chute /path/old/build/bin/chute \
         --before-case /path/old/cases/c9_slider.toml [--runs 3]
 """
-import argparse, csv, json, os, statistics, subprocess, tempfile, time
+import argparse, csv, json, os, statistics, sys, tempfile, time
+
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from paired import timed  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 RESULTS = os.environ.get("CHUTE_BENCH_RESULTS", os.path.join(ROOT, "bench", "results"))
@@ -26,9 +29,7 @@ def run(chute, case, sets):
         cmd = [chute, "run", case, "--out", out, "--quiet", "--set", "solver.t_end=1.0"]
         for s in sets:
             cmd += ["--set", s]
-        t0 = time.monotonic()
-        subprocess.run(cmd, check=True)
-        wall = time.monotonic() - t0
+        wall = timed(cmd)[0]
         s = json.load(open(os.path.join(out, "summary.json")))
         rows = list(csv.DictReader(open(os.path.join(out, "probes.csv"))))
     return wall, s, {round(float(r["t"]), 4): float(r["skirt.mean"]) for r in rows}

@@ -25,18 +25,10 @@ inline double lineStiffness(const LineMaterial& mat, double L) {
 }
 
 // A two-node line of stiffness k: K = k [1 -1; -1 1] (x) n n^T, whose row sum over the free nodes
-// is k per free node touched, at both ends (EX5).
+// is k per free node touched, at both ends (EX5); each end's times its factor (EX6l: a
+// tension-only line's nodes that no membrane touches take kHangingLineBound).
 inline void addLineBound(int a, int b, double k, const std::vector<char>& free,
-                         std::vector<double>& S) {
-  const double rowSum = k * ((free[a] ? 1.0 : 0.0) + (free[b] ? 1.0 : 0.0));
-  S[a] += rowSum;
-  S[b] += rowSum;
-}
-
-// The same with each end's row sum times its own factor (EX6l: a tension-only line's nodes that
-// no membrane touches take kHangingLineBound).
-inline void addLineBound(int a, int b, double k, const std::vector<char>& free,
-                         std::vector<double>& S, double factorA, double factorB) {
+                         std::vector<double>& S, double factorA = 1.0, double factorB = 1.0) {
   const double rowSum = k * ((free[a] ? 1.0 : 0.0) + (free[b] ? 1.0 : 0.0));
   S[a] += factorA * rowSum;
   S[b] += factorB * rowSum;
