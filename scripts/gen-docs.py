@@ -91,6 +91,8 @@ MD_PAGES = [
      "Selective mass scaling in the generated cases: flight figures and speed "
      "(`bench/flight/mass_scaling_flight.py`)"),
     ("line_step_margin.md", "Suspension lines that set the explicit step (`bench/flight/line_step_margin.py`)"),
+    ("lean_line_residuals_2026-11-28.md",
+     "The lines' residual-only kernels and the energy balance's line energies, one sitting"),
 ]
 
 

@@ -44,6 +44,22 @@ inline Eigen::Matrix<double, 6, 1> cableForceOnly(const Vec3& xa, const Vec3& xb
   }
   return f;
 }
+// cableForce's strain energy alone (F1-F2), with the same operations as uniformStrainPolyline<2>
+// (l = 0 + l_part is exact), so bit for bit: the energy balance asks for it for every line
+// element, where the whole kernel's force, its result's copies and the call to partLength made
+// the lines' energy cost more than the membranes' (the C-9 slider case).
+inline double cableStrainEnergyOnly(const Vec3& xa, const Vec3& xb, double L,
+                                    const LineMaterial& mat) {
+  const double apex = kApexFraction * L;
+  const double n = (xb - xa).norm();
+  const double length = n >= apex ? n : (n * n + apex * apex) / (2.0 * apex);
+  const double L2 = L * L;
+  const double strain = (length * length - L2) / (2.0 * L2);  // F1
+  double Eeff = mat.E;
+  if (strain < 0.0 && mat.tensionOnly) Eeff = mat.E * mat.compressionStiffnessRatio;
+  if (strain == 0.0 && mat.tensionOnly) Eeff = 0.0;  // exactly zero strain: slack
+  return 0.5 * Eeff * mat.area * L * strain * strain;
+}
 // F4: constant mass matrix.
 Mat6 cableMass(double L, const LineMaterial& mat, MassKind kind);
 // F4's inertia M a without forming M: lumped, (m / 2) a_i; consistent, (m / 3) a_i + (m / 6) a_j

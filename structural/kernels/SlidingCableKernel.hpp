@@ -4,6 +4,7 @@
 // 4). Pure functions of nodal coordinates and parameters; dof order is node by node, (x, y, z) per
 // node.
 #include "kernels/LineElementTypes.hpp"
+#include "kernels/Regularisations.hpp"
 #include "kernels/UniformStrainPolyline.hpp"
 
 namespace chute::kernels {
@@ -11,6 +12,43 @@ namespace chute::kernels {
 // Node order (1, 2, 3): cable ends 1 and 2, slider 3. F6-F9.
 PolylineResult<3> slidingForce(const Vec3& x1, const Vec3& x2, const Vec3& x3, double L,
                                const LineMaterial& mat, bool withTangent);
+
+// Residual-only slidingForce: its force, the same operations as uniformStrainPolyline<3>'s
+// residual on the path (1, slider, 2) (D starts from zero vectors, l = 0 + l_1 + l_2), so bit for
+// bit, without its result's 9 x 9 stiffness and the copies of the result (the explicit step
+// evaluates it for every active sliding element at every step). Inline for the same reason as
+// cableForceOnly.
+inline Vec9 slidingForceOnly(const Vec3& x1, const Vec3& x2, const Vec3& x3, double L,
+                             const LineMaterial& mat) {
+  const double apex = kApexFraction * L;
+  // partLength of each straight part: the exact length, or RG1's quadratic at the apex.
+  auto part = [apex](const Vec3& d, Vec3& g) {
+    const double n = d.norm();
+    if (n >= apex) {
+      g = d / n;
+      return n;
+    }
+    g = d / apex;
+    return (n * n + apex * apex) / (2.0 * apex);
+  };
+  Vec3 g1, g2;
+  double length = 0.0;
+  length += part(x3 - x1, g1);  // node 1 -> slider
+  length += part(x2 - x3, g2);  // slider -> node 2
+  const double L2 = L * L;
+  const double strain = (length * length - L2) / (2.0 * L2);  // F6
+  double Eeff = mat.E;
+  if (strain < 0.0 && mat.tensionOnly) Eeff = mat.E * mat.compressionStiffnessRatio;
+  if (strain == 0.0 && mat.tensionOnly) Eeff = 0.0;        // exactly zero strain: slack
+  const double N = Eeff * mat.area / L * strain * length;  // F8
+  Vec9 f;
+  for (int k = 0; k < 3; ++k) {
+    f[k] = N * (0.0 - g1[k]);                // node 1
+    f[3 + k] = N * (0.0 + g2[k]);            // node 2
+    f[6 + k] = N * ((0.0 + g1[k]) - g2[k]);  // the slider
+  }
+  return f;
+}
 
 // Configuration-dependent inertia force f = M(x) a (F10) and its derivative with respect to x at
 // fixed a (the M' a term of a consistent Newton tangent).

@@ -71,7 +71,7 @@ void assembleCable(const Model& m, int a, int b, double L, int material, const E
 
 double cableStrainEnergy(const Model& m, int a, int b, double L, int material,
                          const Eigen::VectorXd& x) {
-  return kernels::cableForce(pos(x, a), pos(x, b), L, m.materials[material], false).energy;
+  return kernels::cableStrainEnergyOnly(pos(x, a), pos(x, b), L, m.materials[material]);
 }
 
 void cableEnergy(const Model& m, int a, int b, double L, int material, const Eigen::VectorXd& x,

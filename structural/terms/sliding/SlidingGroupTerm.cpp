@@ -507,15 +507,15 @@ void SlidingGroupTerm::assemble(const EvalPoint& p, SystemAssembler& out) {
         slack.strain = dg.strain1;
         addSlackTangent<3>(slack, mat, L, {0, 2, 1}, p.cx, J, false);
       }
+    } else if (!wantJ) {
+      r = kernels::slidingForceOnly(x1, x2, x3, L, mat);  // slidingForce's residual, bit for bit
     } else {
-      const auto res = kernels::slidingForce(x1, x2, x3, L, mat, wantJ);
+      const auto res = kernels::slidingForce(x1, x2, x3, L, mat, true);
       r = res.force;
-      if (wantJ) {
-        J = p.cx * res.stiffness;
-        // path 1 -> slider -> 2
-        if (addSlackTangent<3>(res, mat, L, {0, 2, 1}, p.cx, J, p.kinkTangent))
-          ++out.work().kinkTangents;
-      }
+      J = p.cx * res.stiffness;
+      // path 1 -> slider -> 2
+      if (addSlackTangent<3>(res, mat, L, {0, 2, 1}, p.cx, J, p.kinkTangent))
+        ++out.work().kinkTangents;
     }
     if (mat.density > 0.0 && p.inertia && !g.frictionOf(s)) {
       // RG8: the whirl of an end node about the slider, damped within kWhirlDampingFraction L.

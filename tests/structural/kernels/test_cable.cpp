@@ -149,6 +149,9 @@ TEST(CableKernel, ResidualOnlyIsTheFullEvaluationBitForBit) {
       // cableForceOnly, the explicit path's: the same bits, signs of zeros included.
       const Vec6 only = cableForceOnly(xa, xb, L, mat);
       EXPECT_EQ(std::memcmp(only.data(), full.force.data(), sizeof(double) * 6), 0) << trial;
+      // cableStrainEnergyOnly, the energy balance's: the same bits.
+      const double energy = cableStrainEnergyOnly(xa, xb, L, mat);
+      EXPECT_EQ(std::memcmp(&energy, &full.energy, sizeof(double)), 0) << trial;
     }
     Vec6 a;
     for (int k = 0; k < 6; ++k) a[k] = n(rng);

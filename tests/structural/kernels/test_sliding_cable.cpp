@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <cstring>
 #include <random>
 
 #include "kernels/CableKernel.hpp"
@@ -251,6 +252,24 @@ TEST(SlidingKernel, ResidualOnlyIsTheFullEvaluationBitForBit) {
     EXPECT_EQ(res.segmentLength, full.segmentLength);
     EXPECT_EQ(res.dLength, full.dLength);
     EXPECT_EQ(res.force, full.force) << trial;
+    // slidingForceOnly, the explicit path's: the same bits, signs of zeros included, taut and
+    // slack, on both materials (the compression stiffness of a line that is not tension-only),
+    // at an exactly zero strain, on an end node (the apex's quadratic) and with no length at all.
+    for (bool tension : {true, false}) {
+      const auto m = rope(tension);
+      auto same = [&](const SlidingConfig& q) {
+        const Vec9 only = slidingForceOnly(q.x1, q.x2, q.x3, q.L, m);
+        const Vec9 whole = slidingForce(q.x1, q.x2, q.x3, q.L, m, true).force;
+        EXPECT_EQ(std::memcmp(only.data(), whole.data(), sizeof(double) * 9), 0) << trial;
+      };
+      same(c);
+      SlidingConfig zero = c;  // on the straight line, at exactly the reference length
+      zero.x1 = Vec3::Zero(), zero.x2 = Vec3(c.L, 0.0, 0.0), zero.x3 = Vec3(0.25 * c.L, 0.0, 0.0);
+      if (trial == 3) same(zero);
+      SlidingConfig none = c;  // all three nodes at one point
+      none.x2 = none.x3 = none.x1;
+      if (trial == 5) same(none);
+    }
     Vec9 a;
     for (int k = 0; k < 9; ++k) a[k] = n(rng);
     if (trial == 0) a.setOnes();  // the explicit path's M(x) 1
