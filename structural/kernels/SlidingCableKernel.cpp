@@ -29,13 +29,24 @@ struct SplitRatios {
   Vec9 dr1, dr2;
 };
 
-// The split ratios alone (the lumped mass needs no gradients): the same values as splitRatios.
+// The split ratios alone (the lumped mass needs no gradients): the same values as splitRatios,
+// from the parts' lengths as uniformStrainPolyline<3> makes them on the path (1, slider, 2)
+// (partLength: the exact length, or RG1's quadratic at the apex; l = 0 + l_1 + l_2), without
+// the rest of the kernel (the explicit step's lumped M(x) 1 asks for them for every active
+// sliding element at every step, where the whole kernel and its result's copies had been made).
 void splitRatioValues(const Vec3& x1, const Vec3& x2, const Vec3& x3, double L, double& r1,
                       double& r2) {
-  // Reuse the kernel's limit-safe geometry; material is irrelevant for lengths.
-  const auto p = slidingForce(x1, x2, x3, L, LineMaterial{}, false);
-  r1 = p.segmentLength[0] / p.length;
-  r2 = p.segmentLength[1] / p.length;
+  const double apex = kApexFraction * L;
+  auto part = [apex](const Vec3& d) {
+    const double n = d.norm();
+    return n >= apex ? n : (n * n + apex * apex) / (2.0 * apex);
+  };
+  const double l1 = part(x3 - x1), l2 = part(x2 - x3);
+  double length = 0.0;
+  length += l1;
+  length += l2;
+  r1 = l1 / length;
+  r2 = l2 / length;
 }
 
 SplitRatios splitRatios(const Vec3& x1, const Vec3& x2, const Vec3& x3, double L) {
