@@ -429,8 +429,10 @@ std::optional<StepEstimate> CentralDifference::estimateStep(const StructuralStat
 }
 
 StepResult CentralDifference::step(StructuralState& s, double stop, StepCounters& counters) {
-  if (counters.steps % kStableStepEvery == 0 || sys_->model().hasCutAt(s.t))
+  if (counters.steps % kStableStepEvery == 0 || sys_->model().hasCutAt(s.t)) {
+    ScopedTimer timer(sys_->timings().stableStep);
     s.control.dt = chooseStep(s.control.dt, s.x, s.t);
+  }
   // The next step estimates (if this one is accepted and counted): its bound from this step's
   // end, alongside this step's assembly.
   boundAheadWanted_ = (counters.steps + 1) % kStableStepEvery == 0;
@@ -488,11 +490,14 @@ NewtonReport CentralDifference::advance(StructuralState& s, double dt) {
   const bool damped = settings_.stiffnessDamping > 0.0;
   const double beta = settings_.stiffnessDamping;
   if (damped && xEval_.size() != nd) xEval_.resize(nd);
-  overDofs([&](int b, int e) {
-    auto pass = damped ? &predict<true> : &predict<false>;
-    pass(e - b, dt, beta, s.x.data() + b, s.v.data() + b, s.a.data() + b, vHalf_.data() + b,
-         n.x.data() + b, vStar_.data() + b, damped ? xEval_.data() + b : nullptr);
-  });
+  {
+    ScopedTimer timer(sys_->timings().passes);
+    overDofs([&](int b, int e) {
+      auto pass = damped ? &predict<true> : &predict<false>;
+      pass(e - b, dt, beta, s.x.data() + b, s.v.data() + b, s.a.data() + b, vHalf_.data() + b,
+           n.x.data() + b, vStar_.data() + b, damped ? xEval_.data() + b : nullptr);
+    });
+  }
   sys_->prescribeMotion(n);
   // EX3: hand-over checked every step. A driven slider is handed over where its path passes a
   // node; a free slider whose part to an end node turns round over the step has passed that
@@ -505,6 +510,7 @@ NewtonReport CentralDifference::advance(StructuralState& s, double dt) {
   for (int d : sys_->constrainedDofs()) vStar_[d] = n.v[d];
   if (zeroDofs_.size() != nd) zeroDofs_ = Eigen::VectorXd::Zero(nd);
   if (damped) {
+    ScopedTimer timer(sys_->timings().passes);
     // Moved since the pass: the constrained dofs (prescribeMotion), the watchers' (the moves onto
     // nodes), and wherever a driven slider or another source moved a node (all of them again).
     auto again = [&](int d) { xEval_[d] = n.x[d] + beta * vStar_[d]; };
@@ -569,10 +575,13 @@ NewtonReport CentralDifference::advance(StructuralState& s, double dt) {
     }
     part[b == 0 ? 0 : 1] = sum;
   };
-  if (halves)
-    sys_->useResidualInHalves(correctOver);
-  else
-    correctOver(0, sys_->numEquations());
+  {
+    ScopedTimer timer(sys_->timings().passes);
+    if (halves)
+      sys_->useResidualInHalves(correctOver);
+    else
+      correctOver(0, sys_->numEquations());
+  }
   double nonFinite = part[0] + part[1];
   for (int d : sys_->constrainedDofs()) nonFinite += n.x[d] * 0.0 + n.v[d] * 0.0 + n.a[d] * 0.0;
   rep.iterations = 0;
@@ -581,7 +590,10 @@ NewtonReport CentralDifference::advance(StructuralState& s, double dt) {
     sys_->revert();
     return rep;
   }
-  sys_->commit(CommitPoint{n.x, n.t, dt, n.t, &n.v});
+  {
+    ScopedTimer timer(sys_->timings().commits);
+    sys_->commit(CommitPoint{n.x, n.t, dt, n.t, &n.v});
+  }
   std::swap(s, n);  // n keeps the old state's buffers for the next step
   rep.converged = true;
   return rep;
