@@ -44,7 +44,8 @@ def split(s):
     wt, its, steps = s["wall_time"], s["newton_iterations"], s["steps"]
     per, unit = (its, "ms per Newton iteration") if its > 0 else (steps, "ms per step")
     parts = ", ".join(f"{k} {1e3 * wt[k] / per:.3f}" for k in
-                      ("assembly", "factorisation", "solve", "other", "output", "total")
+                      ("assembly", "factorisation", "solve", "search", "passes", "commits",
+                       "stable_step", "balance", "other", "output", "total")
                       if wt.get(k, 0) > 0)
     return f"{parts} ({unit})"
 
