@@ -18,24 +18,10 @@ PolylineResult<2> cableForce(const Vec3& xa, const Vec3& xb, double L, const Lin
 // called across files, the nodes' positions went through memory to the call.
 inline Eigen::Matrix<double, 6, 1> cableForceOnly(const Vec3& xa, const Vec3& xb, double L,
                                                   const LineMaterial& mat) {
-  const double apex = kApexFraction * L;
-  const Vec3 d = xb - xa;
-  const double n = d.norm();
-  double length;
   Vec3 g;
-  if (n >= apex) {  // partLength: the exact length, or RG1's quadratic at the apex
-    length = n;
-    g = d / n;
-  } else {
-    length = (n * n + apex * apex) / (2.0 * apex);
-    g = d / apex;
-  }
-  const double L2 = L * L;
-  const double strain = (length * length - L2) / (2.0 * L2);  // F1
-  double Eeff = mat.E;
-  if (strain < 0.0 && mat.tensionOnly) Eeff = mat.E * mat.compressionStiffnessRatio;
-  if (strain == 0.0 && mat.tensionOnly) Eeff = 0.0;  // exactly zero strain: slack
-  const double EAoverL = Eeff * mat.area / L;
+  const double length = partLengthAndGradient(xb - xa, kApexFraction * L, g);
+  const double strain = uniformStrain(length, L);  // F1
+  const double EAoverL = strainModulus(strain, mat) * mat.area / L;
   const double N = EAoverL * strain * length;  // F2
   Eigen::Matrix<double, 6, 1> f;
   for (int k = 0; k < 3; ++k) {
@@ -50,15 +36,8 @@ inline Eigen::Matrix<double, 6, 1> cableForceOnly(const Vec3& xa, const Vec3& xb
 // the lines' energy cost more than the membranes' (the C-9 slider case).
 inline double cableStrainEnergyOnly(const Vec3& xa, const Vec3& xb, double L,
                                     const LineMaterial& mat) {
-  const double apex = kApexFraction * L;
-  const double n = (xb - xa).norm();
-  const double length = n >= apex ? n : (n * n + apex * apex) / (2.0 * apex);
-  const double L2 = L * L;
-  const double strain = (length * length - L2) / (2.0 * L2);  // F1
-  double Eeff = mat.E;
-  if (strain < 0.0 && mat.tensionOnly) Eeff = mat.E * mat.compressionStiffnessRatio;
-  if (strain == 0.0 && mat.tensionOnly) Eeff = 0.0;  // exactly zero strain: slack
-  return 0.5 * Eeff * mat.area * L * strain * strain;
+  const double strain = uniformStrain(partLengthOnly(xb - xa, kApexFraction * L), L);  // F1
+  return 0.5 * strainModulus(strain, mat) * mat.area * L * strain * strain;
 }
 // F4: constant mass matrix.
 Mat6 cableMass(double L, const LineMaterial& mat, MassKind kind);

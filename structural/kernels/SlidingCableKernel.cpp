@@ -37,11 +37,7 @@ struct SplitRatios {
 void splitRatioValues(const Vec3& x1, const Vec3& x2, const Vec3& x3, double L, double& r1,
                       double& r2) {
   const double apex = kApexFraction * L;
-  auto part = [apex](const Vec3& d) {
-    const double n = d.norm();
-    return n >= apex ? n : (n * n + apex * apex) / (2.0 * apex);
-  };
-  const double l1 = part(x3 - x1), l2 = part(x2 - x3);
+  const double l1 = partLengthOnly(x3 - x1, apex), l2 = partLengthOnly(x2 - x3, apex);
   double length = 0.0;
   length += l1;
   length += l2;

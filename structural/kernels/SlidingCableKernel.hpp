@@ -21,26 +21,12 @@ PolylineResult<3> slidingForce(const Vec3& x1, const Vec3& x2, const Vec3& x3, d
 inline Vec9 slidingForceOnly(const Vec3& x1, const Vec3& x2, const Vec3& x3, double L,
                              const LineMaterial& mat) {
   const double apex = kApexFraction * L;
-  // partLength of each straight part: the exact length, or RG1's quadratic at the apex.
-  auto part = [apex](const Vec3& d, Vec3& g) {
-    const double n = d.norm();
-    if (n >= apex) {
-      g = d / n;
-      return n;
-    }
-    g = d / apex;
-    return (n * n + apex * apex) / (2.0 * apex);
-  };
   Vec3 g1, g2;
   double length = 0.0;
-  length += part(x3 - x1, g1);  // node 1 -> slider
-  length += part(x2 - x3, g2);  // slider -> node 2
-  const double L2 = L * L;
-  const double strain = (length * length - L2) / (2.0 * L2);  // F6
-  double Eeff = mat.E;
-  if (strain < 0.0 && mat.tensionOnly) Eeff = mat.E * mat.compressionStiffnessRatio;
-  if (strain == 0.0 && mat.tensionOnly) Eeff = 0.0;        // exactly zero strain: slack
-  const double N = Eeff * mat.area / L * strain * length;  // F8
+  length += partLengthAndGradient(x3 - x1, apex, g1);                            // node 1 -> slider
+  length += partLengthAndGradient(x2 - x3, apex, g2);                            // slider -> node 2
+  const double strain = uniformStrain(length, L);                                // F6
+  const double N = strainModulus(strain, mat) * mat.area / L * strain * length;  // F8
   Vec9 f;
   for (int k = 0; k < 3; ++k) {
     f[k] = N * (0.0 - g1[k]);                // node 1

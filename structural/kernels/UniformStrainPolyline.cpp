@@ -41,11 +41,8 @@ PolylineResult<NumNodes> uniformStrainPolyline(const std::array<Vec3, NumNodes>&
   }
 
   const double L2 = L * L;
-  r.strain = (r.length * r.length - L2) / (2.0 * L2);  // F1 / F6
-  double Eeff = mat.E;
-  if (r.strain < 0.0 && mat.tensionOnly) Eeff = mat.E * mat.compressionStiffnessRatio;
-  // A cable at exactly zero strain is taken as slack: it carries nothing and has no stiffness.
-  if (r.strain == 0.0 && mat.tensionOnly) Eeff = 0.0;
+  r.strain = uniformStrain(r.length, L);  // F1 / F6
+  const double Eeff = strainModulus(r.strain, mat);
 
   const double EAoverL = Eeff * mat.area / L;
   r.axialForce = EAoverL * r.strain * r.length;  // F2: N = E A0 eps l / L

@@ -45,6 +45,33 @@ struct PartLength {
   Mat3 hessian;  // set only withHessian
 };
 PartLength partLength(const Vec3& d, double apexRadius, bool withHessian = true);
+// partLength's length and gradient alone (the residual-only kernels': the same operations).
+inline double partLengthAndGradient(const Vec3& d, double apexRadius, Vec3& gradient) {
+  const double n = d.norm();
+  if (n >= apexRadius) {
+    gradient = d / n;
+    return n;
+  }
+  gradient = d / apexRadius;
+  return (n * n + apexRadius * apexRadius) / (2.0 * apexRadius);
+}
+// partLength's length alone.
+inline double partLengthOnly(const Vec3& d, double apexRadius) {
+  const double n = d.norm();
+  return n >= apexRadius ? n : (n * n + apexRadius * apexRadius) / (2.0 * apexRadius);
+}
+// F1 / F6: the Green-Lagrange strain of a length l over the reference length L.
+inline double uniformStrain(double l, double L) {
+  const double L2 = L * L;
+  return (l * l - L2) / (2.0 * L2);
+}
+// The modulus that strain sees: E; a tension-only line's compression ratio times E below zero
+// strain, and nothing at exactly zero strain (taken as slack: no force and no stiffness).
+inline double strainModulus(double strain, const LineMaterial& mat) {
+  if (strain < 0.0 && mat.tensionOnly) return mat.E * mat.compressionStiffnessRatio;
+  if (strain == 0.0 && mat.tensionOnly) return 0.0;
+  return mat.E;
+}
 
 template <int NumNodes>
 struct PolylineResult {
