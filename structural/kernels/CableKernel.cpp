@@ -26,19 +26,6 @@ Mat6 cableMass(double L, const LineMaterial& mat, MassKind kind) {
   return M;
 }
 
-Vec6 cableMassTimes(double L, const LineMaterial& mat, MassKind kind, const Vec6& a) {
-  const double m = mat.density * mat.area * L;  // the entries of cableMass, to the bit
-  Vec6 r;
-  if (kind == MassKind::Lumped) {
-    const double half = 0.5 * m;
-    for (int i = 0; i < 6; ++i) r[i] = half * a[i];
-  } else {
-    const double diag = m / 3.0, off = m / 6.0;
-    for (int i = 0; i < 6; ++i) r[i] = diag * a[i] + off * a[(i + 3) % 6];
-  }
-  return r;
-}
-
 Vec6 cableGravity(double L, const LineMaterial& mat, const Vec3& g) {
   Vec6 f;
   const double half = 0.5 * mat.density * mat.area * L;

@@ -44,8 +44,19 @@ Mat6 cableMass(double L, const LineMaterial& mat, MassKind kind);
 // F4's inertia M a without forming M: lumped, (m / 2) a_i; consistent, (m / 3) a_i + (m / 6) a_j
 // with j the other node's same component. Bit for bit cableMass(L, mat, kind) * a: each row of M
 // has at most two nonzeros, whose sum does not depend on the order of the additions. The explicit
-// path's lumped mass (EX2) asks for it for every line element at every step.
-Vec6 cableMassTimes(double L, const LineMaterial& mat, MassKind kind, const Vec6& a);
+// path's lumped mass (EX2) asks for it for every line element at every step: inline.
+inline Vec6 cableMassTimes(double L, const LineMaterial& mat, MassKind kind, const Vec6& a) {
+  const double m = mat.density * mat.area * L;  // the entries of cableMass, to the bit
+  Vec6 r;
+  if (kind == MassKind::Lumped) {
+    const double half = 0.5 * m;
+    for (int i = 0; i < 6; ++i) r[i] = half * a[i];
+  } else {
+    const double diag = m / 3.0, off = m / 6.0;
+    for (int i = 0; i < 6; ++i) r[i] = diag * a[i] + off * a[(i + 3) % 6];
+  }
+  return r;
+}
 // F5: constant gravity load (rho A0 L / 2) g on each node.
 Vec6 cableGravity(double L, const LineMaterial& mat, const Vec3& g);
 

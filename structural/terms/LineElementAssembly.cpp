@@ -11,11 +11,7 @@ void assembleCable(const Model& m, int a, int b, double L, int material, const E
                    SystemAssembler& out) {
   const auto& mat = m.materials[material];
   if (p.inertiaOnly) {  // EX2's lumped mass of an inactive sliding element: M a only
-    if (mat.density > 0.0) {
-      ++out.work().lineMass;
-      const Vec6 r = kernels::cableMassTimes(L, mat, m.massKind, gather2(p.a, a, b));
-      out.add<2>({a, b}, r, nullptr);
-    }
+    addCableInertia(m, a, b, L, mat, p, out);
     return;
   }
   if (explicitForcesOnly(m, p, out)) {

@@ -23,6 +23,17 @@ inline kernels::Vec6 gather2(const Eigen::VectorXd& v, int a, int b) {
   r << v.segment<3>(3 * a), v.segment<3>(3 * b);
   return r;
 }
+// EX2's M a of a two-node cable alone (an inertia-only evaluation: the lumped mass M(x) 1 of an
+// inactive sliding element, asked for at every explicit step). Inline: through assembleCable's
+// call and cableMassTimes's it had cost 2-3 times its arithmetic.
+inline void addCableInertia(const Model& m, int a, int b, double L,
+                            const kernels::LineMaterial& mat, const EvalPoint& p,
+                            SystemAssembler& out) {
+  if (!(mat.density > 0.0)) return;
+  ++out.work().lineMass;
+  out.add<2>({a, b}, kernels::cableMassTimes(L, mat, m.massKind, gather2(p.a, a, b)), nullptr);
+}
+
 inline kernels::Vec9 gather3(const Eigen::VectorXd& v, int a, int b, int c) {
   kernels::Vec9 r;
   r << v.segment<3>(3 * a), v.segment<3>(3 * b), v.segment<3>(3 * c);

@@ -20,6 +20,7 @@ namespace chute {
 
 using kernels::Mat9;
 using kernels::Vec9;
+using line_assembly::addCableInertia;
 using line_assembly::addSlackTangent;
 using line_assembly::assembleCable;
 using line_assembly::cableEnergy;
@@ -324,26 +325,11 @@ SlidingGroupTerm::ActiveParts SlidingGroupTerm::activeParts(int element,
 void SlidingGroupTerm::assembleInertia(const EvalPoint& p, SystemAssembler& out) const {
   const auto& g = state_.def();
   const auto& mat = m_->materials[g.material];
-  const bool lumped = m_->massKind == kernels::MassKind::Lumped;
   for (int k = 0; k < g.numElements(); ++k) {
     const int n1 = g.chain[k], n2 = g.chain[k + 1];
     const int s = state_.sliderOfElement(k);
     if (s < 0) {  // inactive: a plain two-node cable's M a
-      if (lumped && mat.density > 0.0) {
-        // cableMassTimes's lumped product in place (the same operations): the explicit step's
-        // M(x) 1 asks for it for every inactive element of every group at every step, where the
-        // calls through assembleCable and cableMassTimes cost 2-3 times its arithmetic.
-        ++out.work().lineMass;
-        const double half = 0.5 * (mat.density * mat.area * state_.refLength(k));
-        kernels::Vec6 r;
-        for (int c = 0; c < 3; ++c) {
-          r[c] = half * p.a[3 * n1 + c];
-          r[3 + c] = half * p.a[3 * n2 + c];
-        }
-        out.add<2>({n1, n2}, r, nullptr);
-        continue;
-      }
-      assembleCable(*m_, n1, n2, state_.refLength(k), g.material, p, out);
+      addCableInertia(*m_, n1, n2, state_.refLength(k), mat, p, out);
       continue;
     }
     if (mat.density <= 0.0) continue;
