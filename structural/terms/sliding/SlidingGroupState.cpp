@@ -13,6 +13,24 @@ namespace {
 Vec3 nodePos(const Eigen::VectorXd& x, int n) {
   return x.segment<3>(3 * n);
 }
+
+// handoverGain of slider `slider` on element k at the positions pos(node) gives.
+template <class Positions>
+double gainAt(const SlidingGroupDef& def, int k, int slider, int end, Positions pos) {
+  const int next = k + (end == 0 ? -1 : +1);
+  if (next < 0 || next >= def.numElements()) return std::numeric_limits<double>::quiet_NaN();
+  const Vec3 xs = pos(def.sliders[slider]);
+  const Vec3 xi = pos(def.chain[k + end]);                   // the node passed
+  const Vec3 xa = pos(def.chain[k + 1 - end]);               // the element's other end
+  const Vec3 xc = pos(def.chain[end == 0 ? k - 1 : k + 2]);  // the neighbour's far node
+  return (xa - xi).norm() + (xs - xc).norm() - (xa - xs).norm() - (xi - xc).norm();
+}
+
+// The positions x + dx at a node, for the gain at the step's end without forming x + dx whole
+// (the same sums, element by element: the same bits).
+auto movedBy(const Eigen::VectorXd& x, const Eigen::VectorXd& dx) {
+  return [&x, &dx](int n) { return Vec3(nodePos(x, n) + nodePos(dx, n)); };
+}
 }  // namespace
 
 SlidingGroupState::SlidingGroupState(const SlidingGroupDef& def)
@@ -166,27 +184,13 @@ double SlidingGroupState::passageFraction(const Eigen::VectorXd& x, const Eigen:
       const double band = kernels::kArrivalFraction * ref_[k];
       const double g0 = handoverGain(static_cast<int>(s), end, x);
       if (!(g0 > band)) continue;
-      const double g1 = handoverGain(static_cast<int>(s), end, x + dx);
+      const double g1 = gainAt(*def_, k, static_cast<int>(s), end, movedBy(x, dx));
       if (g1 < 0.0)
         fraction = std::min(fraction, std::clamp((g0 - 0.5 * band) / (g0 - g1), 0.0, 1.0));
     }
   }
   return fraction;
 }
-
-namespace {
-// handoverGain of slider `slider` on element k at the positions pos(node) gives.
-template <class Positions>
-double gainAt(const SlidingGroupDef& def, int k, int slider, int end, Positions pos) {
-  const int next = k + (end == 0 ? -1 : +1);
-  if (next < 0 || next >= def.numElements()) return std::numeric_limits<double>::quiet_NaN();
-  const Vec3 xs = pos(def.sliders[slider]);
-  const Vec3 xi = pos(def.chain[k + end]);                   // the node passed
-  const Vec3 xa = pos(def.chain[k + 1 - end]);               // the element's other end
-  const Vec3 xc = pos(def.chain[end == 0 ? k - 1 : k + 2]);  // the neighbour's far node
-  return (xa - xi).norm() + (xs - xc).norm() - (xa - xs).norm() - (xi - xc).norm();
-}
-}  // namespace
 
 double SlidingGroupState::handoverGain(int slider, int end, const Eigen::VectorXd& x) const {
   return gainAt(*def_, trial_[slider], slider, end, [&](int n) { return nodePos(x, n); });
@@ -205,11 +209,10 @@ bool SlidingGroupState::foldOpen(int slider, int end, const Eigen::VectorXd& x) 
 
 int SlidingGroupState::notePassages(const Eigen::VectorXd& x, const Eigen::VectorXd& dx) {
   int passed = 0;
-  // The positions x + dx at the four nodes the gain reads, not the whole vector: forming it for
-  // every group on every step was a full vector pass per group (9-10 % of the C-9's explicit
-  // step with 28 groups), and still 2.5 % where only a slider near a node formed it (the same
-  // sums, element by element: the same bits).
-  auto moved = [&](int n) { return Vec3(nodePos(x, n) + nodePos(dx, n)); };
+  // The gain at x + dx from the four nodes it reads (movedBy), not the whole vector: forming it
+  // for every group on every step was a full vector pass per group (9-10 % of the C-9's explicit
+  // step with 28 groups), and still 2.5 % where only a slider near a node formed it.
+  const auto moved = movedBy(x, dx);
   for (size_t s = 0; s < trial_.size(); ++s) {
     if (driven_[s] || pendingHandover_[s] != 0) continue;
     const int k = trial_[s];
